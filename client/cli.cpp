@@ -1,0 +1,112 @@
+#include "client/cli.h"
+
+#include <cstdio>
+#include <exception>
+#include <map>
+#include <regex>
+
+#include <CLI/CLI.hpp>
+
+#include "client/render_command.h"
+#include "common/error.h"
+
+namespace glint {
+namespace {
+
+constexpr const char* kRenderHelp =
+    "Ray-trace a Glint scene (JSON, see docs/scene-format.md) and write a PNG.\n"
+    "Settings given here override the scene file's. The image is the same\n"
+    "whatever --threads and --tile-size are.";
+
+void parseSize(const std::string& text, RenderOptions& options) {
+  static const std::regex pattern(R"((\d{1,5})x(\d{1,5}))");
+  std::smatch m;
+  if (!std::regex_match(text, m, pattern)) {
+    throw InputError("--size " + text + ": expected WIDTHxHEIGHT, e.g. 640x480");
+  }
+  const int w = std::stoi(m[1]);
+  const int h = std::stoi(m[2]);
+  if (w < 1 || h < 1 || w > 65536 || h > 65536) {
+    throw InputError("--size " + text + ": width and height must be in [1, 65536]");
+  }
+  options.width = w;
+  options.height = h;
+}
+
+}  // namespace
+
+int runCli(int argc, char** argv) {
+  CLI::App app{"glint: a hybrid OpenGL / ray-tracing renderer", "glint"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "glint 0.1.0");
+
+  RenderOptions options;
+  std::string size;
+  std::string pattern;
+  std::string filter;
+  std::string bvh = "sah";
+  CLI::App* render = app.add_subcommand("render", kRenderHelp);
+  render->add_option("scene", options.scene, "Scene file (.json)")->required()->check(CLI::ExistingFile);
+  render->add_option("-o,--output", options.output, "PNG file to write (written only when the render succeeds)")
+      ->required();
+  render->add_option("--mask", options.mask,
+                     "Which pixels are ray traced: all (full ray trace); auto and none need the GL "
+                     "client (not built yet). Default: the scene's mask rule")
+      ->check(CLI::IsMember({"scene", "auto", "all", "none"}));
+  render->add_option("--threads", options.threads, "Render threads; 0 = one per hardware thread")
+      ->check(CLI::Range(0, 1024))
+      ->default_val(0);
+  render->add_option("--tile-size", options.tileSize, "Tile edge in pixels (work unit of a thread)")
+      ->check(CLI::Range(1, 4096))
+      ->default_val(32);
+  render->add_option("--samples", options.samples, "Samples per pixel (regular: 1, 2, 4, 9, 16 ...)")
+      ->check(CLI::Range(1, 4096));
+  render->add_option("--pattern", pattern, "Sample pattern: regular or jittered")
+      ->check(CLI::IsMember({"regular", "jittered"}));
+  render->add_option("--filter", filter, "Pixel filter: box, tent, gaussian or mitchell")
+      ->check(CLI::IsMember({"box", "tent", "gaussian", "mitchell"}));
+  render->add_option("--seed", options.seed, "Seed of the jitter (same seed, same image)")
+      ->check(CLI::Range(0u, 0x7fffffffu));
+  render->add_option("--max-depth", options.maxDepth, "Maximum ray depth (primary ray = 1)")
+      ->check(CLI::Range(1, 64));
+  render->add_option("--min-weight", options.minWeight,
+                     "Rays whose path weight falls below this are not traced")
+      ->check(CLI::Range(0.0f, 1.0f));
+  render->add_option("--size", size, "Image size WIDTHxHEIGHT (the camera's fov_y is kept)");
+  render->add_option("--bvh", bvh, "BVH builder: sah (default) or qsplit (the thesis's)")
+      ->check(CLI::IsMember({"sah", "qsplit"}));
+  render->add_option("--stats", options.statsPath,
+                     "Write one JSON object per frame (rays by kind, timings, effect plan) to FILE; "
+                     "- for stdout");
+  render->add_flag("-q,--quiet", options.quiet, "No summary line on stderr");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+
+  try {
+    if (!size.empty()) parseSize(size, options);
+    if (!pattern.empty()) {
+      options.pattern = pattern == "regular" ? SamplePattern::kRegular : SamplePattern::kJittered;
+    }
+    if (!filter.empty()) {
+      options.filter = filter == "box"        ? FilterType::kBox
+                       : filter == "tent"     ? FilterType::kTent
+                       : filter == "gaussian" ? FilterType::kGaussian
+                                              : FilterType::kMitchell;
+    }
+    options.bvh = bvh == "qsplit" ? BvhBuilder::kQSplit : BvhBuilder::kSah;
+    if (render->parsed()) runRender(options);
+    return 0;
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "glint: error: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "glint: internal error: %s\n", e.what());
+    return 1;
+  }
+}
+
+}  // namespace glint

@@ -1,0 +1,105 @@
+#include "client/render_command.h"
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+
+#include "client/progress.h"
+#include "client/stats_json.h"
+#include "common/error.h"
+#include "common/frame.h"
+#include "common/image_io.h"
+#include "common/sampling.h"
+#include "common/scene_load.h"
+
+namespace glint {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+void writeStats(const std::string& path, const nlohmann::json& record) {
+  if (path == "-") {
+    std::cout << record.dump() << '\n' << std::flush;
+    return;
+  }
+  std::ofstream out(path, std::ios::trunc);
+  out << record.dump() << '\n';
+  if (!out) throw InputError("--stats " + path + ": cannot write the file");
+}
+
+}  // namespace
+
+void applyOverrides(const RenderOptions& o, Scene& scene) {
+  if (o.width) scene.width = *o.width;
+  if (o.height) scene.height = *o.height;
+  if (o.pattern) scene.sampling.pattern = *o.pattern;
+  if (o.samples) scene.sampling.samples = *o.samples;
+  if (o.filter) scene.sampling.filter = *o.filter;
+  if (o.seed) scene.sampling.seed = *o.seed;
+  if (o.maxDepth) scene.tracing.maxDepth = *o.maxDepth;
+  if (o.minWeight) scene.tracing.minWeight = *o.minWeight;
+  if (!validSampleCount(scene.sampling.pattern, scene.sampling.samples)) {
+    throw InputError("--samples " + std::to_string(scene.sampling.samples) +
+                     ": the regular pattern takes 1, 2 or a square number (4, 9, 16, ...); "
+                     "use --pattern jittered for other counts");
+  }
+  const std::string rule = o.mask == "scene" ? (scene.mask.rule == MaskRule::kAll    ? "all"
+                                                : scene.mask.rule == MaskRule::kNone ? "none"
+                                                                                     : "auto")
+                                             : o.mask;
+  if (rule != "all") {
+    throw InputError("--mask " + rule +
+                     ": the hybrid OpenGL path is not built yet; use --mask all for a full ray trace");
+  }
+}
+
+void runRender(const RenderOptions& options) {
+  const Clock::time_point start = Clock::now();
+  FrameTimes times;
+  Scene scene = loadSceneFile(options.scene);
+  applyOverrides(options, scene);
+  times.loadMs = msSince(start);
+
+  const Clock::time_point bvhStart = Clock::now();
+  BvhSettings bvhSettings;
+  bvhSettings.builder = options.bvh;
+  const Renderer renderer(scene, bvhSettings);
+  times.bvhMs = msSince(bvhStart);
+
+  ThreadPool pool(resolveThreadCount(options.threads));
+  FrameOptions frameOptions;
+  frameOptions.tileSize = options.tileSize;
+  FrameResult result;
+  const Clock::time_point traceStart = Clock::now();
+  {
+    ProgressBar progress("rendering");
+    frameOptions.progress = [&progress](int done, int total) { progress.update(done, total); };
+    result = renderFrame(renderer, pool, frameOptions);
+  }
+  times.traceMs = msSince(traceStart);
+  writePng(options.output, result.image);
+  times.totalMs = msSince(start);
+
+  const std::size_t pixels = static_cast<std::size_t>(scene.width) * static_cast<std::size_t>(scene.height);
+  if (!options.statsPath.empty()) {
+    writeStats(options.statsPath, frameStats(0, scene.width, scene.height, pixels, result.stats, times,
+                                             renderer.plan(), scene.geometry.droppedTriangles()));
+  }
+  if (!options.quiet) {
+    std::fprintf(stderr, "%s: %dx%d, %d spp, %d threads: trace %.1f ms, total %.1f ms, %.2f M rays -> %s\n",
+                 options.scene.c_str(), scene.width, scene.height, scene.sampling.samples, pool.size(),
+                 times.traceMs, times.totalMs, static_cast<double>(result.stats.total()) / 1e6,
+                 options.output.c_str());
+    if (result.stats.nonFiniteSamples > 0) {
+      std::fprintf(stderr, "warning: %llu samples were not finite and were discarded\n",
+                   static_cast<unsigned long long>(result.stats.nonFiniteSamples));
+    }
+  }
+}
+
+}  // namespace glint

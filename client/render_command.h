@@ -1,0 +1,38 @@
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "common/bvh.h"
+#include "common/scene.h"
+
+namespace glint {
+
+// Options of `glint render`; unset optionals keep the scene file's value.
+struct RenderOptions {
+  std::string scene;
+  std::string output;
+  std::string mask = "scene";  // scene | auto | all | none
+  int threads = 0;             // 0: every hardware thread
+  int tileSize = 32;
+  std::optional<int> samples;
+  std::optional<SamplePattern> pattern;
+  std::optional<FilterType> filter;
+  std::optional<int> maxDepth;
+  std::optional<float> minWeight;
+  std::optional<int> width;
+  std::optional<int> height;
+  std::optional<std::uint32_t> seed;
+  BvhBuilder bvh = BvhBuilder::kSah;
+  std::string statsPath;  // "" none, "-" stdout
+  bool quiet = false;
+};
+
+// Loads the scene, applies the options, renders and writes the PNG. Throws
+// InputError for bad input (nothing is written then).
+void runRender(const RenderOptions& options);
+
+// The scene with the command-line overrides applied and checked.
+void applyOverrides(const RenderOptions& options, Scene& scene);
+
+}  // namespace glint

@@ -1,0 +1,52 @@
+#include "common/file_source.h"
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "common/error.h"
+
+namespace glint {
+
+std::string normalisePath(const std::string& path) {
+  return std::filesystem::path(path).lexically_normal().generic_string();
+}
+
+std::string siblingPath(const std::string& file, const std::string& name) {
+  return normalisePath((std::filesystem::path(file).parent_path() / name).generic_string());
+}
+
+DirectorySource::DirectorySource(std::filesystem::path folder, std::size_t maxBytes)
+    : folder_(std::move(folder)), maxBytes_(maxBytes) {}
+
+std::string DirectorySource::read(const std::string& path, const std::string& place) {
+  const std::filesystem::path full = folder_ / path;
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(full, ec);
+  if (ec) throw InputError(place + ": cannot read '" + full.string() + "' (" + ec.message() + ")");
+  if (size > maxBytes_) {
+    throw InputError(place + ": '" + full.string() + "' is " + std::to_string(size) +
+                     " bytes, over the limit of " + std::to_string(maxBytes_));
+  }
+  std::ifstream in(full, std::ios::binary);
+  if (!in) {
+    throw InputError(place + ": cannot open '" + full.string() + "' (" + std::strerror(errno) + ")");
+  }
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  if (!in && !in.eof()) throw InputError(place + ": error reading '" + full.string() + "'");
+  return std::move(bytes).str();
+}
+
+void MemorySource::add(const std::string& path, std::string bytes) {
+  files_[normalisePath(path)] = std::move(bytes);
+}
+
+std::string MemorySource::read(const std::string& path, const std::string& place) {
+  const auto it = files_.find(normalisePath(path));
+  if (it == files_.end()) throw InputError(place + ": file '" + path + "' was not sent with the scene");
+  return it->second;
+}
+
+}  // namespace glint

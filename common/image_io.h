@@ -1,0 +1,23 @@
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "common/frame.h"
+#include "common/texture.h"
+
+namespace glint {
+
+// Decodes a PNG or 24-bit BMP held in memory into RGB floats (byte / 255).
+// Images wider or taller than their data, corrupt, or over maxPixels are
+// rejected with an InputError that starts with `place`.
+Image decodeImage(std::string_view bytes, const std::string& place, std::size_t maxPixels);
+
+// Encodes the frame as PNG and writes it atomically: to a temporary file
+// beside `path`, renamed over it only once complete, so a failed or
+// interrupted write never leaves a half-written image.
+void writePng(const std::filesystem::path& path, const FrameImage& image);
+
+}  // namespace glint

@@ -1,0 +1,147 @@
+#include "common/json_reader.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "common/error.h"
+
+namespace glint {
+namespace {
+
+std::string typeName(const nlohmann::json& v) {
+  if (v.is_null()) return "null";
+  if (v.is_boolean()) return "a boolean";
+  if (v.is_number()) return "a number";
+  if (v.is_string()) return "a string";
+  if (v.is_array()) return "an array";
+  return "an object";
+}
+
+std::string format(double x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+
+}  // namespace
+
+JsonReader::JsonReader(const nlohmann::json& value, std::string path)
+    : value_(value), path_(std::move(path)) {}
+
+void JsonReader::fail(const std::string& what) const {
+  throw InputError((path_.empty() ? std::string("(top level)") : path_) + ": " + what);
+}
+
+void JsonReader::requireObject() const {
+  if (!value_.is_object()) fail("must be an object, not " + typeName(value_));
+}
+
+void JsonReader::allowKeys(std::initializer_list<const char*> keys) const {
+  requireObject();
+  for (const auto& [key, ignored] : value_.items()) {
+    bool known = false;
+    for (const char* k : keys) known = known || key == k;
+    if (!known) {
+      std::string list;
+      for (const char* k : keys) list += std::string(list.empty() ? "" : ", ") + k;
+      JsonReader(value_, path_.empty() ? key : path_ + "." + key)
+          .fail("unknown key (allowed here: " + list + ")");
+    }
+  }
+}
+
+bool JsonReader::has(const char* key) const { return value_.is_object() && value_.contains(key); }
+
+JsonReader JsonReader::operator[](const char* key) const {
+  requireObject();
+  const std::string child = path_.empty() ? key : path_ + "." + key;
+  const auto it = value_.find(key);
+  if (it == value_.end()) JsonReader(value_, child).fail("required key is missing");
+  return JsonReader(*it, child);
+}
+
+std::optional<JsonReader> JsonReader::find(const char* key) const {
+  if (!has(key)) return std::nullopt;
+  return (*this)[key];
+}
+
+std::size_t JsonReader::arraySize() const {
+  if (!value_.is_array()) fail("must be an array, not " + typeName(value_));
+  return value_.size();
+}
+
+JsonReader JsonReader::at(std::size_t i) const {
+  arraySize();
+  return JsonReader(value_[i], path_ + "[" + std::to_string(i) + "]");
+}
+
+float JsonReader::number(float lo, float hi, bool loExclusive) const {
+  if (!value_.is_number()) fail("must be a number, not " + typeName(value_));
+  const double d = value_.get<double>();
+  const auto f = static_cast<float>(d);
+  if (!std::isfinite(d) || !std::isfinite(f)) fail("must be a finite number");
+  if (loExclusive ? !(f > lo) : !(f >= lo)) {
+    fail(loExclusive ? "must be > " + format(lo) : "must be >= " + format(lo));
+  }
+  if (!(f <= hi)) {
+    fail(lo > -std::numeric_limits<float>::max()
+             ? "must be in [" + format(lo) + ", " + format(hi) + "]"
+             : "must be <= " + format(hi));
+  }
+  return f;
+}
+
+int JsonReader::integer(long long lo, long long hi) const {
+  if (!value_.is_number_integer()) {
+    fail(value_.is_number() ? "must be a whole number" : "must be a whole number, not " + typeName(value_));
+  }
+  // Unsigned values above the signed range read as negative, so check both.
+  if (value_.is_number_unsigned() && value_.get<unsigned long long>() > static_cast<unsigned long long>(hi)) {
+    fail("must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  }
+  const long long v = value_.get<long long>();
+  if (v < lo || v > hi) fail("must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  return static_cast<int>(v);
+}
+
+std::uint32_t JsonReader::index(std::size_t count) const {
+  if (!value_.is_number_integer()) fail("must be a whole number, not " + typeName(value_));
+  if (value_.is_number_unsigned() ? value_.get<unsigned long long>() >= count
+                                  : (value_.get<long long>() < 0 ||
+                                     static_cast<unsigned long long>(value_.get<long long>()) >= count)) {
+    fail("index out of range: must be in [0, " + std::to_string(count) + ")");
+  }
+  return static_cast<std::uint32_t>(value_.get<unsigned long long>());
+}
+
+std::string JsonReader::string() const {
+  if (!value_.is_string()) fail("must be a string, not " + typeName(value_));
+  return value_.get<std::string>();
+}
+
+bool JsonReader::boolean() const {
+  if (!value_.is_boolean()) fail("must be true or false, not " + typeName(value_));
+  return value_.get<bool>();
+}
+
+glm::vec3 JsonReader::vec3() const {
+  if (!value_.is_array() || value_.size() != 3) fail("must be an array of 3 numbers");
+  return {at(0).number(), at(1).number(), at(2).number()};
+}
+
+glm::vec2 JsonReader::vec2() const {
+  if (!value_.is_array() || value_.size() != 2) fail("must be an array of 2 numbers");
+  return {at(0).number(), at(1).number()};
+}
+
+float JsonReader::number(const char* key, float fallback, float lo, float hi, bool loExclusive) const {
+  const std::optional<JsonReader> v = find(key);
+  return v ? v->number(lo, hi, loExclusive) : fallback;
+}
+
+glm::vec3 JsonReader::vec3(const char* key, const glm::vec3& fallback) const {
+  const std::optional<JsonReader> v = find(key);
+  return v ? v->vec3() : fallback;
+}
+
+}  // namespace glint

@@ -1,0 +1,63 @@
+#pragma once
+
+#include <cstddef>
+#include <initializer_list>
+#include <limits>
+#include <optional>
+#include <string>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
+
+namespace glint {
+
+// Read access to a parsed JSON value that knows its own path in the document
+// ("objects[3].radius"), so that every error names the place. Each getter
+// checks the type and range and throws InputError("path: what is wrong").
+class JsonReader {
+ public:
+  JsonReader(const nlohmann::json& value, std::string path);
+
+  const std::string& path() const { return path_; }
+  const nlohmann::json& raw() const { return value_; }
+  [[noreturn]] void fail(const std::string& what) const;
+
+  // Objects. allowKeys fails on a key outside the list (typos must not be
+  // silently ignored).
+  void requireObject() const;
+  void allowKeys(std::initializer_list<const char*> keys) const;
+  bool has(const char* key) const;
+  JsonReader operator[](const char* key) const;  // required key
+  std::optional<JsonReader> find(const char* key) const;
+
+  // Arrays.
+  std::size_t arraySize() const;
+  JsonReader at(std::size_t i) const;
+
+  // Scalars. number() is a finite float in [lo, hi] (or (lo, hi] when
+  // loExclusive).
+  float number(float lo = -std::numeric_limits<float>::max(),
+               float hi = std::numeric_limits<float>::max(), bool loExclusive = false) const;
+  int integer(long long lo, long long hi) const;
+  std::uint32_t index(std::size_t count) const;  // an integer in [0, count)
+  std::string string() const;
+  bool boolean() const;
+  glm::vec3 vec3() const;
+  glm::vec2 vec2() const;
+  bool isNumber() const { return value_.is_number(); }
+  bool isString() const { return value_.is_string(); }
+  bool isBoolean() const { return value_.is_boolean(); }
+  bool isArray() const { return value_.is_array(); }
+
+  // Optional keys with the scene format's defaults.
+  float number(const char* key, float fallback, float lo = -std::numeric_limits<float>::max(),
+               float hi = std::numeric_limits<float>::max(), bool loExclusive = false) const;
+  glm::vec3 vec3(const char* key, const glm::vec3& fallback) const;
+
+ private:
+  const nlohmann::json& value_;
+  std::string path_;
+};
+
+}  // namespace glint

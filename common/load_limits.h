@@ -1,0 +1,18 @@
+#pragma once
+
+#include <cstddef>
+
+namespace glint {
+
+// Upper bounds on what a scene may make the loader allocate; a file over one
+// is rejected before the allocation, with a message naming the limit.
+struct LoadLimits {
+  std::size_t maxFileBytes = std::size_t{1} << 30;        // one scene, mesh or texture file
+  std::size_t maxTriangles = 30'000'000;                  // all meshes together
+  std::size_t maxVertices = 30'000'000;                   // all meshes together
+  std::size_t maxTexturePixels = std::size_t{1} << 26;    // one texture (8192 x 8192)
+  std::size_t maxImagePixels = std::size_t{1} << 28;      // the rendered image
+  int maxSamples = 4096;                                  // samples per pixel
+};
+
+}  // namespace glint

@@ -1,0 +1,35 @@
+#pragma once
+
+#include <string>
+
+#include <glm/vec3.hpp>
+
+namespace glint {
+
+// A material's "raytrace" key: under the auto mask rule, true forces the
+// material into the mask and false keeps it out.
+enum class RaytraceRule { kAuto, kAlways, kNever };
+
+// The thesis's material; defaults are the scene format's.
+struct Material {
+  std::string name;
+  glm::vec3 color{1.0f};  // surface colour C when there is no texture
+  int texture = -1;       // index into Scene::textures, or -1
+  float ambient = 0.0f;   // r_A
+  float diffuse = 1.0f;   // r_D
+  float specular = 0.0f;  // r_S
+  float shininess = 1.0f;  // h
+  float reflectivity = 0.0f;
+  float transparency = 0.0f;
+  float ior = 1.0f;
+  RaytraceRule raytrace = RaytraceRule::kAuto;
+};
+
+// A point light. Intensity at distance d: color / (c + l d + q d^2).
+struct PointLight {
+  glm::vec3 position{0.0f};
+  glm::vec3 color{1.0f};
+  glm::vec3 attenuation{1.0f, 0.0f, 0.0f};  // c, l, q
+};
+
+}  // namespace glint

@@ -1,0 +1,24 @@
+#pragma once
+
+#include <optional>
+
+#include <glm/vec3.hpp>
+
+namespace glint {
+
+// Mirror direction of unit d about unit n.
+glm::vec3 reflect(const glm::vec3& d, const glm::vec3& n);
+
+// Snell's law for unit d arriving at a surface with unit normal n facing it
+// (dot(d, n) < 0) and eta = n1 / n2. Returns the unit refracted direction, or
+// nothing at total internal reflection.
+std::optional<glm::vec3> refract(const glm::vec3& d, const glm::vec3& n, float eta);
+
+// Origin for a ray leaving surface point p on the side of unit normal n
+// (Wächter and Binder, "A Fast and Robust Method for Avoiding
+// Self-Intersection", Ray Tracing Gems chapter 6): p moves a fixed number of
+// ulps along n (256 per unit of n), which scales with the coordinates' own
+// rounding error; near the origin, where ulps are tiny, by 1/65536 instead.
+glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& n);
+
+}  // namespace glint

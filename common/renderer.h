@@ -1,0 +1,56 @@
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "common/bvh.h"
+#include "common/camera.h"
+#include "common/effects.h"
+#include "common/filter.h"
+#include "common/ray_stats.h"
+#include "common/scene.h"
+#include "common/tile.h"
+#include "common/tracer.h"
+
+namespace glint {
+
+// Everything needed to trace pixels of one scene from one camera: the BVH,
+// the effect plan, the camera and the filter. Immutable once built, so any
+// number of threads may render tiles of it at once.
+class Renderer {
+ public:
+  Renderer(const Scene& scene, const BvhSettings& bvhSettings);
+  // With an explicit plan (tests compare derived and full plans).
+  Renderer(const Scene& scene, const BvhSettings& bvhSettings, const EffectPlan& plan);
+
+  // The tile interface, called the same way in-process, by the server and by
+  // the GL client: traces the pixels of `rect` whose mask bit is set (every
+  // pixel for an empty mask) and appends their RGB8 values to `rgb` in scan
+  // order, 3 bytes per pixel.
+  void renderTile(const TileRect& rect, std::span<const std::uint8_t> mask,
+                  std::vector<std::uint8_t>& rgb, RayStats& stats) const;
+
+  // Linear colour of pixel (x, y): the filtered average of its samples.
+  glm::vec3 pixel(int x, int y, RayStats& stats) const;
+
+  const Scene& scene() const { return scene_; }
+  const Bvh& bvh() const { return bvh_; }
+  const EffectPlan& plan() const { return plan_; }
+  const Camera& camera() const { return camera_; }
+
+ private:
+  const Scene& scene_;
+  Bvh bvh_;
+  EffectPlan plan_;
+  Camera camera_;
+  Filter filter_;
+  Tracer tracer_;
+};
+
+// Linear [0, 1] -> 8 bits, rounded to nearest; values outside are clamped.
+std::uint8_t toByte(float v);
+
+}  // namespace glint

@@ -1,0 +1,53 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "common/camera.h"
+#include "common/geometry.h"
+#include "common/material.h"
+#include "common/texture.h"
+
+namespace glint {
+
+enum class SamplePattern { kRegular, kJittered };
+enum class FilterType { kBox, kTent, kGaussian, kMitchell };
+enum class MaskRule { kAuto, kAll, kNone };
+
+struct SamplingSettings {
+  SamplePattern pattern = SamplePattern::kRegular;
+  int samples = 1;
+  FilterType filter = FilterType::kBox;
+  std::uint32_t seed = 0;
+};
+
+struct TracingSettings {
+  int maxDepth = 5;         // primary ray = depth 1
+  float minWeight = 0.01f;  // rays whose path weight falls below this are not traced
+};
+
+struct MaskSettings {
+  MaskRule rule = MaskRule::kAuto;
+  float minReflectivity = 0.2f;
+  float minTransparency = 0.0f;
+};
+
+// A loaded scene: everything the scene file says, with names resolved to
+// indices and every object turned into primitives.
+struct Scene {
+  int width = 640;
+  int height = 480;
+  CameraSpec camera;
+  SamplingSettings sampling;
+  TracingSettings tracing;
+  MaskSettings mask;
+  glm::vec3 background{0.0f};
+  std::vector<Texture> textures;
+  std::vector<Material> materials;
+  std::vector<PointLight> lights;
+  Geometry geometry;
+};
+
+}  // namespace glint

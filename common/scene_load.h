@@ -1,0 +1,22 @@
+#pragma once
+
+#include <filesystem>
+#include <string_view>
+
+#include "common/file_source.h"
+#include "common/load_limits.h"
+#include "common/scene.h"
+
+namespace glint {
+
+// Loads a scene (the Glint scene format, version 1; docs/scene-format.md)
+// from its JSON text, reading the files it names through `files`. Any error
+// throws InputError naming the JSON path ("objects[3].radius: must be > 0");
+// nothing of a half-read scene escapes.
+Scene loadScene(std::string_view text, FileSource& files, const LoadLimits& limits = {});
+
+// The same for a scene file on disk: its files are read relative to its
+// folder. Errors start with the file's path.
+Scene loadSceneFile(const std::filesystem::path& path, const LoadLimits& limits = {});
+
+}  // namespace glint

@@ -1,0 +1,24 @@
+#pragma once
+
+#include <glm/vec3.hpp>
+
+namespace glint {
+
+// The thesis's Phong model, term by term (thesis digest, "Lighting"):
+//   I   = I_A + sum_i (I_D,i + I_S,i)
+//   I_A = C r_A
+//   I_D = I_L C r_D (N . L)
+//   I_S = I_L r_S (V . R)^h,  R = 2 (N . L) N - L
+// N, L, V unit; L towards the light, V towards the viewer.
+
+glm::vec3 phongAmbient(const glm::vec3& c, float rA);
+// Zero when the light is behind the surface (N . L <= 0).
+glm::vec3 phongDiffuse(const glm::vec3& lightI, const glm::vec3& c, float rD, const glm::vec3& n,
+                       const glm::vec3& l);
+// Zero when N . L <= 0 or V . R <= 0.
+glm::vec3 phongSpecular(const glm::vec3& lightI, float rS, float h, const glm::vec3& n,
+                        const glm::vec3& l, const glm::vec3& v);
+// I_L = color / (c + l d + q d^2) for attenuation (c, l, q) at distance d.
+glm::vec3 attenuate(const glm::vec3& color, const glm::vec3& attenuation, float d);
+
+}  // namespace glint

@@ -1,0 +1,36 @@
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace glint {
+
+// Decoded texture image: RGB texels as floats in [0, 1], row 0 at the top.
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<glm::vec3> texels;
+};
+
+enum class TextureType { kSolid, kChecker, kImage };
+enum class ImageFilter { kNearest, kBilinear };
+
+// The thesis's abstract texture: a colour at (u, v).
+struct Texture {
+  TextureType type = TextureType::kSolid;
+  glm::vec3 colors[2] = {glm::vec3(1.0f), glm::vec3(0.0f)};  // solid uses colors[0]
+  float scale = 1.0f;                                        // checker squares per unit of u and v
+  std::shared_ptr<const Image> image;
+  ImageFilter filter = ImageFilter::kNearest;
+
+  glm::vec3 evaluate(const glm::vec2& uv) const;
+};
+
+// Checker square index at (u, v): (floor(u s) + floor(v s)) mod 2, as the
+// scene format defines it; 0 for coordinates that are not finite.
+int checkerIndex(const glm::vec2& uv, float scale);
+
+}  // namespace glint

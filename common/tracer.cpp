@@ -1,0 +1,95 @@
+#include "common/tracer.h"
+
+#include <glm/geometric.hpp>
+
+#include "common/float_bits.h"
+#include "common/optics.h"
+#include "common/shading.h"
+
+namespace glint {
+
+Tracer::Tracer(const Scene& scene, const Bvh& bvh, const EffectPlan& plan)
+    : scene_(scene), bvh_(bvh), plan_(plan) {}
+
+glm::vec3 Tracer::radiance(const Ray& ray, RayStats& stats) const {
+  ++stats.primary;
+  return trace(ray, 1, 1.0f, false, stats);
+}
+
+glm::vec3 Tracer::lightIntensity(int light, float distance) const {
+  const PointLight& l = scene_.lights[light];
+  if (!plan_.attenuation) return l.color / l.attenuation.x;  // constant: no distance term
+  return attenuate(l.color, l.attenuation, distance);
+}
+
+glm::vec3 Tracer::shade(const SurfaceHit& s, const glm::vec3& toViewer, const Material& m,
+                        const MaterialEffects& e, RayStats& stats) const {
+  const glm::vec3 c =
+      e.textured && m.texture >= 0 ? scene_.textures[m.texture].evaluate(s.uv) : m.color;
+  glm::vec3 result = phongAmbient(c, m.ambient);
+  if (!e.direct) return result;
+  const glm::vec3 origin = offsetRayOrigin(s.p, s.ng);
+  for (int i = 0; i < static_cast<int>(scene_.lights.size()); ++i) {
+    if (!plan_.lights[i]) continue;
+    const glm::vec3 toLight = scene_.lights[i].position - s.p;
+    const float distance = glm::length(toLight);
+    if (!(distance > 0.0f)) continue;
+    const glm::vec3 l = toLight / distance;
+    // A light behind the geometric surface or the shading normal adds nothing.
+    if (glm::dot(l, s.ng) <= 0.0f || glm::dot(l, s.ns) <= 0.0f) continue;
+    if (plan_.shadows) {
+      ++stats.shadow;
+      const glm::vec3 fromOrigin = scene_.lights[i].position - origin;
+      const float shadowDistance = glm::length(fromOrigin);
+      if (bvh_.occluded(scene_.geometry, Ray(origin, fromOrigin / shadowDistance), shadowDistance)) {
+        continue;
+      }
+    }
+    const glm::vec3 lightI = lightIntensity(i, distance);
+    result += phongDiffuse(lightI, c, m.diffuse, s.ns, l);
+    if (e.specular) result += phongSpecular(lightI, m.specular, m.shininess, s.ns, l, toViewer);
+  }
+  return result;
+}
+
+glm::vec3 Tracer::trace(const Ray& ray, int depth, float weight, bool inside,
+                        RayStats& stats) const {
+  const std::optional<Hit> hit = bvh_.intersect(scene_.geometry, ray, kInfinity);
+  if (!hit) return scene_.background;
+  const SurfaceHit s = scene_.geometry.surface(ray, *hit);
+  const Material& m = scene_.materials[s.material];
+  const MaterialEffects& e = plan_.materials[s.material];
+  glm::vec3 color = shade(s, -ray.d, m, e, stats);
+  if (depth >= scene_.tracing.maxDepth || !(e.reflects || e.refracts)) return color;
+
+  float kr = m.reflectivity;
+  float kt = 0.0f;
+  glm::vec3 refracted{0.0f};
+  if (m.transparency > 0.0f) {
+    // Entering: air -> material; leaving: material -> air.
+    const float eta = inside ? m.ior : 1.0f / m.ior;
+    std::optional<glm::vec3> t = refract(ray.d, s.ns, eta);
+    if (t && glm::dot(*t, s.ng) >= 0.0f) t = refract(ray.d, s.ng, eta);
+    if (t) {
+      kt = m.transparency;
+      refracted = *t;
+    } else {
+      kr += m.transparency;  // total internal reflection
+    }
+  }
+  const float minWeight = scene_.tracing.minWeight;
+  if (e.reflects && kr > 0.0f && weight * kr >= minWeight) {
+    ++stats.reflection;
+    glm::vec3 dir = reflect(ray.d, s.ns);
+    if (glm::dot(dir, s.ng) <= 0.0f) dir = reflect(ray.d, s.ng);
+    color += kr * trace(Ray(offsetRayOrigin(s.p, s.ng), dir), depth + 1, weight * kr, inside, stats);
+  }
+  if (e.refracts && kt > 0.0f && weight * kt >= minWeight) {
+    ++stats.refraction;
+    color += kt * trace(Ray(offsetRayOrigin(s.p, -s.ng), refracted), depth + 1, weight * kt, !inside,
+                        stats);
+  }
+  return color;
+}
+
+}  // namespace glint

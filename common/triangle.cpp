@@ -1,0 +1,90 @@
+#include "common/triangle.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/float_bits.h"
+
+namespace glint {
+namespace {
+
+int maxAbsAxis(const glm::vec3& v) {
+  const float x = std::abs(v.x), y = std::abs(v.y), z = std::abs(v.z);
+  if (x > y && x > z) return 0;
+  return y > z ? 1 : 2;
+}
+
+glm::vec3 permute(const glm::vec3& v, int x, int y, int z) { return {v[x], v[y], v[z]}; }
+
+// a*b - c*d in plain float arithmetic: fl(a*b) - fl(c*d) is exactly the
+// negation of fl(c*d) - fl(a*b), which the shared-edge guarantee needs.
+float edge(float ax, float by, float ay, float bx) { return ax * by - ay * bx; }
+
+float edgeDouble(float ax, float by, float ay, float bx) {
+  return static_cast<float>(double(ax) * double(by) - double(ay) * double(bx));
+}
+
+}  // namespace
+
+std::optional<TriangleHit> intersectTriangle(const Ray& ray, const glm::vec3& p0,
+                                             const glm::vec3& p1, const glm::vec3& p2, float tMax) {
+  const int kz = maxAbsAxis(ray.d);
+  const int kx = (kz + 1) % 3;
+  const int ky = (kx + 1) % 3;
+  const glm::vec3 d = permute(ray.d, kx, ky, kz);
+  glm::vec3 a = permute(p0 - ray.o, kx, ky, kz);
+  glm::vec3 b = permute(p1 - ray.o, kx, ky, kz);
+  glm::vec3 c = permute(p2 - ray.o, kx, ky, kz);
+
+  const float sx = -d.x / d.z;
+  const float sy = -d.y / d.z;
+  const float sz = 1.0f / d.z;
+  a.x += sx * a.z;
+  a.y += sy * a.z;
+  b.x += sx * b.z;
+  b.y += sy * b.z;
+  c.x += sx * c.z;
+  c.y += sy * c.z;
+
+  float e0 = edge(b.x, c.y, b.y, c.x);
+  float e1 = edge(c.x, a.y, c.y, a.x);
+  float e2 = edge(a.x, b.y, a.y, b.x);
+  if (e0 == 0.0f || e1 == 0.0f || e2 == 0.0f) {
+    e0 = edgeDouble(b.x, c.y, b.y, c.x);
+    e1 = edgeDouble(c.x, a.y, c.y, a.x);
+    e2 = edgeDouble(a.x, b.y, a.y, b.x);
+  }
+  if ((e0 < 0.0f || e1 < 0.0f || e2 < 0.0f) && (e0 > 0.0f || e1 > 0.0f || e2 > 0.0f)) {
+    return std::nullopt;
+  }
+  const float det = e0 + e1 + e2;
+  if (det == 0.0f || !std::isfinite(det)) return std::nullopt;
+
+  a.z *= sz;
+  b.z *= sz;
+  c.z *= sz;
+  const float tScaled = e0 * a.z + e1 * b.z + e2 * c.z;
+  if (det < 0.0f && (tScaled >= 0.0f || tScaled < tMax * det)) return std::nullopt;
+  if (det > 0.0f && (tScaled <= 0.0f || tScaled > tMax * det)) return std::nullopt;
+
+  const float invDet = 1.0f / det;
+  const float t = tScaled * invDet;
+
+  // Conservative bound on the error of t (pbrt-v4 6.8.4): reject hits that
+  // are not certainly in front of the origin.
+  const float maxZt = std::max({std::abs(a.z), std::abs(b.z), std::abs(c.z)});
+  const float maxXt = std::max({std::abs(a.x), std::abs(b.x), std::abs(c.x)});
+  const float maxYt = std::max({std::abs(a.y), std::abs(b.y), std::abs(c.y)});
+  const float deltaZ = gamma(3) * maxZt;
+  const float deltaX = gamma(5) * (maxXt + maxZt);
+  const float deltaY = gamma(5) * (maxYt + maxZt);
+  const float deltaE = 2.0f * (gamma(2) * maxXt * maxYt + deltaY * maxXt + deltaX * maxYt);
+  const float maxE = std::max({std::abs(e0), std::abs(e1), std::abs(e2)});
+  const float deltaT =
+      3.0f * (gamma(3) * maxE * maxZt + deltaE * maxZt + deltaZ * maxE) * std::abs(invDet);
+  if (t <= deltaT) return std::nullopt;
+
+  return TriangleHit{t, e0 * invDet, e1 * invDet, e2 * invDet};
+}
+
+}  // namespace glint

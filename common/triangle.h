@@ -1,0 +1,31 @@
+#pragma once
+
+#include <optional>
+
+#include <glm/vec3.hpp>
+
+#include "common/ray.h"
+
+namespace glint {
+
+// Hit of a ray with triangle (p0, p1, p2): distance and barycentric weights of
+// the three vertices (b0 + b1 + b2 = 1, all >= 0).
+struct TriangleHit {
+  float t;
+  float b0;
+  float b1;
+  float b2;
+};
+
+// Watertight ray/triangle intersection (Woop, Benthin and Wald 2013,
+// "Watertight Ray/Triangle Intersection", JCGT 2(1); the variant of pbrt-v4
+// 6.5.3). The vertices are translated to the ray origin, permuted so the
+// ray's dominant axis is z, and sheared so the ray becomes +z; the edge
+// functions are then 2D and computed in the same way for both triangles of a
+// shared edge, so a ray through the edge hits at least one of them. Edge
+// functions that come out exactly zero are recomputed in double. Accepts both
+// windings; t is checked against a conservative error bound, so t > 0.
+std::optional<TriangleHit> intersectTriangle(const Ray& ray, const glm::vec3& p0,
+                                             const glm::vec3& p1, const glm::vec3& p2, float tMax);
+
+}  // namespace glint
