@@ -14,11 +14,14 @@ glm::vec3 reflect(const glm::vec3& d, const glm::vec3& n) {
 }
 
 std::optional<glm::vec3> refract(const glm::vec3& d, const glm::vec3& n, float eta) {
-  const float cosI = -glm::dot(d, n);
-  const float sin2T = eta * eta * std::max(0.0f, 1.0f - cosI * cosI);
-  if (sin2T >= 1.0f) return std::nullopt;
-  const float cosT = std::sqrt(1.0f - sin2T);
-  return glm::normalize(eta * d + (eta * cosI - cosT) * n);
+  // In double: near the critical angle cos^2 T = 1 - eta^2 (1 - cos^2 I)
+  // cancels almost completely, and float would lose most of its digits.
+  const glm::dvec3 dd(d), nd(n);
+  const double e = eta;
+  const double cosI = -glm::dot(dd, nd);
+  const double cos2T = 1.0 - e * e * std::max(0.0, 1.0 - cosI * cosI);
+  if (cos2T <= 0.0) return std::nullopt;
+  return glm::vec3(glm::normalize(e * dd + (e * cosI - std::sqrt(cos2T)) * nd));
 }
 
 glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& n) {

@@ -1,0 +1,127 @@
+// Runs the real `glint` program as a user would and checks what it prints,
+// its exit status and the files it leaves behind.
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int status;
+  std::string output;
+};
+
+Result glint(const std::string& args) {
+  const std::string command = std::string(GLINT_BIN) + " " + args + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  Result run{-1, ""};
+  if (!pipe) return run;
+  std::array<char, 4096> buffer{};
+  while (std::fgets(buffer.data(), buffer.size(), pipe)) run.output += buffer.data();
+  const int raw = pclose(pipe);
+  run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return run;
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("glint_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string writeScene(const std::string& name, const std::string& text) const {
+    std::ofstream(path(name)) << text;
+    return path(name);
+  }
+  static std::string scene(const std::string& name) { return std::string(GLINT_SOURCE_DIR) + "/scenes/" + name; }
+
+  fs::path dir_;
+};
+
+TEST_F(Cli, HelpExplainsEveryOption) {
+  const Result run = glint("render --help");
+  EXPECT_EQ(run.status, 0);
+  for (const char* option : {"--output", "--mask", "--threads", "--samples", "--pattern", "--filter",
+                             "--max-depth", "--min-weight", "--size", "--stats", "--seed", "--bvh"}) {
+    EXPECT_NE(run.output.find(option), std::string::npos) << option;
+  }
+}
+
+TEST_F(Cli, RendersThePngAndStats) {
+  const Result run = glint("render " + scene("room.json") + " -o " + path("room.png") +
+                        " --mask all --size 80x60 --samples 1 --pattern regular --stats " + path("stats.json"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  ASSERT_TRUE(fs::exists(path("room.png")));
+  std::ifstream png(path("room.png"), std::ios::binary);
+  char magic[8] = {};
+  png.read(magic, 8);
+  EXPECT_EQ(std::string(magic + 1, 3), "PNG");
+  std::ifstream statsFile(path("stats.json"));
+  std::string stats((std::istreambuf_iterator<char>(statsFile)), std::istreambuf_iterator<char>());
+  for (const char* key : {"\"width\":80", "\"height\":60", "\"masked_pixels\":4800", "\"primary\":4800",
+                          "\"shadow\":", "\"reflection\":", "\"refraction\":", "\"trace_ms\":", "\"total_ms\":",
+                          "\"effects\":", "\"nonfinite_samples\":0"}) {
+    EXPECT_NE(stats.find(key), std::string::npos) << key << " in " << stats;
+  }
+}
+
+TEST_F(Cli, BadValuesGiveClearErrorsAndWriteNothing) {
+  const std::string out = " -o " + path("x.png");
+  const std::string room = scene("room.json");
+  struct Case {
+    std::string args;
+    std::string message;
+  };
+  const Case cases[] = {
+      {"render " + room + out + " --mask all --threads -1", "--threads"},
+      {"render " + room + out + " --mask all --samples 0", "--samples"},
+      {"render " + room + out + " --mask all --samples 3 --pattern regular", "--samples 3"},
+      {"render " + room + out + " --mask all --filter lanczos", "--filter"},
+      {"render " + room + out + " --mask all --size 0x10", "--size 0x10"},
+      {"render " + room + out + " --mask all --size big", "--size big"},
+      {"render " + room + out + " --mask all --min-weight 2", "--min-weight"},
+      {"render " + room + out + " --mask auto", "--mask auto"},
+      {"render " + room + out + " --mask sometimes", "--mask"},
+      {"render " + path("missing.json") + out + " --mask all", "missing.json"},
+      {"render " + room + " --mask all", "--output"},
+      {"render " + room + " -o " + path("no/such/folder/x.png") + " --mask all --size 8x8", "no/such/folder"},
+  };
+  for (const Case& c : cases) {
+    const Result run = glint(c.args);
+    EXPECT_NE(run.status, 0) << c.args;
+    EXPECT_NE(run.output.find(c.message), std::string::npos) << c.args << "\n" << run.output;
+    EXPECT_FALSE(fs::exists(path("x.png"))) << c.args;
+  }
+  EXPECT_TRUE(fs::is_empty(dir_));
+}
+
+TEST_F(Cli, BadSceneNamesTheJsonPathAndWritesNothing) {
+  const std::string bad = writeScene(
+      "bad.json", R"({"glint": 1, "image": {"width": 4, "height": 4},
+        "camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0]}, "materials": {"m": {}},
+        "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": -1, "material": "m"}]})");
+  const Result run = glint("render " + bad + " -o " + path("x.png") + " --mask all");
+  EXPECT_EQ(run.status, 1);
+  EXPECT_NE(run.output.find("bad.json: objects[0].radius: must be > 0"), std::string::npos) << run.output;
+  EXPECT_FALSE(fs::exists(path("x.png")));
+
+  const std::string truncated = writeScene("cut.json", R"({"glint": 1, "image": {"wid)");
+  const Result cut = glint("render " + truncated + " -o " + path("x.png") + " --mask all");
+  EXPECT_EQ(cut.status, 1);
+  EXPECT_NE(cut.output.find("not valid JSON"), std::string::npos) << cut.output;
+  EXPECT_FALSE(fs::exists(path("x.png")));
+}
+
+}  // namespace

@@ -1,0 +1,163 @@
+#include "common/bvh.h"
+
+#include <random>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+namespace glint {
+namespace {
+
+// Nearest hit by testing every primitive: the reference for the BVH.
+std::optional<Hit> bruteForce(const Geometry& g, const Ray& ray) {
+  std::optional<Hit> best;
+  float tMax = 1e30f;
+  for (std::uint32_t p = 0; p < g.primitiveCount(); ++p) {
+    if (auto h = g.intersect(p, ray, tMax)) {
+      best = h;
+      tMax = h->t;
+    }
+  }
+  return best;
+}
+
+Geometry randomSoup(int triangles, int spheres, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> pos(-10.0f, 10.0f);
+  std::uniform_real_distribution<float> size(0.05f, 1.5f);
+  Geometry g;
+  MeshInput mesh;
+  for (int i = 0; i < triangles; ++i) {
+    const glm::vec3 c(pos(rng), pos(rng), pos(rng));
+    for (int k = 0; k < 3; ++k) {
+      mesh.positions.push_back(c + size(rng) * glm::vec3(pos(rng), pos(rng), pos(rng)) / 10.0f);
+      mesh.indices.push_back(static_cast<std::uint32_t>(mesh.positions.size() - 1));
+    }
+  }
+  g.addMesh(std::move(mesh));
+  for (int i = 0; i < spheres; ++i) g.addSphere({{pos(rng), pos(rng), pos(rng)}, size(rng) * 0.5f, 0});
+  return g;
+}
+
+std::vector<Ray> randomRays(int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> pos(-14.0f, 14.0f);
+  std::normal_distribution<float> dir;
+  std::vector<Ray> rays;
+  for (int i = 0; i < n; ++i) {
+    rays.emplace_back(glm::vec3(pos(rng), pos(rng), pos(rng)),
+                      glm::normalize(glm::vec3(dir(rng), dir(rng), dir(rng))));
+  }
+  return rays;
+}
+
+class BvhBuilders : public ::testing::TestWithParam<BvhBuilder> {};
+
+TEST_P(BvhBuilders, NearestHitAndOcclusionEqualBruteForce) {
+  const Geometry g = randomSoup(3000, 100, 1);
+  BvhSettings settings;
+  settings.builder = GetParam();
+  const Bvh bvh = Bvh::build(g, settings);
+  EXPECT_LE(bvh.depth(), kBvhMaxDepth);
+  EXPECT_EQ(bvh.primIds().size(), g.primitiveCount());
+  int hits = 0;
+  int mismatches = 0;
+  for (const Ray& ray : randomRays(100'000, 2)) {
+    const auto expected = bruteForce(g, ray);
+    const auto got = bvh.intersect(g, ray, 1e30f);
+    hits += expected ? 1 : 0;
+    if (expected.has_value() != got.has_value() ||
+        (expected && (expected->prim != got->prim || expected->t != got->t))) {
+      ++mismatches;
+    }
+    if (expected.has_value() != bvh.occluded(g, ray, 1e30f)) ++mismatches;
+  }
+  EXPECT_EQ(mismatches, 0);
+  EXPECT_GT(hits, 10'000);  // the comparison covers many hits, not only misses
+}
+
+// A mesh whose vertices lie on exact binary fractions, so that many triangles
+// touch node faces exactly, shot at with axis-parallel and random rays.
+TEST_P(BvhBuilders, GridMeshOnNodeFacesEqualsBruteForce) {
+  Geometry g;
+  MeshInput mesh;
+  constexpr int kN = 32;
+  for (int z = 0; z <= kN; ++z) {
+    for (int x = 0; x <= kN; ++x) {
+      mesh.positions.emplace_back(x * 0.25f, ((x * 7 + z * 3) % 5) * 0.125f, z * 0.25f);
+    }
+  }
+  for (int z = 0; z < kN; ++z) {
+    for (int x = 0; x < kN; ++x) {
+      const std::uint32_t i = static_cast<std::uint32_t>(z * (kN + 1) + x);
+      mesh.indices.insert(mesh.indices.end(), {i, i + 1, i + kN + 1, i + 1, i + kN + 2, i + kN + 1});
+    }
+  }
+  g.addMesh(std::move(mesh));
+  BvhSettings settings;
+  settings.builder = GetParam();
+  const Bvh bvh = Bvh::build(g, settings);
+  std::mt19937 rng(9);
+  std::uniform_int_distribution<int> cell(-4, 4 * kN + 4);
+  std::normal_distribution<float> dir;
+  int mismatches = 0;
+  int hits = 0;
+  for (int i = 0; i < 200'000; ++i) {
+    const glm::vec3 o(cell(rng) * 0.0625f, 2.0f, cell(rng) * 0.0625f);
+    glm::vec3 d(0.0f, -1.0f, 0.0f);
+    if (i % 2 == 1) d = glm::normalize(glm::vec3(dir(rng), -std::abs(dir(rng)) - 0.1f, dir(rng)));
+    const Ray ray(o, d);
+    const auto expected = bruteForce(g, ray);
+    const auto got = bvh.intersect(g, ray, 1e30f);
+    hits += expected ? 1 : 0;
+    // Where a ray meets a shared edge, two triangles tie: compare t, not ids.
+    if (expected.has_value() != got.has_value() || (expected && expected->t != got->t)) ++mismatches;
+  }
+  EXPECT_EQ(mismatches, 0);
+  EXPECT_GT(hits, 100'000);
+}
+
+INSTANTIATE_TEST_SUITE_P(Builders, BvhBuilders, ::testing::Values(BvhBuilder::kQSplit, BvhBuilder::kSah),
+                         [](const auto& info) {
+                           return info.param == BvhBuilder::kSah ? std::string("Sah") : std::string("QSplit");
+                         });
+
+TEST(Bvh, EmptyTreeFindsNothing) {
+  const Geometry g;
+  const Bvh bvh = Bvh::build(g, {});
+  EXPECT_FALSE(bvh.intersect(g, Ray({0, 0, 0}, {0, 0, 1}), 1e30f));
+  EXPECT_FALSE(bvh.occluded(g, Ray({0, 0, 0}, {0, 0, 1}), 1e30f));
+}
+
+TEST(Bvh, IdenticalPrimitivesStayWithinTheStackDepth) {
+  Geometry g;
+  for (int i = 0; i < 5000; ++i) g.addSphere({{0, 0, 0}, 1.0f, 0});
+  for (BvhBuilder builder : {BvhBuilder::kQSplit, BvhBuilder::kSah}) {
+    BvhSettings settings;
+    settings.builder = builder;
+    const Bvh bvh = Bvh::build(g, settings);
+    EXPECT_LE(bvh.depth(), kBvhMaxDepth);
+    EXPECT_TRUE(bvh.intersect(g, Ray({0, 0, 5}, {0, 0, -1}), 1e30f));
+  }
+}
+
+TEST(Bvh, DegenerateTrianglesAreDroppedAndCounted) {
+  Geometry g;
+  MeshInput mesh;
+  const float nan = std::nanf("");
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 0, 0}, {nan, 0, 0}};
+  mesh.indices = {0, 1, 2,   // good
+                  0, 1, 3,   // collinear
+                  0, 0, 2,   // repeated vertex
+                  0, 1, 4};  // NaN vertex
+  g.addMesh(std::move(mesh));
+  EXPECT_EQ(g.triangles().size(), 1u);
+  EXPECT_EQ(g.droppedTriangles(), 3u);
+  const Bvh bvh = Bvh::build(g, {});
+  const auto hit = bvh.intersect(g, Ray({0.2f, 0.2f, 1.0f}, {0, 0, -1}), 1e30f);
+  ASSERT_TRUE(hit);
+  EXPECT_FLOAT_EQ(hit->t, 1.0f);
+}
+
+}  // namespace
+}  // namespace glint

@@ -1,0 +1,27 @@
+#pragma once
+
+#include <string>
+
+#include "common/effects.h"
+#include "common/frame.h"
+#include "common/scene.h"
+
+namespace glint::test {
+
+// Loads a scene from JSON text that names no files.
+Scene sceneFromJson(const std::string& json);
+
+// Renders a whole frame through the tile interface.
+FrameResult render(const Scene& scene, int threads = 1, int tileSize = 32);
+FrameResult render(const Scene& scene, const EffectPlan& plan, int threads = 1, int tileSize = 32);
+
+// Path of a file in the source tree (scenes/room.json).
+std::string sourcePath(const std::string& relative);
+
+// RGB of pixel (x, y) of an image.
+struct Rgb {
+  int r, g, b;
+};
+Rgb pixelAt(const FrameImage& image, int x, int y);
+
+}  // namespace glint::test

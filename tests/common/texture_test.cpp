@@ -1,0 +1,40 @@
+#include "common/texture.h"
+
+#include <gtest/gtest.h>
+
+namespace glint {
+namespace {
+
+TEST(Texture, CheckerIndexFollowsTheFormat) {
+  // (floor(u s) + floor(v s)) mod 2.
+  EXPECT_EQ(checkerIndex({0.1f, 0.1f}, 1.0f), 0);
+  EXPECT_EQ(checkerIndex({1.1f, 0.1f}, 1.0f), 1);
+  EXPECT_EQ(checkerIndex({0.1f, 1.1f}, 1.0f), 1);
+  EXPECT_EQ(checkerIndex({1.1f, 1.1f}, 1.0f), 0);
+  EXPECT_EQ(checkerIndex({-0.1f, 0.1f}, 1.0f), 1);  // floor(-0.1) = -1
+  EXPECT_EQ(checkerIndex({0.3f, 0.1f}, 4.0f), 1);   // floor(1.2) = 1
+  EXPECT_EQ(checkerIndex({1e30f, 0.0f}, 1e10f), 0);  // overflow: not finite, first colour
+}
+
+TEST(Texture, ImageUvRunsRightAndUp) {
+  auto image = std::make_shared<Image>();
+  image->width = 2;
+  image->height = 2;
+  // Row 0 is the top of the image.
+  image->texels = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+  Texture t;
+  t.type = TextureType::kImage;
+  t.image = image;
+  EXPECT_EQ(t.evaluate({0.25f, 0.75f}), glm::vec3(1, 0, 0));  // top-left
+  EXPECT_EQ(t.evaluate({0.75f, 0.75f}), glm::vec3(0, 1, 0));  // top-right
+  EXPECT_EQ(t.evaluate({0.25f, 0.25f}), glm::vec3(0, 0, 1));  // bottom-left
+  EXPECT_EQ(t.evaluate({1.25f, -0.75f}), glm::vec3(0, 0, 1));  // wraps
+  t.filter = ImageFilter::kBilinear;
+  EXPECT_EQ(t.evaluate({0.25f, 0.75f}), glm::vec3(1, 0, 0));  // a texel centre is exact
+  const glm::vec3 mid = t.evaluate({0.5f, 0.75f});            // halfway between the top texels
+  EXPECT_NEAR(mid.x, 0.5f, 1e-6f);
+  EXPECT_NEAR(mid.y, 0.5f, 1e-6f);
+}
+
+}  // namespace
+}  // namespace glint
