@@ -40,9 +40,10 @@ void walk(const std::vector<BvhNode>& nodes, const Ray& ray, float& tMax, Visit 
 
 std::optional<Hit> Bvh::intersect(const Geometry& geometry, const Ray& ray, float tMax) const {
   std::optional<Hit> nearest;
+  const WatertightRay w(ray);
   walk(nodes_, ray, tMax, [&](const BvhNode& leaf) {
     for (std::uint32_t i = leaf.offset; i < leaf.offset + leaf.count; ++i) {
-      if (const std::optional<Hit> hit = geometry.intersect(primIds_[i], ray, tMax)) {
+      if (const std::optional<Hit> hit = geometry.intersect(primIds_[i], ray, w, tMax)) {
         nearest = hit;
         tMax = hit->t;  // a later hit counts only if closer
       }
@@ -54,9 +55,10 @@ std::optional<Hit> Bvh::intersect(const Geometry& geometry, const Ray& ray, floa
 
 bool Bvh::occluded(const Geometry& geometry, const Ray& ray, float tMax) const {
   bool found = false;
+  const WatertightRay w(ray);
   walk(nodes_, ray, tMax, [&](const BvhNode& leaf) {
     for (std::uint32_t i = leaf.offset; i < leaf.offset + leaf.count; ++i) {
-      if (geometry.intersect(primIds_[i], ray, tMax)) {
+      if (geometry.intersect(primIds_[i], ray, w, tMax)) {
         found = true;
         return true;
       }

@@ -90,6 +90,9 @@ float Filter::warp(float u) const {
   return -radius_ + 2.0f * radius_ * (static_cast<float>(cell) + t) / kTableSize;
 }
 
-float Filter::sign(float offset) const { return evaluate(offset) < 0.0f ? -1.0f : 1.0f; }
+float Filter::sign(float offset) const {
+  if (type_ != FilterType::kMitchell) return 1.0f;  // the only filter with negative lobes
+  return evaluate(offset) < 0.0f ? -1.0f : 1.0f;
+}
 
 }  // namespace glint

@@ -5,7 +5,6 @@
 
 #include <glm/geometric.hpp>
 
-#include "common/triangle.h"
 
 namespace glint {
 namespace {
@@ -75,14 +74,15 @@ std::uint32_t Geometry::materialOf(std::uint32_t prim) const {
   return models_[triangles_[prim].model].material;
 }
 
-std::optional<Hit> Geometry::intersect(std::uint32_t prim, const Ray& ray, float tMax) const {
+std::optional<Hit> Geometry::intersect(std::uint32_t prim, const Ray& ray, const WatertightRay& w,
+                                       float tMax) const {
   if (isSphere(prim)) {
     const std::optional<float> t = intersectSphere(spheres_[prim - triangles_.size()], ray, tMax);
     if (!t) return std::nullopt;
     return Hit{*t, prim, 0.0f, 0.0f, 0.0f};
   }
   const Triangle& tri = triangles_[prim];
-  const std::optional<TriangleHit> h = intersectTriangle(ray, positions_[tri.v[0]],
+  const std::optional<TriangleHit> h = intersectTriangle(ray, w, positions_[tri.v[0]],
                                                          positions_[tri.v[1]], positions_[tri.v[2]], tMax);
   if (!h) return std::nullopt;
   return Hit{h->t, prim, h->b0, h->b1, h->b2};

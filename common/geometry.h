@@ -12,6 +12,7 @@
 #include "common/bounds.h"
 #include "common/ray.h"
 #include "common/sphere.h"
+#include "common/triangle.h"
 
 namespace glint {
 
@@ -73,7 +74,10 @@ class Geometry {
   }
   bool isSphere(std::uint32_t prim) const { return prim >= triangles_.size(); }
   Bounds3 primitiveBounds(std::uint32_t prim) const;
-  std::optional<Hit> intersect(std::uint32_t prim, const Ray& ray, float tMax) const;
+  std::optional<Hit> intersect(std::uint32_t prim, const Ray& ray, float tMax) const {
+    return intersect(prim, ray, WatertightRay(ray), tMax);
+  }
+  std::optional<Hit> intersect(std::uint32_t prim, const Ray& ray, const WatertightRay& w, float tMax) const;
   SurfaceHit surface(const Ray& ray, const Hit& hit) const;
   std::uint32_t materialOf(std::uint32_t prim) const;
 

@@ -26,19 +26,27 @@ float edgeDouble(float ax, float by, float ay, float bx) {
 
 }  // namespace
 
+WatertightRay::WatertightRay(const Ray& ray) {
+  kz = maxAbsAxis(ray.d);
+  kx = (kz + 1) % 3;
+  ky = (kx + 1) % 3;
+  const glm::vec3 d = permute(ray.d, kx, ky, kz);
+  sx = -d.x / d.z;
+  sy = -d.y / d.z;
+  sz = 1.0f / d.z;
+}
+
 std::optional<TriangleHit> intersectTriangle(const Ray& ray, const glm::vec3& p0,
                                              const glm::vec3& p1, const glm::vec3& p2, float tMax) {
-  const int kz = maxAbsAxis(ray.d);
-  const int kx = (kz + 1) % 3;
-  const int ky = (kx + 1) % 3;
-  const glm::vec3 d = permute(ray.d, kx, ky, kz);
-  glm::vec3 a = permute(p0 - ray.o, kx, ky, kz);
-  glm::vec3 b = permute(p1 - ray.o, kx, ky, kz);
-  glm::vec3 c = permute(p2 - ray.o, kx, ky, kz);
+  return intersectTriangle(ray, WatertightRay(ray), p0, p1, p2, tMax);
+}
 
-  const float sx = -d.x / d.z;
-  const float sy = -d.y / d.z;
-  const float sz = 1.0f / d.z;
+std::optional<TriangleHit> intersectTriangle(const Ray& ray, const WatertightRay& w, const glm::vec3& p0,
+                                             const glm::vec3& p1, const glm::vec3& p2, float tMax) {
+  glm::vec3 a = permute(p0 - ray.o, w.kx, w.ky, w.kz);
+  glm::vec3 b = permute(p1 - ray.o, w.kx, w.ky, w.kz);
+  glm::vec3 c = permute(p2 - ray.o, w.kx, w.ky, w.kz);
+  const float sx = w.sx, sy = w.sy, sz = w.sz;
   a.x += sx * a.z;
   a.y += sy * a.z;
   b.x += sx * b.z;

@@ -28,4 +28,14 @@ struct TriangleHit {
 std::optional<TriangleHit> intersectTriangle(const Ray& ray, const glm::vec3& p0,
                                              const glm::vec3& p1, const glm::vec3& p2, float tMax);
 
+// The per-ray part of the test (axis permutation and shear), computed once
+// per ray when the ray meets many triangles.
+struct WatertightRay {
+  int kx, ky, kz;
+  float sx, sy, sz;
+  explicit WatertightRay(const Ray& ray);
+};
+std::optional<TriangleHit> intersectTriangle(const Ray& ray, const WatertightRay& w, const glm::vec3& p0,
+                                             const glm::vec3& p1, const glm::vec3& p2, float tMax);
+
 }  // namespace glint

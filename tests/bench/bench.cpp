@@ -1,0 +1,212 @@
+// glint-bench: prints what the ray-tracing core costs. Numbers, never
+// assertions: medians over repeated runs, and ratios against peers measured
+// in the same run (QSplit vs SAH, POV-Ray 3.7 vs Glint).
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "common/bvh.h"
+#include "common/frame.h"
+#include "common/scene_load.h"
+#include "tests/bench/bench_scenes.h"
+
+namespace glint::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Options {
+  std::string scenes = "scenes";
+  bool quick = false;
+  bool povray = true;
+  int runs = 7;
+};
+
+double medianMs(int runs, const std::function<void()>& work) {
+  std::vector<double> ms;
+  for (int i = 0; i < runs; ++i) {
+    const Clock::time_point start = Clock::now();
+    work();
+    ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+  }
+  std::sort(ms.begin(), ms.end());
+  return ms[ms.size() / 2];
+}
+
+struct BvhResult {
+  double buildMs;
+  double closestMrays;
+  double anyMrays;
+};
+
+BvhResult measureBvh(const Geometry& g, const std::vector<Ray>& rays, BvhBuilder builder, int runs) {
+  BvhSettings settings;
+  settings.builder = builder;
+  Bvh bvh;
+  const double buildMs = medianMs(runs, [&] { bvh = Bvh::build(g, settings); });
+  std::size_t sink = 0;
+  const double closestMs = medianMs(runs, [&] {
+    for (const Ray& r : rays) sink += bvh.intersect(g, r, 1e30f) ? 1 : 0;
+  });
+  const double anyMs = medianMs(runs, [&] {
+    for (const Ray& r : rays) sink += bvh.occluded(g, r, 1e30f) ? 1 : 0;
+  });
+  if (sink == 42) std::puts("");  // keeps the loops from being optimised away
+  const double n = static_cast<double>(rays.size());
+  return {buildMs, n / closestMs / 1e3, n / anyMs / 1e3};
+}
+
+void bvhSection(const Options& o, const Scene& room) {
+  std::printf("\n## BVH: build and traversal, 1 thread (median of %d)\n\n", o.runs);
+  std::printf("| scene | builder | primitives | build ms | closest hit Mrays/s | any hit Mrays/s |\n");
+  std::printf("|---|---|---|---|---|---|\n");
+  const int w = o.quick ? 100 : 1000;
+  const int d = o.quick ? 50 : 500;
+  const Geometry terrainGeometry = terrain(w, d);
+  struct Case {
+    const char* name;
+    const Geometry* g;
+    std::vector<Ray> rays;
+  };
+  const int rayCount = o.quick ? 10'000 : 1'000'000;
+  const Case cases[] = {{"room", &room.geometry, roomRays(rayCount, 1)},
+                        {"terrain", &terrainGeometry, terrainRays(rayCount, 2)}};
+  for (const Case& c : cases) {
+    BvhResult r[2];
+    const BvhBuilder builders[2] = {BvhBuilder::kQSplit, BvhBuilder::kSah};
+    for (int b = 0; b < 2; ++b) {
+      r[b] = measureBvh(*c.g, c.rays, builders[b], o.runs);
+      std::printf("| %s | %s | %u | %.2f | %.2f | %.2f |\n", c.name, b == 0 ? "qsplit" : "sah",
+                  c.g->primitiveCount(), r[b].buildMs, r[b].closestMrays, r[b].anyMrays);
+    }
+    std::printf("| %s | sah / qsplit | | | **%.2fx** | %.2fx |\n", c.name, r[1].closestMrays / r[0].closestMrays,
+                r[1].anyMrays / r[0].anyMrays);
+  }
+}
+
+double renderMs(const Scene& scene, ThreadPool& pool, int runs, RayStats* stats = nullptr) {
+  const Renderer renderer(scene, BvhSettings{});
+  FrameResult result;
+  const double ms = medianMs(runs, [&] { result = renderFrame(renderer, pool, {}); });
+  if (stats) *stats = result.stats;
+  return ms;
+}
+
+// POV-Ray 3.7 rendering the same room at the same size with 4 jittered
+// samples per pixel (+A0.0: supersample every pixel; +AM1 +R2: 2 x 2 grid;
+// +J: jitter), 2 threads, no display. Returns a negative value when POV-Ray
+// is not installed or fails.
+double povrayMs(const Options& o, int width, int height) {
+  if (std::system("command -v povray > /dev/null 2>&1") != 0) return -1.0;
+  const std::filesystem::path pov = std::filesystem::path(o.scenes) / "room.pov";
+  const std::filesystem::path out = std::filesystem::temp_directory_path() / "glint-bench-povray.png";
+  const std::string cmd = "povray +I" + pov.string() + " +O" + out.string() + " +W" + std::to_string(width) +
+                          " +H" + std::to_string(height) +
+                          " +A0.0 +AM1 +R2 +J1.0 +WT2 -D -V -GA +FN > /dev/null 2>&1";
+  bool ok = true;
+  const double ms = medianMs(o.quick ? 1 : 5, [&] { ok = ok && std::system(cmd.c_str()) == 0; });
+  std::filesystem::remove(out);
+  return ok ? ms : -1.0;
+}
+
+void roomSection(const Options& o, const Scene& room, ThreadPool& pool) {
+  std::printf("\n## The room, %dx%d, 4 jittered samples, tent filter, full trace, %d threads\n\n", room.width,
+              room.height, pool.size());
+  RayStats stats;
+  const double glint = renderMs(room, pool, o.runs, &stats);
+  std::printf("| renderer | median ms | rays |\n|---|---|---|\n");
+  std::printf("| glint | %.1f | %.2f M |\n", glint, static_cast<double>(stats.total()) / 1e6);
+  const double pov = o.povray ? povrayMs(o, room.width, room.height) : -1.0;
+  if (pov > 0.0) {
+    std::printf("| povray 3.7 (same room, scenes/room.pov) | %.1f | |\n", pov);
+    std::printf("\nPOV-Ray / Glint: **%.2fx**\n", pov / glint);
+  } else {
+    std::printf("\nPOV-Ray not measured (not installed, or --no-povray; `make bench-deps` installs it).\n");
+  }
+}
+
+// What accuracy costs: each setting of the room varied on its own.
+void accuracySection(const Options& o, const Scene& room, ThreadPool& pool) {
+  std::printf("\n## What accuracy costs (the room, %dx%d, %d threads, median of %d)\n\n", room.width,
+              room.height, pool.size(), o.runs);
+  struct Row {
+    std::string name;
+    double ms;
+    RayStats stats;
+  };
+  std::vector<Row> rows;
+  const auto row = [&](const std::string& name, const std::function<void(Scene&)>& edit) {
+    Scene s = room;
+    edit(s);
+    Row r{name, 0.0, {}};
+    r.ms = renderMs(s, pool, o.runs, &r.stats);
+    rows.push_back(r);
+  };
+  row("1 sample, regular, box", [](Scene& s) {
+    s.sampling = {SamplePattern::kRegular, 1, FilterType::kBox, 0};
+  });
+  for (int n : {4, 9, 16}) {
+    row(std::to_string(n) + " samples, jittered, tent" + (n == 4 ? " (the thesis's)" : ""),
+        [n](Scene& s) { s.sampling.samples = n; });
+  }
+  for (auto [name, f] : {std::pair{"box", FilterType::kBox}, std::pair{"gaussian", FilterType::kGaussian},
+                         std::pair{"mitchell", FilterType::kMitchell}}) {
+    row(std::string("4 samples, jittered, ") + name, [f](Scene& s) { s.sampling.filter = f; });
+  }
+  for (int depth : {1, 2, 3, 8}) {
+    row("max_depth " + std::to_string(depth), [depth](Scene& s) { s.tracing.maxDepth = depth; });
+  }
+  for (float w : {0.5f, 0.1f, 0.001f, 0.0f}) {
+    char name[64];
+    std::snprintf(name, sizeof name, "min_weight %g", static_cast<double>(w));
+    row(name, [w](Scene& s) { s.tracing.minWeight = w; });
+  }
+  const double base = rows[1].ms;  // 4 jittered samples, tent: the thesis's setting
+  std::printf("| setting | trace ms | rays | vs. the thesis's setting |\n|---|---|---|---|\n");
+  for (const Row& r : rows) {
+    std::printf("| %s | %.1f | %.2f M | %.2fx |\n", r.name.c_str(), r.ms,
+                static_cast<double>(r.stats.total()) / 1e6, r.ms / base);
+  }
+  std::printf("\nEach row changes one setting of the room (4 jittered samples, tent, max_depth 5,\n"
+              "min_weight 0.01); rays counts every primary, shadow, reflected and refracted ray.\n");
+}
+
+}  // namespace
+}  // namespace glint::bench
+
+int main(int argc, char** argv) {
+  using namespace glint;
+  bench::Options o;
+  CLI::App app{"glint-bench: timings of the ray-tracing core (medians; prints, never asserts)"};
+  app.add_option("--scenes", o.scenes, "Folder with room.json and room.pov")->check(CLI::ExistingDirectory);
+  app.add_flag("--quick", o.quick, "Small sizes and one run: a smoke test, not a measurement");
+  app.add_option("--runs", o.runs, "Runs per measurement (the median is printed)")->check(CLI::Range(1, 101));
+  bool noPovray = false;
+  app.add_flag("--no-povray", noPovray, "Skip the POV-Ray comparison");
+  CLI11_PARSE(app, argc, argv);
+  o.povray = !noPovray;
+  if (o.quick) o.runs = 1;
+  try {
+    Scene room = loadSceneFile(std::filesystem::path(o.scenes) / "room.json");
+    if (o.quick) {
+      room.width = 160;
+      room.height = 120;
+    }
+    ThreadPool pool(2);
+    std::printf("# glint-bench%s\n", o.quick ? " (quick: not a measurement)" : "");
+    bench::bvhSection(o, room);
+    bench::roomSection(o, room, pool);
+    bench::accuracySection(o, room, pool);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "glint-bench: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
