@@ -13,6 +13,7 @@ nlohmann::json frameStats(int frame, int width, int height, std::size_t maskedPi
       {"rays",
        {{"primary", rays.primary},
         {"shadow", rays.shadow},
+        {"shadow_blocked", rays.shadowBlocked},
         {"reflection", rays.reflection},
         {"refraction", rays.refraction},
         {"total", rays.total()}}},

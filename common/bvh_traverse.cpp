@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "common/bvh.h"
+#include "common/float_bits.h"
 
 namespace glint {
 namespace {
@@ -43,7 +44,11 @@ std::optional<Hit> Bvh::intersect(const Geometry& geometry, const Ray& ray, floa
   const WatertightRay w(ray);
   walk(nodes_, ray, tMax, [&](const BvhNode& leaf) {
     for (std::uint32_t i = leaf.offset; i < leaf.offset + leaf.count; ++i) {
-      if (const std::optional<Hit> hit = geometry.intersect(primIds_[i], ray, w, tMax)) {
+      // One ulp beyond the nearest hit so far, so that a hit at exactly the
+      // same distance reaches the tie-break of closerHit.
+      const float limit = nearest ? std::nextafter(tMax, kInfinity) : tMax;
+      const std::optional<Hit> hit = geometry.intersect(primIds_[i], ray, w, limit);
+      if (hit && (!nearest || closerHit(*hit, *nearest))) {
         nearest = hit;
         tMax = hit->t;  // a later hit counts only if closer
       }

@@ -51,6 +51,13 @@ struct Hit {
   float b2;
 };
 
+// The order of hits along a ray: nearer first, and of two at exactly the same
+// distance (a ray through a shared edge) the lower primitive id, so that the
+// BVH and a brute-force loop agree on the hit whatever order they test in.
+inline bool closerHit(const Hit& a, const Hit& b) {
+  return a.t < b.t || (a.t == b.t && a.prim < b.prim);
+}
+
 // What shading needs to know about a hit point.
 struct SurfaceHit {
   glm::vec3 p;   // hit point, reconstructed from the surface (not o + t d)

@@ -9,6 +9,7 @@ namespace glint {
 struct RayStats {
   std::uint64_t primary = 0;
   std::uint64_t shadow = 0;
+  std::uint64_t shadowBlocked = 0;  // shadow rays that found an occluder
   std::uint64_t reflection = 0;
   std::uint64_t refraction = 0;
   std::uint64_t nonFiniteSamples = 0;  // samples discarded because a channel was NaN or infinite
@@ -16,6 +17,7 @@ struct RayStats {
   RayStats& operator+=(const RayStats& o) {
     primary += o.primary;
     shadow += o.shadow;
+    shadowBlocked += o.shadowBlocked;
     reflection += o.reflection;
     refraction += o.refraction;
     nonFiniteSamples += o.nonFiniteSamples;

@@ -42,6 +42,7 @@ glm::vec3 Tracer::shade(const SurfaceHit& s, const glm::vec3& toViewer, const Ma
       const glm::vec3 fromOrigin = scene_.lights[i].position - origin;
       const float shadowDistance = glm::length(fromOrigin);
       if (bvh_.occluded(scene_.geometry, Ray(origin, fromOrigin / shadowDistance), shadowDistance)) {
+        ++stats.shadowBlocked;
         continue;
       }
     }

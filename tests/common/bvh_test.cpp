@@ -1,5 +1,6 @@
 #include "common/bvh.h"
 
+#include <cmath>
 #include <random>
 
 #include <glm/geometric.hpp>
@@ -13,7 +14,8 @@ std::optional<Hit> bruteForce(const Geometry& g, const Ray& ray) {
   std::optional<Hit> best;
   float tMax = 1e30f;
   for (std::uint32_t p = 0; p < g.primitiveCount(); ++p) {
-    if (auto h = g.intersect(p, ray, tMax)) {
+    const auto h = g.intersect(p, ray, best ? std::nextafter(tMax, 1e30f) : tMax);
+    if (h && (!best || closerHit(*h, *best))) {
       best = h;
       tMax = h->t;
     }
@@ -54,7 +56,7 @@ std::vector<Ray> randomRays(int n, unsigned seed) {
 class BvhBuilders : public ::testing::TestWithParam<BvhBuilder> {};
 
 TEST_P(BvhBuilders, NearestHitAndOcclusionEqualBruteForce) {
-  const Geometry g = randomSoup(3000, 100, 1);
+  const Geometry g = randomSoup(1000, 50, 1);
   BvhSettings settings;
   settings.builder = GetParam();
   const Bvh bvh = Bvh::build(g, settings);
@@ -73,7 +75,7 @@ TEST_P(BvhBuilders, NearestHitAndOcclusionEqualBruteForce) {
     if (expected.has_value() != bvh.occluded(g, ray, 1e30f)) ++mismatches;
   }
   EXPECT_EQ(mismatches, 0);
-  EXPECT_GT(hits, 10'000);  // the comparison covers many hits, not only misses
+  EXPECT_GT(hits, 5000);  // the comparison covers many hits, not only misses
 }
 
 // A mesh whose vertices lie on exact binary fractions, so that many triangles
@@ -81,7 +83,7 @@ TEST_P(BvhBuilders, NearestHitAndOcclusionEqualBruteForce) {
 TEST_P(BvhBuilders, GridMeshOnNodeFacesEqualsBruteForce) {
   Geometry g;
   MeshInput mesh;
-  constexpr int kN = 32;
+  constexpr int kN = 8;
   for (int z = 0; z <= kN; ++z) {
     for (int x = 0; x <= kN; ++x) {
       mesh.positions.emplace_back(x * 0.25f, ((x * 7 + z * 3) % 5) * 0.125f, z * 0.25f);
@@ -102,7 +104,7 @@ TEST_P(BvhBuilders, GridMeshOnNodeFacesEqualsBruteForce) {
   std::normal_distribution<float> dir;
   int mismatches = 0;
   int hits = 0;
-  for (int i = 0; i < 200'000; ++i) {
+  for (int i = 0; i < 1'000'000; ++i) {
     const glm::vec3 o(cell(rng) * 0.0625f, 2.0f, cell(rng) * 0.0625f);
     glm::vec3 d(0.0f, -1.0f, 0.0f);
     if (i % 2 == 1) d = glm::normalize(glm::vec3(dir(rng), -std::abs(dir(rng)) - 0.1f, dir(rng)));
@@ -110,11 +112,13 @@ TEST_P(BvhBuilders, GridMeshOnNodeFacesEqualsBruteForce) {
     const auto expected = bruteForce(g, ray);
     const auto got = bvh.intersect(g, ray, 1e30f);
     hits += expected ? 1 : 0;
-    // Where a ray meets a shared edge, two triangles tie: compare t, not ids.
-    if (expected.has_value() != got.has_value() || (expected && expected->t != got->t)) ++mismatches;
+    if (expected.has_value() != got.has_value() ||
+        (expected && (expected->t != got->t || expected->prim != got->prim))) {
+      ++mismatches;
+    }
   }
   EXPECT_EQ(mismatches, 0);
-  EXPECT_GT(hits, 100'000);
+  EXPECT_GT(hits, 300'000);
 }
 
 INSTANTIATE_TEST_SUITE_P(Builders, BvhBuilders, ::testing::Values(BvhBuilder::kQSplit, BvhBuilder::kSah),
