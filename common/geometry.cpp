@@ -5,31 +5,14 @@
 
 #include <glm/geometric.hpp>
 
+#include "common/float_bits.h"
+
 
 namespace glint {
 namespace {
 
 bool finite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-// Area-weighted vertex normals from the winding the file gives; a mesh wound
-// the other way gets exactly the negated normals.
-std::vector<glm::vec3> vertexNormals(const MeshInput& mesh) {
-  std::vector<glm::vec3> normals(mesh.positions.size(), glm::vec3(0.0f));
-  for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
-    const glm::vec3& a = mesh.positions[mesh.indices[i]];
-    const glm::vec3& b = mesh.positions[mesh.indices[i + 1]];
-    const glm::vec3& c = mesh.positions[mesh.indices[i + 2]];
-    const glm::vec3 n = glm::cross(b - a, c - a);
-    if (!finite(n)) continue;
-    for (int k = 0; k < 3; ++k) normals[mesh.indices[i + k]] += n;
-  }
-  for (glm::vec3& n : normals) {
-    const float len = glm::length(n);
-    n = len > 0.0f && std::isfinite(len) ? n / len : glm::vec3(0.0f);
-  }
-  return normals;
 }
 
 glm::vec3 faceForward(const glm::vec3& n, const glm::vec3& d) {
@@ -39,7 +22,9 @@ glm::vec3 faceForward(const glm::vec3& n, const glm::vec3& d) {
 }  // namespace
 
 void Geometry::addMesh(MeshInput mesh) {
-  if (mesh.normals.empty()) mesh.normals = vertexNormals(mesh);
+  // No normals: zero vectors, which shading replaces by the geometric normal
+  // (flat facets, as in OpenGL without per-vertex normals).
+  if (mesh.normals.empty()) mesh.normals.assign(mesh.positions.size(), glm::vec3(0.0f));
   if (mesh.uvs.empty()) mesh.uvs.assign(mesh.positions.size(), glm::vec2(0.0f));
   const auto base = static_cast<std::uint32_t>(positions_.size());
   const auto model = static_cast<std::uint32_t>(models_.size());
@@ -94,6 +79,10 @@ SurfaceHit Geometry::surface(const Ray& ray, const Hit& hit) const {
   if (isSphere(hit.prim)) {
     const Sphere& sphere = spheres_[hit.prim - triangles_.size()];
     s.p = projectToSphere(sphere, ray.o + hit.t * ray.d);
+    // Projection leaves p off the surface by a few ulps of the radius and of
+    // the centre's coordinates (pbrt-v4 6.8.5 bounds the object-space part by gamma(5)).
+    const glm::vec3 c = glm::abs(sphere.centre);
+    s.error = gamma(6) * (std::max({c.x, c.y, c.z}) + sphere.radius);
     const glm::vec3 n = (s.p - sphere.centre) / sphere.radius;
     s.ng = faceForward(n, ray.d);
     s.ns = s.ng;
@@ -110,6 +99,9 @@ SurfaceHit Geometry::surface(const Ray& ray, const Hit& hit) const {
   // Barycentric reconstruction is exact to a few ulps of the vertices
   // (Wächter and Binder, Ray Tracing Gems chapter 6).
   s.p = hit.b0 * a + hit.b1 * b + hit.b2 * c;
+  // pbrt-v4 6.8.5: the interpolation error is at most gamma(7) sum |b_i p_i|.
+  const glm::vec3 absSum = glm::abs(hit.b0 * a) + glm::abs(hit.b1 * b) + glm::abs(hit.b2 * c);
+  s.error = gamma(7) * std::max({absSum.x, absSum.y, absSum.z});
   s.ng = faceForward(glm::normalize(glm::cross(b - a, c - a)), ray.d);
   const glm::vec3 n = hit.b0 * normals_[tri.v[0]] + hit.b1 * normals_[tri.v[1]] +
                       hit.b2 * normals_[tri.v[2]];

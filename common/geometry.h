@@ -65,12 +65,15 @@ struct SurfaceHit {
   glm::vec3 ns;  // unit shading normal, in the hemisphere of ng
   glm::vec2 uv;
   std::uint32_t material;
+  // Bound on the rounding error of each coordinate of p (absolute): how far
+  // a spawned ray's origin must move off the surface at least.
+  float error;
 };
 
 // All primitives of a scene. Primitive ids number the triangles first, then
 // the spheres. Triangles share one vertex list (position, normal, uv per
-// vertex), as in the thesis; a mesh without normals gets area-weighted vertex
-// normals, one without uvs gets uv (0, 0).
+// vertex), as in the thesis; a mesh without normals is shaded flat with its
+// geometric normals, one without uvs gets uv (0, 0).
 class Geometry {
  public:
   void addMesh(MeshInput mesh);

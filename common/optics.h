@@ -21,4 +21,11 @@ std::optional<glm::vec3> refract(const glm::vec3& d, const glm::vec3& n, float e
 // rounding error; near the origin, where ulps are tiny, by 1/65536 instead.
 glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& n);
 
+// The same for a computed hit point whose coordinates may each be off by up
+// to `error`: p first moves along n past that error (as pbrt-v4's
+// OffsetRayOrigin does), then by the ulps above. The ulp offset alone scales
+// with each coordinate's own magnitude, which is too little where a small
+// coordinate belongs to a large or distant primitive.
+glm::vec3 offsetRayOrigin(const glm::vec3& p, float error, const glm::vec3& n);
+
 }  // namespace glint

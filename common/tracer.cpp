@@ -28,7 +28,7 @@ glm::vec3 Tracer::shade(const SurfaceHit& s, const glm::vec3& toViewer, const Ma
       e.textured && m.texture >= 0 ? scene_.textures[m.texture].evaluate(s.uv) : m.color;
   glm::vec3 result = phongAmbient(c, m.ambient);
   if (!e.direct) return result;
-  const glm::vec3 origin = offsetRayOrigin(s.p, s.ng);
+  const glm::vec3 origin = offsetRayOrigin(s.p, s.error, s.ng);
   for (int i = 0; i < static_cast<int>(scene_.lights.size()); ++i) {
     if (!plan_.lights[i]) continue;
     const glm::vec3 toLight = scene_.lights[i].position - s.p;
@@ -83,11 +83,11 @@ glm::vec3 Tracer::trace(const Ray& ray, int depth, float weight, bool inside,
     ++stats.reflection;
     glm::vec3 dir = reflect(ray.d, s.ns);
     if (glm::dot(dir, s.ng) <= 0.0f) dir = reflect(ray.d, s.ng);
-    color += kr * trace(Ray(offsetRayOrigin(s.p, s.ng), dir), depth + 1, weight * kr, inside, stats);
+    color += kr * trace(Ray(offsetRayOrigin(s.p, s.error, s.ng), dir), depth + 1, weight * kr, inside, stats);
   }
   if (e.refracts && kt > 0.0f && weight * kt >= minWeight) {
     ++stats.refraction;
-    color += kt * trace(Ray(offsetRayOrigin(s.p, -s.ng), refracted), depth + 1, weight * kt, !inside,
+    color += kt * trace(Ray(offsetRayOrigin(s.p, s.error, -s.ng), refracted), depth + 1, weight * kt, !inside,
                         stats);
   }
   return color;

@@ -1,5 +1,10 @@
 #include "tests/common/test_support.h"
 
+#include <cmath>
+#include <map>
+
+#include <glm/geometric.hpp>
+
 #include "common/file_source.h"
 #include "common/renderer.h"
 #include "common/scene_load.h"
@@ -30,6 +35,43 @@ Rgb pixelAt(const FrameImage& image, int x, int y) {
   const std::size_t i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
                          static_cast<std::size_t>(x)) * 3;
   return {image.rgb[i], image.rgb[i + 1], image.rgb[i + 2]};
+}
+
+}  // namespace glint::test
+
+namespace glint::test {
+
+MeshInput icosphere(int levels, const glm::vec3& centre, float radius) {
+  const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
+  std::vector<glm::vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                              {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  std::vector<std::uint32_t> f = {0, 11, 5, 0, 5,  1,  0,  1, 7, 0,  7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
+                                  4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3, 9,  4,  3, 4,  2,  3, 2, 6, 3,
+                                  6, 8, 3,  8,  9,  4, 9, 5, 2, 4, 11, 6, 2,  10, 8, 6,  7, 9, 8, 1};
+  for (glm::vec3& p : v) p = glm::normalize(p);
+  for (int level = 0; level < levels; ++level) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> midpoints;
+    const auto mid = [&](std::uint32_t a, std::uint32_t b) {
+      const auto key = std::minmax(a, b);
+      const auto it = midpoints.find(key);
+      if (it != midpoints.end()) return it->second;
+      v.push_back(glm::normalize(v[a] + v[b]));
+      const auto index = static_cast<std::uint32_t>(v.size() - 1);
+      midpoints[key] = index;
+      return index;
+    };
+    std::vector<std::uint32_t> next;
+    for (std::size_t i = 0; i < f.size(); i += 3) {
+      const std::uint32_t a = f[i], b = f[i + 1], c = f[i + 2];
+      const std::uint32_t ab = mid(a, b), bc = mid(b, c), ca = mid(c, a);
+      next.insert(next.end(), {a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca});
+    }
+    f = std::move(next);
+  }
+  MeshInput mesh;
+  for (const glm::vec3& p : v) mesh.positions.push_back(centre + radius * p);
+  mesh.indices = std::move(f);
+  return mesh;
 }
 
 }  // namespace glint::test

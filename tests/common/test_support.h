@@ -4,6 +4,7 @@
 
 #include "common/effects.h"
 #include "common/frame.h"
+#include "common/geometry.h"
 #include "common/scene.h"
 
 namespace glint::test {
@@ -23,5 +24,13 @@ struct Rgb {
   int r, g, b;
 };
 Rgb pixelAt(const FrameImage& image, int x, int y);
+
+}  // namespace glint::test
+
+namespace glint::test {
+
+// A closed triangle mesh of a sphere: an icosahedron subdivided `levels`
+// times, vertices shared, wound counter-clockwise seen from outside.
+MeshInput icosphere(int levels, const glm::vec3& centre, float radius);
 
 }  // namespace glint::test
