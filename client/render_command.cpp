@@ -68,7 +68,8 @@ void runRender(const RenderOptions& options) {
   const Clock::time_point bvhStart = Clock::now();
   BvhSettings bvhSettings;
   bvhSettings.builder = options.bvh;
-  const Renderer renderer(scene, bvhSettings);
+  const PreparedScene prepared(std::move(scene), bvhSettings);
+  const Renderer renderer(prepared, prepared.scene().frame());
   times.bvhMs = msSince(bvhStart);
 
   ThreadPool pool(resolveThreadCount(options.threads));
@@ -85,14 +86,15 @@ void runRender(const RenderOptions& options) {
   writePng(options.output, result.image);
   times.totalMs = msSince(start);
 
-  const std::size_t pixels = static_cast<std::size_t>(scene.width) * static_cast<std::size_t>(scene.height);
+  const FrameSettings& frame = renderer.frame();
+  const std::size_t pixels = static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height);
   if (!options.statsPath.empty()) {
-    writeStats(options.statsPath, frameStats(0, scene.width, scene.height, pixels, result.stats, times,
-                                             renderer.plan(), scene.geometry.droppedTriangles()));
+    writeStats(options.statsPath, frameStats(0, frame.width, frame.height, pixels, result.stats, times,
+                                             renderer.plan(), prepared.scene().geometry.droppedTriangles()));
   }
   if (!options.quiet) {
     std::fprintf(stderr, "%s: %dx%d, %d spp, %d threads: trace %.1f ms, total %.1f ms, %.2f M rays -> %s\n",
-                 options.scene.c_str(), scene.width, scene.height, scene.sampling.samples, pool.size(),
+                 options.scene.c_str(), frame.width, frame.height, frame.sampling.samples, pool.size(),
                  times.traceMs, times.totalMs, static_cast<double>(result.stats.total()) / 1e6,
                  options.output.c_str());
     if (result.stats.nonFiniteSamples > 0) {

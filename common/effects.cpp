@@ -34,10 +34,10 @@ bool hasPositive(const glm::vec3& c) { return c.x > 0.0f || c.y > 0.0f || c.z > 
 
 }  // namespace
 
-EffectPlan EffectPlan::derive(const Scene& scene) {
+EffectPlan EffectPlan::derive(const Scene& scene, const FrameSettings& frame) {
   EffectPlan plan;
-  const bool secondary = scene.tracing.maxDepth > 1;
-  const float minWeight = scene.tracing.minWeight;
+  const bool secondary = frame.tracing.maxDepth > 1;
+  const float minWeight = frame.tracing.minWeight;
   for (const Material& m : scene.materials) {
     MaterialEffects e;
     e.direct = m.diffuse > 0.0f || m.specular > 0.0f;
@@ -65,7 +65,7 @@ EffectPlan EffectPlan::derive(const Scene& scene) {
   for (const MaterialEffects& e : plan.materials) anyDirect = anyDirect || e.direct;
   plan.shadows = anyLight && anyDirect && !selfShadowFree(scene.geometry);
   plan.antialiasing =
-      scene.sampling.samples > 1 || scene.sampling.pattern == SamplePattern::kJittered;
+      frame.sampling.samples > 1 || frame.sampling.pattern == SamplePattern::kJittered;
   return plan;
 }
 

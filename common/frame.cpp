@@ -7,8 +7,8 @@
 namespace glint {
 
 FrameResult renderFrame(const Renderer& renderer, ThreadPool& pool, const FrameOptions& options) {
-  const int width = renderer.scene().width;
-  const int height = renderer.scene().height;
+  const int width = renderer.frame().width;
+  const int height = renderer.frame().height;
   FrameResult result;
   result.image.width = width;
   result.image.height = height;

@@ -14,16 +14,16 @@ bool finite(const glm::vec3& c) {
 
 }  // namespace
 
-Renderer::Renderer(const Scene& scene, const BvhSettings& bvhSettings)
-    : Renderer(scene, bvhSettings, EffectPlan::derive(scene)) {}
+Renderer::Renderer(const PreparedScene& prepared, const FrameSettings& frame)
+    : Renderer(prepared, frame, EffectPlan::derive(prepared.scene(), frame)) {}
 
-Renderer::Renderer(const Scene& scene, const BvhSettings& bvhSettings, const EffectPlan& plan)
-    : scene_(scene),
-      bvh_(Bvh::build(scene.geometry, bvhSettings)),
+Renderer::Renderer(const PreparedScene& prepared, const FrameSettings& frame, const EffectPlan& plan)
+    : prepared_(prepared),
+      frame_(frame),
       plan_(plan),
-      camera_(scene.camera, scene.width, scene.height),
-      filter_(scene.sampling.filter),
-      tracer_(scene_, bvh_, plan_) {}
+      camera_(frame.camera, frame.width, frame.height),
+      filter_(frame.sampling.filter),
+      tracer_(prepared.scene(), prepared.bvh(), frame_.tracing, plan_) {}
 
 std::uint8_t toByte(float v) {
   const float c = std::clamp(v, 0.0f, 1.0f);  // NaN stays NaN; callers pass finite values
@@ -31,7 +31,7 @@ std::uint8_t toByte(float v) {
 }
 
 glm::vec3 Renderer::pixel(int x, int y, RayStats& stats) const {
-  const SamplingSettings& sampling = scene_.sampling;
+  const SamplingSettings& sampling = frame_.sampling;
   glm::vec3 sum{0.0f};
   glm::vec3 unweighted{0.0f};
   float weightSum = 0.0f;
@@ -55,7 +55,7 @@ glm::vec3 Renderer::pixel(int x, int y, RayStats& stats) const {
     unweighted += c;
     ++finiteCount;
   }
-  if (finiteCount == 0) return scene_.background;
+  if (finiteCount == 0) return prepared_.scene().background;
   // Negative lobes (Mitchell) can leave too little positive weight in a few
   // samples; the plain mean is the stable answer then.
   if (weightSum < 0.5f * static_cast<float>(finiteCount)) {

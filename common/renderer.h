@@ -6,7 +6,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "common/bvh.h"
+#include "common/prepared_scene.h"
 #include "common/camera.h"
 #include "common/effects.h"
 #include "common/filter.h"
@@ -17,14 +17,15 @@
 
 namespace glint {
 
-// Everything needed to trace pixels of one scene from one camera: the BVH,
-// the effect plan, the camera and the filter. Immutable once built, so any
-// number of threads may render tiles of it at once.
+// Everything needed to trace pixels of one frame: the prepared scene, the
+// frame's settings, the effect plan, the camera and the filter. Cheap to make
+// (the BVH belongs to the prepared scene) and immutable, so any number of
+// threads may render tiles of it at once.
 class Renderer {
  public:
-  Renderer(const Scene& scene, const BvhSettings& bvhSettings);
+  Renderer(const PreparedScene& prepared, const FrameSettings& frame);
   // With an explicit plan (tests compare derived and full plans).
-  Renderer(const Scene& scene, const BvhSettings& bvhSettings, const EffectPlan& plan);
+  Renderer(const PreparedScene& prepared, const FrameSettings& frame, const EffectPlan& plan);
 
   // The tile interface, called the same way in-process, by the server and by
   // the GL client: traces the pixels of `rect` whose mask bit is set (every
@@ -36,14 +37,14 @@ class Renderer {
   // Linear colour of pixel (x, y): the filtered average of its samples.
   glm::vec3 pixel(int x, int y, RayStats& stats) const;
 
-  const Scene& scene() const { return scene_; }
-  const Bvh& bvh() const { return bvh_; }
+  const Scene& scene() const { return prepared_.scene(); }
+  const FrameSettings& frame() const { return frame_; }
   const EffectPlan& plan() const { return plan_; }
   const Camera& camera() const { return camera_; }
 
  private:
-  const Scene& scene_;
-  Bvh bvh_;
+  const PreparedScene& prepared_;
+  FrameSettings frame_;
   EffectPlan plan_;
   Camera camera_;
   Filter filter_;

@@ -34,6 +34,16 @@ struct MaskSettings {
   float minTransparency = 0.0f;
 };
 
+// What may change from one frame of a scene to the next: the view and the
+// accuracy settings. The scene file gives the first frame's.
+struct FrameSettings {
+  int width = 640;
+  int height = 480;
+  CameraSpec camera;
+  SamplingSettings sampling;
+  TracingSettings tracing;
+};
+
 // A loaded scene: everything the scene file says, with names resolved to
 // indices and every object turned into primitives.
 struct Scene {
@@ -48,6 +58,8 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<PointLight> lights;
   Geometry geometry;
+
+  FrameSettings frame() const { return {width, height, camera, sampling, tracing}; }
 };
 
 }  // namespace glint

@@ -8,8 +8,8 @@
 
 namespace glint {
 
-Tracer::Tracer(const Scene& scene, const Bvh& bvh, const EffectPlan& plan)
-    : scene_(scene), bvh_(bvh), plan_(plan) {}
+Tracer::Tracer(const Scene& scene, const Bvh& bvh, const TracingSettings& tracing, const EffectPlan& plan)
+    : scene_(scene), bvh_(bvh), tracing_(tracing), plan_(plan) {}
 
 glm::vec3 Tracer::radiance(const Ray& ray, RayStats& stats) const {
   ++stats.primary;
@@ -61,7 +61,7 @@ glm::vec3 Tracer::trace(const Ray& ray, int depth, float weight, bool inside,
   const Material& m = scene_.materials[s.material];
   const MaterialEffects& e = plan_.materials[s.material];
   glm::vec3 color = shade(s, -ray.d, m, e, stats);
-  if (depth >= scene_.tracing.maxDepth || !(e.reflects || e.refracts)) return color;
+  if (depth >= tracing_.maxDepth || !(e.reflects || e.refracts)) return color;
 
   float kr = m.reflectivity;
   float kt = 0.0f;
@@ -78,7 +78,7 @@ glm::vec3 Tracer::trace(const Ray& ray, int depth, float weight, bool inside,
       kr += m.transparency;  // total internal reflection
     }
   }
-  const float minWeight = scene_.tracing.minWeight;
+  const float minWeight = tracing_.minWeight;
   if (e.reflects && kr > 0.0f && weight * kr >= minWeight) {
     ++stats.reflection;
     glm::vec3 dir = reflect(ray.d, s.ns);

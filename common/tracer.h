@@ -20,7 +20,7 @@ namespace glint {
 // closed mesh renders the same whichever way its triangles are wound.
 class Tracer {
  public:
-  Tracer(const Scene& scene, const Bvh& bvh, const EffectPlan& plan);
+  Tracer(const Scene& scene, const Bvh& bvh, const TracingSettings& tracing, const EffectPlan& plan);
 
   // Radiance along a primary ray (direction unit length).
   glm::vec3 radiance(const Ray& ray, RayStats& stats) const;
@@ -33,6 +33,7 @@ class Tracer {
 
   const Scene& scene_;
   const Bvh& bvh_;
+  TracingSettings tracing_;
   const EffectPlan& plan_;
 };
 

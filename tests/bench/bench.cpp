@@ -92,7 +92,8 @@ void bvhSection(const Options& o, const Scene& room) {
 }
 
 double renderMs(const Scene& scene, ThreadPool& pool, int runs, RayStats* stats = nullptr) {
-  const Renderer renderer(scene, BvhSettings{});
+  const PreparedScene prepared(scene, BvhSettings{});
+  const Renderer renderer(prepared, scene.frame());
   FrameResult result;
   const double ms = medianMs(runs, [&] { result = renderFrame(renderer, pool, {}); });
   if (stats) *stats = result.stats;

@@ -43,7 +43,8 @@ TEST(Frame, SeedChangesTheJitterOnly) {
 TEST(Frame, MaskedTileEqualsFullFramePixels) {
   const Scene s = smallRoom();
   const FrameResult full = test::render(s, 2);
-  const Renderer renderer(s, BvhSettings{});
+  const PreparedScene prepared(s, BvhSettings{});
+  const Renderer renderer(prepared, s.frame());
   const TileRect rect{37, 21, 19, 13};
   std::vector<std::uint8_t> mask(maskByteCount(rect), 0);
   for (std::size_t i = 0; i < rect.pixelCount(); i += 3) setMaskBit(mask, i);

@@ -22,7 +22,8 @@ FrameResult render(const Scene& scene, int threads, int tileSize) {
 }
 
 FrameResult render(const Scene& scene, const EffectPlan& plan, int threads, int tileSize) {
-  const Renderer renderer(scene, BvhSettings{}, plan);
+  const PreparedScene prepared(scene, BvhSettings{});
+  const Renderer renderer(prepared, scene.frame(), plan);
   ThreadPool pool(threads);
   FrameOptions options;
   options.tileSize = tileSize;

@@ -1,0 +1,23 @@
+#pragma once
+
+#include "common/bvh.h"
+#include "common/scene.h"
+
+namespace glint {
+
+// A scene with its BVH: built once, then shared read-only by every frame and
+// thread that renders it (and cached by the server under the scene's hash).
+class PreparedScene {
+ public:
+  PreparedScene(Scene scene, const BvhSettings& settings)
+      : scene_(std::move(scene)), bvh_(Bvh::build(scene_.geometry, settings)) {}
+
+  const Scene& scene() const { return scene_; }
+  const Bvh& bvh() const { return bvh_; }
+
+ private:
+  Scene scene_;
+  Bvh bvh_;
+};
+
+}  // namespace glint
