@@ -7,6 +7,22 @@
 
 namespace glint {
 
+std::string cameraProblem(const CameraSpec& c) {
+  const auto finite = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+  if (!finite(c.eye)) return "eye: must be finite";
+  if (!finite(c.lookAt)) return "look_at: must be finite";
+  if (!finite(c.up)) return "up: must be finite";
+  if (!(c.fovY > 0.0f && c.fovY <= 179.0f)) return "fov_y: must be in (0, 179]";
+  const glm::vec3 forward = c.lookAt - c.eye;
+  if (glm::dot(forward, forward) == 0.0f) return "look_at: must differ from camera.eye";
+  if (glm::dot(c.up, c.up) == 0.0f) return "up: must not be the zero vector";
+  const glm::vec3 side = glm::cross(glm::normalize(forward), glm::normalize(c.up));
+  if (!(glm::length(side) > 1e-6f)) {
+    return "up: is parallel to the viewing direction (look_at - eye); choose another up vector";
+  }
+  return "";
+}
+
 Camera::Camera(const CameraSpec& spec, int width, int height)
     : eye_(spec.eye),
       width_(static_cast<float>(width)),

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <string>
+
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -14,6 +16,10 @@ struct CameraSpec {
   glm::vec3 up{0.0f, 1.0f, 0.0f};
   float fovY = 45.0f;  // degrees, vertical
 };
+
+// What makes a camera unusable, as "field: what is wrong" ("up: must not be
+// the zero vector"), or "" for a good camera. Fields are the scene format's.
+std::string cameraProblem(const CameraSpec& spec);
 
 // A pinhole camera that sees exactly what gluLookAt(eye, lookAt, up) with
 // gluPerspective(fovY, width / height, ...) shows: square pixels, film

@@ -72,12 +72,8 @@ class SceneLoader {
     c.lookAt = r["look_at"].vec3();
     c.up = r.vec3("up", {0.0f, 1.0f, 0.0f});
     c.fovY = r.number("fov_y", 45.0f, 0.0f, 179.0f, true);
-    const glm::vec3 forward = c.lookAt - c.eye;
-    if (glm::dot(forward, forward) == 0.0f) r["look_at"].fail("must differ from camera.eye");
-    if (glm::dot(c.up, c.up) == 0.0f) r["up"].fail("must not be the zero vector");
-    const glm::vec3 side = glm::cross(glm::normalize(forward), glm::normalize(c.up));
-    if (!(glm::length(side) > 1e-6f)) {
-      r["up"].fail("is parallel to the viewing direction (look_at - eye); choose another up vector");
+    if (const std::string problem = cameraProblem(c); !problem.empty()) {
+      throw InputError(r.path() + "." + problem);
     }
   }
 

@@ -1,0 +1,49 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <flatbuffers/flatbuffers.h>
+
+#include "proto/glint_generated.h"
+
+namespace glint::proto {
+
+constexpr std::uint32_t kProtocolVersion = 1;
+constexpr std::size_t kHeaderBytes = 4;  // little-endian uint32 length
+constexpr std::size_t kDefaultMaxMessageBytes = std::size_t{64} << 20;
+
+// The length a frame header announces.
+std::uint32_t frameLength(std::span<const std::uint8_t, kHeaderBytes> header);
+
+// Finishes `builder` with the "GLNT" identifier and returns the framed bytes
+// (length prefix + message), ready to write.
+std::vector<std::uint8_t> finishFrame(flatbuffers::FlatBufferBuilder& builder,
+                                      flatbuffers::Offset<wire::Message> message);
+
+enum class DecodeStatus {
+  kNeedMore,  // not a whole frame yet
+  kBad,       // cannot be a valid frame: close the connection after an Error
+  kGood,
+};
+
+struct Decoded {
+  DecodeStatus status = DecodeStatus::kNeedMore;
+  std::size_t consumed = 0;               // bytes of the frame, header included (kGood)
+  const wire::Message* message = nullptr;  // points into the bytes given (kGood)
+  std::string error;                       // what is wrong (kBad)
+  wire::ErrorCode code = wire::ErrorCode::Malformed;
+};
+
+// Decodes the first frame of a byte stream: a pure function, no I/O. The
+// length is checked against maxMessageBytes before anything else, and the
+// message passes flatbuffers::Verifier with explicit limits.
+Decoded decodeFrame(std::span<const std::uint8_t> bytes, std::size_t maxMessageBytes);
+
+// Verifies a message body (no length prefix); nullptr and `error` if invalid.
+const wire::Message* verifyMessage(std::span<const std::uint8_t> body, std::string* error);
+
+}  // namespace glint::proto

@@ -1,0 +1,44 @@
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "common/scene.h"
+#include "common/tile.h"
+#include "proto/framing.h"
+#include "proto/scene_bundle.h"
+
+namespace glint::proto {
+
+// Encoders: each returns one framed message, ready to write.
+std::vector<std::uint8_t> encodeHello(std::uint32_t maxMessageBytes, std::uint32_t threads,
+                                      const std::string& software);
+std::vector<std::uint8_t> encodeSceneQuery(const SceneHash& hash);
+std::vector<std::uint8_t> encodeSceneStatus(const SceneHash& hash, bool present);
+std::vector<std::uint8_t> encodeSceneUpload(const SceneHash& hash, const SceneBundle& bundle);
+std::vector<std::uint8_t> encodeSceneReady(const SceneHash& hash, float buildMs);
+std::vector<std::uint8_t> encodeFrameSetup(std::uint32_t frameId, const SceneHash& hash, const FrameSettings& frame);
+std::vector<std::uint8_t> encodeTileRequest(std::uint32_t frameId, std::uint32_t tileId, const TileRect& rect,
+                                            std::span<const std::uint8_t> mask);
+std::vector<std::uint8_t> encodeTileResult(std::uint32_t frameId, std::uint32_t tileId,
+                                           std::span<const std::uint8_t> rgb, std::uint64_t rays,
+                                           std::uint32_t computeMicros);
+std::vector<std::uint8_t> encodeError(wire::ErrorCode code, const std::string& message, std::uint32_t frameId = 0,
+                                      std::uint32_t tileId = 0);
+std::vector<std::uint8_t> encodeGoodbye();
+
+// Decoders of verified messages that check every value and throw InputError
+// naming the field ("frame_setup.eye: not finite").
+SceneHash decodeHash(const flatbuffers::Vector<std::uint8_t>* bytes, const char* field);
+FrameSettings decodeFrameSettings(const wire::FrameSetup& setup, std::size_t maxPixels);
+SceneBundle decodeBundle(const wire::SceneUpload& upload);
+// The tile's rectangle, checked against the frame's size, and its mask,
+// checked against the rectangle.
+TileRect decodeTileRect(const wire::TileRequest& tile, const FrameSettings& frame);
+
+// A name for each message kind, for logs and errors.
+const char* bodyName(wire::Body body);
+
+}  // namespace glint::proto

@@ -1,0 +1,81 @@
+#include "proto/scene_bundle.h"
+
+#include <memory>
+
+#include <openssl/evp.h>
+
+#include "common/error.h"
+#include "common/file_source.h"
+#include "common/scene_load.h"
+
+namespace glint::proto {
+namespace {
+
+// Reads through to the disk and keeps a copy of every file read.
+class RecordingSource : public FileSource {
+ public:
+  RecordingSource(std::filesystem::path folder, std::size_t maxBytes) : disk_(std::move(folder), maxBytes) {}
+  std::string read(const std::string& path, const std::string& place) override {
+    std::string bytes = disk_.read(path, place);
+    files_[normalisePath(path)] = bytes;
+    return bytes;
+  }
+  std::map<std::string, std::string> take() { return std::move(files_); }
+
+ private:
+  DirectorySource disk_;
+  std::map<std::string, std::string> files_;
+};
+
+}  // namespace
+
+SceneHash SceneBundle::hash() const {
+  std::unique_ptr<EVP_MD_CTX, void (*)(EVP_MD_CTX*)> ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free);
+  EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr);
+  const auto part = [&](const std::string& bytes) {
+    const std::uint64_t n = bytes.size();
+    std::uint8_t length[8];
+    for (int i = 0; i < 8; ++i) length[i] = static_cast<std::uint8_t>(n >> (8 * i));
+    EVP_DigestUpdate(ctx.get(), length, sizeof length);
+    EVP_DigestUpdate(ctx.get(), bytes.data(), bytes.size());
+  };
+  part(text);
+  for (const auto& [path, bytes] : files) {
+    part(path);
+    part(bytes);
+  }
+  SceneHash out{};
+  unsigned int size = 0;
+  EVP_DigestFinal_ex(ctx.get(), out.data(), &size);
+  return out;
+}
+
+LoadedBundle loadSceneBundle(const std::filesystem::path& path, const LoadLimits& limits) {
+  try {
+    RecordingSource files(path.parent_path(), limits.maxFileBytes);
+    DirectorySource sceneFile(path.parent_path(), limits.maxFileBytes);
+    std::string text = sceneFile.read(path.filename().string(), "scene file");
+    Scene scene = loadScene(text, files, limits);
+    return {std::move(scene), SceneBundle{std::move(text), files.take()}};
+  } catch (const InputError& e) {
+    throw InputError(path.string() + ": " + e.what());
+  }
+}
+
+Scene loadBundle(const SceneBundle& bundle, const LoadLimits& limits) {
+  MemorySource files;
+  for (const auto& [path, bytes] : bundle.files) files.add(path, bytes);
+  return loadScene(bundle.text, files, limits);
+}
+
+std::string toHex(const SceneHash& hash) {
+  static constexpr char kDigits[] = "0123456789abcdef";
+  std::string s;
+  for (std::uint8_t b : hash) {
+    s += kDigits[b >> 4];
+    s += kDigits[b & 15];
+  }
+  return s;
+}
+
+}  // namespace glint::proto

@@ -1,0 +1,40 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+
+#include "common/load_limits.h"
+#include "common/scene.h"
+
+namespace glint::proto {
+
+using SceneHash = std::array<std::uint8_t, 32>;
+
+// A scene as it travels: its JSON text and the bytes of every file it
+// references, keyed by their normalised relative path. A server loads it
+// from these bytes alone.
+struct SceneBundle {
+  std::string text;
+  std::map<std::string, std::string> files;
+
+  // SHA-256 over the text and each file (path and bytes), each part
+  // preceded by its length, so that no two bundles share a hash by framing.
+  SceneHash hash() const;
+};
+
+// Loads a scene file from disk and collects the files it read into a bundle.
+struct LoadedBundle {
+  Scene scene;
+  SceneBundle bundle;
+};
+LoadedBundle loadSceneBundle(const std::filesystem::path& path, const LoadLimits& limits = {});
+
+// Loads a scene from a bundle, from memory only.
+Scene loadBundle(const SceneBundle& bundle, const LoadLimits& limits = {});
+
+std::string toHex(const SceneHash& hash);
+
+}  // namespace glint::proto

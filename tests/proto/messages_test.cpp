@@ -1,0 +1,161 @@
+#include "proto/messages.h"
+
+#include <gtest/gtest.h>
+
+#include "common/error.h"
+#include "tests/common/test_support.h"
+
+namespace glint::proto {
+namespace {
+
+const wire::Message& decode(const std::vector<std::uint8_t>& frame) {
+  const Decoded d = decodeFrame({frame.data(), frame.size()}, kDefaultMaxMessageBytes);
+  EXPECT_EQ(d.status, DecodeStatus::kGood) << d.error;
+  return *d.message;
+}
+
+SceneHash someHash() {
+  SceneHash h{};
+  for (std::size_t i = 0; i < h.size(); ++i) h[i] = static_cast<std::uint8_t>(i * 7 + 1);
+  return h;
+}
+
+FrameSettings someFrame() {
+  FrameSettings f;
+  f.width = 320;
+  f.height = 200;
+  f.camera = {{1, 2, 3}, {0, 0.5f, 0}, {0, 1, 0}, 40.0f};
+  f.sampling = {SamplePattern::kJittered, 5, FilterType::kMitchell, 77};
+  f.tracing = {7, 0.02f};
+  return f;
+}
+
+TEST(Messages, EveryMessageRoundTrips) {
+  const SceneHash h = someHash();
+  {
+    const auto* m = decode(encodeHello(1234, 8, "glintd")).body_as_Hello();
+    ASSERT_TRUE(m);
+    EXPECT_EQ(m->protocol_version(), kProtocolVersion);
+    EXPECT_EQ(m->max_message_bytes(), 1234u);
+    EXPECT_EQ(m->threads(), 8u);
+    EXPECT_EQ(m->software()->str(), "glintd");
+  }
+  EXPECT_EQ(decodeHash(decode(encodeSceneQuery(h)).body_as_SceneQuery()->hash(), "hash"), h);
+  {
+    const auto* m = decode(encodeSceneStatus(h, true)).body_as_SceneStatus();
+    EXPECT_EQ(decodeHash(m->hash(), "hash"), h);
+    EXPECT_TRUE(m->present());
+  }
+  {
+    const SceneBundle bundle{"{\"glint\": 1}", {{"m/a.obj", "v 0 0 0\n"}, {"t.png", std::string("\0\1\2", 3)}}};
+    const auto* m = decode(encodeSceneUpload(bundle.hash(), bundle)).body_as_SceneUpload();
+    EXPECT_EQ(decodeHash(m->hash(), "hash"), bundle.hash());
+    const SceneBundle back = decodeBundle(*m);
+    EXPECT_EQ(back.text, bundle.text);
+    EXPECT_EQ(back.files, bundle.files);
+    EXPECT_EQ(back.hash(), bundle.hash());
+  }
+  EXPECT_FLOAT_EQ(decode(encodeSceneReady(h, 12.5f)).body_as_SceneReady()->build_ms(), 12.5f);
+  {
+    const FrameSettings f = someFrame();
+    const auto* m = decode(encodeFrameSetup(9, h, f)).body_as_FrameSetup();
+    EXPECT_EQ(m->frame_id(), 9u);
+    const FrameSettings back = decodeFrameSettings(*m, 1 << 28);
+    EXPECT_EQ(back.width, f.width);
+    EXPECT_EQ(back.height, f.height);
+    EXPECT_EQ(back.camera.eye, f.camera.eye);
+    EXPECT_EQ(back.camera.lookAt, f.camera.lookAt);
+    EXPECT_EQ(back.camera.up, f.camera.up);
+    EXPECT_EQ(back.camera.fovY, f.camera.fovY);
+    EXPECT_EQ(back.sampling.pattern, f.sampling.pattern);
+    EXPECT_EQ(back.sampling.samples, f.sampling.samples);
+    EXPECT_EQ(back.sampling.filter, f.sampling.filter);
+    EXPECT_EQ(back.sampling.seed, f.sampling.seed);
+    EXPECT_EQ(back.tracing.maxDepth, f.tracing.maxDepth);
+    EXPECT_EQ(back.tracing.minWeight, f.tracing.minWeight);
+  }
+  {
+    const TileRect rect{16, 32, 10, 5};
+    std::vector<std::uint8_t> mask(maskByteCount(rect), 0x5a);
+    const auto* m = decode(encodeTileRequest(3, 44, rect, mask)).body_as_TileRequest();
+    const TileRect back = decodeTileRect(*m, someFrame());
+    EXPECT_EQ(back.x, 16);
+    EXPECT_EQ(back.y, 32);
+    EXPECT_EQ(back.width, 10);
+    EXPECT_EQ(back.height, 5);
+    EXPECT_EQ(std::vector<std::uint8_t>(m->mask()->begin(), m->mask()->end()), mask);
+  }
+  {
+    const std::vector<std::uint8_t> rgb = {1, 2, 3, 4, 5, 6};
+    const auto* m = decode(encodeTileResult(3, 44, rgb, 1000, 250)).body_as_TileResult();
+    EXPECT_EQ(m->tile_id(), 44u);
+    EXPECT_EQ(std::vector<std::uint8_t>(m->rgb()->begin(), m->rgb()->end()), rgb);
+    EXPECT_EQ(m->rays(), 1000u);
+    EXPECT_EQ(m->compute_us(), 250u);
+  }
+  {
+    const auto* m = decode(encodeError(wire::ErrorCode::BadScene, "objects[1].radius: must be > 0", 2, 5)).body_as_Error();
+    EXPECT_EQ(m->code(), wire::ErrorCode::BadScene);
+    EXPECT_EQ(m->message()->str(), "objects[1].radius: must be > 0");
+  }
+  EXPECT_TRUE(decode(encodeGoodbye()).body_as_Goodbye());
+}
+
+std::string problemOf(const std::function<void(FrameSettings&)>& edit) {
+  FrameSettings f = someFrame();
+  edit(f);
+  const auto frame = encodeFrameSetup(1, someHash(), f);
+  try {
+    decodeFrameSettings(*decode(frame).body_as_FrameSetup(), 1 << 28);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Messages, BadFrameSettingsNameTheField) {
+  EXPECT_NE(problemOf([](FrameSettings& f) { f.camera.eye.x = std::nanf(""); }).find("frame_setup.eye"), std::string::npos);
+  EXPECT_NE(problemOf([](FrameSettings& f) { f.camera.up = {0, 0, 0}; }).find("frame_setup.up"), std::string::npos);
+  EXPECT_NE(problemOf([](FrameSettings& f) { f.camera.fovY = 0; }).find("frame_setup.fov_y"), std::string::npos);
+  EXPECT_NE(problemOf([](FrameSettings& f) { f.width = 0; }).find("frame_setup.width"), std::string::npos);
+  EXPECT_NE(problemOf([](FrameSettings& f) { f.tracing.maxDepth = 0; }).find("frame_setup.max_depth"), std::string::npos);
+  EXPECT_NE(problemOf([](FrameSettings& f) { f.tracing.minWeight = std::nanf(""); }).find("min_weight"), std::string::npos);
+  EXPECT_NE(problemOf([](FrameSettings& f) { f.sampling = {SamplePattern::kRegular, 3, FilterType::kBox, 0}; }).find("samples"), std::string::npos);
+}
+
+TEST(Messages, TilesOutsideTheImageOrWithWrongMasksAreRejected) {
+  const FrameSettings f = someFrame();
+  const auto check = [&](const TileRect& r, std::size_t maskBytes) {
+    const std::vector<std::uint8_t> mask(maskBytes, 0xff);
+    const auto frame = encodeTileRequest(1, 2, r, mask);
+    EXPECT_THROW(decodeTileRect(*decode(frame).body_as_TileRequest(), f), InputError);
+  };
+  check({310, 0, 20, 10}, 0);
+  check({0, 195, 10, 10}, 0);
+  check({0, 0, 0, 10}, 0);
+  check({0, 0, 8, 8}, 7);  // needs 8
+}
+
+TEST(Messages, BundleHashCoversTextFilesAndNames) {
+  const SceneBundle a{"{}", {{"x", "1"}}};
+  SceneBundle b = a;
+  EXPECT_EQ(a.hash(), b.hash());
+  b.files["x"] = "2";
+  EXPECT_NE(a.hash(), b.hash());
+  SceneBundle c{"{}", {{"y", "1"}}};
+  EXPECT_NE(a.hash(), c.hash());
+  SceneBundle d{"{} ", {{"x", "1"}}};
+  EXPECT_NE(a.hash(), d.hash());
+  EXPECT_EQ(toHex(SceneBundle{"", {}}.hash()), "af5570f5a1810b7af78caf4bc70a660f0df51e42baf91d4de5b2328de0e83dfc");
+}
+
+TEST(Messages, BundleOfTheBunnySceneCarriesItsMesh) {
+  const LoadedBundle loaded = loadSceneBundle(test::sourcePath("scenes/bunny.json"));
+  ASSERT_EQ(loaded.bundle.files.size(), 1u);
+  EXPECT_TRUE(loaded.bundle.files.count("models/bunny.obj"));
+  const Scene again = loadBundle(loaded.bundle);
+  EXPECT_EQ(again.geometry.triangles().size(), loaded.scene.geometry.triangles().size());
+}
+
+}  // namespace
+}  // namespace glint::proto
