@@ -2,40 +2,51 @@
 
 #include <algorithm>
 #include <cstring>
-#include <mutex>
+
+#include "common/error.h"
 
 namespace glint {
 
-FrameResult renderFrame(const Renderer& renderer, ThreadPool& pool, const FrameOptions& options) {
-  const int width = renderer.frame().width;
-  const int height = renderer.frame().height;
+FrameResult renderFrame(TileService& service, const FrameSettings& frame, const FrameOptions& options) {
   FrameResult result;
-  result.image.width = width;
-  result.image.height = height;
-  result.image.rgb.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3, 0);
-  const std::vector<TileRect> tiles = tileGrid(width, height, std::max(1, options.tileSize));
-  std::vector<RayStats> tileStats(tiles.size());
-  std::mutex progressMutex;
+  result.image.width = frame.width;
+  result.image.height = frame.height;
+  result.image.rgb.assign(static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height) * 3, 0);
+  std::vector<TileJob> jobs;
+  for (const TileRect& rect : tileGrid(frame.width, frame.height, std::max(1, options.tileSize))) {
+    jobs.push_back({rect, {}});
+  }
   int done = 0;
-  pool.parallelFor(tiles.size(), [&](std::size_t t) {
-    const TileRect& rect = tiles[t];
-    std::vector<std::uint8_t> rgb;
-    rgb.reserve(rect.pixelCount() * 3);
-    renderer.renderTile(rect, {}, rgb, tileStats[t]);
+  service.render(frame, jobs, [&](std::size_t i, TileOutput&& out) {
+    const TileRect& rect = jobs[i].rect;
+    if (out.rgb.size() != rect.pixelCount() * 3) {
+      throw InputError("tile " + std::to_string(i) + ": " + std::to_string(out.rgb.size()) +
+                       " bytes of colour for " + std::to_string(rect.pixelCount()) + " pixels");
+    }
     for (int row = 0; row < rect.height; ++row) {
-      const std::size_t dst =
-          (static_cast<std::size_t>(rect.y + row) * static_cast<std::size_t>(width) +
-           static_cast<std::size_t>(rect.x)) * 3;
-      std::memcpy(&result.image.rgb[dst], &rgb[static_cast<std::size_t>(row * rect.width) * 3],
+      const std::size_t dst = (static_cast<std::size_t>(rect.y + row) * static_cast<std::size_t>(frame.width) +
+                               static_cast<std::size_t>(rect.x)) * 3;
+      std::memcpy(&result.image.rgb[dst], &out.rgb[static_cast<std::size_t>(row * rect.width) * 3],
                   static_cast<std::size_t>(rect.width) * 3);
     }
-    if (options.progress) {
-      std::lock_guard lock(progressMutex);
-      options.progress(++done, static_cast<int>(tiles.size()));
-    }
+    result.stats += out.rays;
+    if (options.progress) options.progress(++done, static_cast<int>(jobs.size()));
   });
-  for (const RayStats& s : tileStats) result.stats += s;
   return result;
+}
+
+FrameResult renderFrame(const Renderer& renderer, ThreadPool& pool, const FrameOptions& options) {
+  // A service that renders with this renderer (its frame and effect plan).
+  struct RendererService : TileService {
+    const Renderer& renderer;
+    ThreadPool& pool;
+    RendererService(const Renderer& r, ThreadPool& p) : renderer(r), pool(p) {}
+    void render(const FrameSettings&, std::span<const TileJob> jobs,
+                const std::function<void(std::size_t, TileOutput&&)>& done) override {
+      renderTiles(renderer, pool, jobs, done);
+    }
+  } service(renderer, pool);
+  return renderFrame(service, renderer.frame(), options);
 }
 
 }  // namespace glint

@@ -7,6 +7,7 @@
 #include "common/ray_stats.h"
 #include "common/renderer.h"
 #include "common/thread_pool.h"
+#include "common/tile_service.h"
 
 namespace glint {
 
@@ -29,8 +30,11 @@ struct FrameResult {
   RayStats stats;
 };
 
-// Renders every pixel through the tile interface, tiles spread over the pool.
-// The image is the same whatever the pool size or tile size.
+// Renders every pixel of a frame through a tile service and composes the
+// tiles. The image is the same whatever the service, pool size or tile size.
+FrameResult renderFrame(TileService& service, const FrameSettings& frame, const FrameOptions& options);
+
+// The same, in process: the renderer's scene and frame on the pool.
 FrameResult renderFrame(const Renderer& renderer, ThreadPool& pool, const FrameOptions& options);
 
 }  // namespace glint

@@ -87,12 +87,25 @@ std::vector<std::uint8_t> encodeTileRequest(std::uint32_t frameId, std::uint32_t
 }
 
 std::vector<std::uint8_t> encodeTileResult(std::uint32_t frameId, std::uint32_t tileId,
-                                           std::span<const std::uint8_t> rgb, std::uint64_t rays,
+                                           std::span<const std::uint8_t> rgb, const RayStats& r,
                                            std::uint32_t computeMicros) {
   FlatBufferBuilder b(rgb.size() + 128);
   const auto rgbVector = b.CreateVector(rgb.data(), rgb.size());
-  return finish(b, wire::CreateTileResult(b, frameId, tileId, rgbVector, rays, computeMicros),
+  const wire::RayCounts rays(r.primary, r.shadow, r.shadowBlocked, r.reflection, r.refraction, r.nonFiniteSamples);
+  return finish(b, wire::CreateTileResult(b, frameId, tileId, rgbVector, &rays, computeMicros),
                 wire::Body::TileResult);
+}
+
+RayStats decodeRays(const wire::RayCounts* r) {
+  RayStats s;
+  if (!r) return s;
+  s.primary = r->primary();
+  s.shadow = r->shadow();
+  s.shadowBlocked = r->shadow_blocked();
+  s.reflection = r->reflection();
+  s.refraction = r->refraction();
+  s.nonFiniteSamples = r->nonfinite_samples();
+  return s;
 }
 
 std::vector<std::uint8_t> encodeError(wire::ErrorCode code, const std::string& message, std::uint32_t frameId,

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "common/ray_stats.h"
 #include "common/scene.h"
 #include "common/tile.h"
 #include "proto/framing.h"
@@ -23,7 +24,7 @@ std::vector<std::uint8_t> encodeFrameSetup(std::uint32_t frameId, const SceneHas
 std::vector<std::uint8_t> encodeTileRequest(std::uint32_t frameId, std::uint32_t tileId, const TileRect& rect,
                                             std::span<const std::uint8_t> mask);
 std::vector<std::uint8_t> encodeTileResult(std::uint32_t frameId, std::uint32_t tileId,
-                                           std::span<const std::uint8_t> rgb, std::uint64_t rays,
+                                           std::span<const std::uint8_t> rgb, const RayStats& rays,
                                            std::uint32_t computeMicros);
 std::vector<std::uint8_t> encodeError(wire::ErrorCode code, const std::string& message, std::uint32_t frameId = 0,
                                       std::uint32_t tileId = 0);
@@ -37,6 +38,7 @@ SceneBundle decodeBundle(const wire::SceneUpload& upload);
 // The tile's rectangle, checked against the frame's size, and its mask,
 // checked against the rectangle.
 TileRect decodeTileRect(const wire::TileRequest& tile, const FrameSettings& frame);
+RayStats decodeRays(const wire::RayCounts* rays);
 
 // A name for each message kind, for logs and errors.
 const char* bodyName(wire::Body body);

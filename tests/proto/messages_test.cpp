@@ -87,10 +87,23 @@ TEST(Messages, EveryMessageRoundTrips) {
   }
   {
     const std::vector<std::uint8_t> rgb = {1, 2, 3, 4, 5, 6};
-    const auto* m = decode(encodeTileResult(3, 44, rgb, 1000, 250)).body_as_TileResult();
+    RayStats rays;
+    rays.primary = 1000;
+    rays.shadow = 900;
+    rays.shadowBlocked = 80;
+    rays.reflection = 70;
+    rays.refraction = 60;
+    rays.nonFiniteSamples = 1;
+    const auto* m = decode(encodeTileResult(3, 44, rgb, rays, 250)).body_as_TileResult();
     EXPECT_EQ(m->tile_id(), 44u);
     EXPECT_EQ(std::vector<std::uint8_t>(m->rgb()->begin(), m->rgb()->end()), rgb);
-    EXPECT_EQ(m->rays(), 1000u);
+    const RayStats back = decodeRays(m->rays());
+    EXPECT_EQ(back.primary, 1000u);
+    EXPECT_EQ(back.shadow, 900u);
+    EXPECT_EQ(back.shadowBlocked, 80u);
+    EXPECT_EQ(back.reflection, 70u);
+    EXPECT_EQ(back.refraction, 60u);
+    EXPECT_EQ(back.nonFiniteSamples, 1u);
     EXPECT_EQ(m->compute_us(), 250u);
   }
   {

@@ -1,0 +1,27 @@
+#include "common/tile_service.h"
+
+#include <mutex>
+
+#include "common/renderer.h"
+
+namespace glint {
+
+void LocalTileService::render(const FrameSettings& frame, std::span<const TileJob> jobs,
+                              const std::function<void(std::size_t, TileOutput&&)>& done) {
+  const Renderer renderer(prepared_, frame);
+  renderTiles(renderer, pool_, jobs, done);
+}
+
+void renderTiles(const Renderer& renderer, ThreadPool& pool, std::span<const TileJob> jobs,
+                 const std::function<void(std::size_t, TileOutput&&)>& done) {
+  std::mutex doneMutex;
+  pool.parallelFor(jobs.size(), [&](std::size_t i) {
+    TileOutput out;
+    out.rgb.reserve(jobs[i].rect.pixelCount() * 3);
+    renderer.renderTile(jobs[i].rect, jobs[i].mask, out.rgb, out.rays);
+    std::lock_guard lock(doneMutex);
+    done(i, std::move(out));
+  });
+}
+
+}  // namespace glint

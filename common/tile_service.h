@@ -1,0 +1,59 @@
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "common/prepared_scene.h"
+#include "common/ray_stats.h"
+#include "common/scene.h"
+#include "common/thread_pool.h"
+#include "common/tile.h"
+
+namespace glint {
+
+// One tile of a frame to fill: a rectangle and its mask (empty: every pixel).
+struct TileJob {
+  TileRect rect;
+  std::vector<std::uint8_t> mask;
+};
+
+// What comes back for a tile: RGB8 of its masked pixels in scan order.
+struct TileOutput {
+  std::vector<std::uint8_t> rgb;
+  RayStats rays;
+};
+
+// Fills tiles of frames of one scene. The in-process service, the remote
+// service (a glintd over the network) and the GL client all meet here.
+class TileService {
+ public:
+  virtual ~TileService() = default;
+  // Renders every job of one frame. done(i, output) is called once per job,
+  // never concurrently, in any order; returns when all are done. Throws
+  // InputError when the frame cannot be rendered.
+  virtual void render(const FrameSettings& frame, std::span<const TileJob> jobs,
+                      const std::function<void(std::size_t, TileOutput&&)>& done) = 0;
+};
+
+class Renderer;
+
+// Renders jobs with one renderer on the pool (what LocalTileService does
+// for each frame).
+void renderTiles(const Renderer& renderer, ThreadPool& pool, std::span<const TileJob> jobs,
+                 const std::function<void(std::size_t, TileOutput&&)>& done);
+
+// Tiles rendered on this machine's thread pool.
+class LocalTileService : public TileService {
+ public:
+  LocalTileService(const PreparedScene& prepared, ThreadPool& pool) : prepared_(prepared), pool_(pool) {}
+  void render(const FrameSettings& frame, std::span<const TileJob> jobs,
+              const std::function<void(std::size_t, TileOutput&&)>& done) override;
+
+ private:
+  const PreparedScene& prepared_;
+  ThreadPool& pool_;
+};
+
+}  // namespace glint
