@@ -75,6 +75,9 @@ int runCli(int argc, char** argv) {
   render->add_option("--size", size, "Image size WIDTHxHEIGHT (the camera's fov_y is kept)");
   render->add_option("--bvh", bvh, "BVH builder: sah (default) or qsplit (the thesis's)")
       ->check(CLI::IsMember({"sah", "qsplit"}));
+  render->add_option("--server", options.server,
+                     "Render through the glintd at HOST:PORT (e.g. 127.0.0.1:7878); the image is "
+                     "byte-identical to the in-process one");
   render->add_option("--stats", options.statsPath,
                      "Write one JSON object per frame (rays by kind, timings, effect plan) to FILE; "
                      "- for stdout");

@@ -4,14 +4,18 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <memory>
+#include <optional>
 
 #include "client/progress.h"
+#include "client/remote_tile_service.h"
 #include "client/stats_json.h"
 #include "common/error.h"
 #include "common/frame.h"
 #include "common/image_io.h"
 #include "common/sampling.h"
 #include "common/scene_load.h"
+#include "proto/scene_bundle.h"
 
 namespace glint {
 namespace {
@@ -61,18 +65,29 @@ void applyOverrides(const RenderOptions& o, Scene& scene) {
 void runRender(const RenderOptions& options) {
   const Clock::time_point start = Clock::now();
   FrameTimes times;
-  Scene scene = loadSceneFile(options.scene);
-  applyOverrides(options, scene);
+  proto::LoadedBundle loaded = proto::loadSceneBundle(options.scene);
+  applyOverrides(options, loaded.scene);
+  const FrameSettings frame = loaded.scene.frame();
+  const EffectPlan plan = EffectPlan::derive(loaded.scene, frame);
+  const std::size_t dropped = loaded.scene.geometry.droppedTriangles();
   times.loadMs = msSince(start);
 
-  const Clock::time_point bvhStart = Clock::now();
-  BvhSettings bvhSettings;
-  bvhSettings.builder = options.bvh;
-  const PreparedScene prepared(std::move(scene), bvhSettings);
-  const Renderer renderer(prepared, prepared.scene().frame());
-  times.bvhMs = msSince(bvhStart);
+  // In process (the default) or through a glintd: the same tiles either way.
+  const Clock::time_point prepareStart = Clock::now();
+  std::optional<PreparedScene> prepared;
+  std::optional<ThreadPool> pool;
+  std::unique_ptr<TileService> service;
+  if (options.server.empty()) {
+    BvhSettings bvhSettings;
+    bvhSettings.builder = options.bvh;
+    prepared.emplace(std::move(loaded.scene), bvhSettings);
+    pool.emplace(resolveThreadCount(options.threads));
+    service = std::make_unique<LocalTileService>(*prepared, *pool);
+  } else {
+    service = std::make_unique<RemoteTileService>(options.server, loaded.bundle);
+  }
+  times.bvhMs = msSince(prepareStart);
 
-  ThreadPool pool(resolveThreadCount(options.threads));
   FrameOptions frameOptions;
   frameOptions.tileSize = options.tileSize;
   FrameResult result;
@@ -80,21 +95,21 @@ void runRender(const RenderOptions& options) {
   {
     ProgressBar progress("rendering");
     frameOptions.progress = [&progress](int done, int total) { progress.update(done, total); };
-    result = renderFrame(renderer, pool, frameOptions);
+    result = renderFrame(*service, frame, frameOptions);
   }
   times.traceMs = msSince(traceStart);
   writePng(options.output, result.image);
   times.totalMs = msSince(start);
 
-  const FrameSettings& frame = renderer.frame();
   const std::size_t pixels = static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height);
   if (!options.statsPath.empty()) {
-    writeStats(options.statsPath, frameStats(0, frame.width, frame.height, pixels, result.stats, times,
-                                             renderer.plan(), prepared.scene().geometry.droppedTriangles()));
+    writeStats(options.statsPath, frameStats(0, frame.width, frame.height, pixels, result.stats, times, plan, dropped));
   }
   if (!options.quiet) {
-    std::fprintf(stderr, "%s: %dx%d, %d spp, %d threads: trace %.1f ms, total %.1f ms, %.2f M rays -> %s\n",
-                 options.scene.c_str(), frame.width, frame.height, frame.sampling.samples, pool.size(),
+    const std::string where = options.server.empty() ? std::to_string(pool->size()) + " threads"
+                                                     : "server " + options.server;
+    std::fprintf(stderr, "%s: %dx%d, %d spp, %s: trace %.1f ms, total %.1f ms, %.2f M rays -> %s\n",
+                 options.scene.c_str(), frame.width, frame.height, frame.sampling.samples, where.c_str(),
                  times.traceMs, times.totalMs, static_cast<double>(result.stats.total()) / 1e6,
                  options.output.c_str());
     if (result.stats.nonFiniteSamples > 0) {

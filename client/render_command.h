@@ -24,6 +24,7 @@ struct RenderOptions {
   std::optional<int> height;
   std::optional<std::uint32_t> seed;
   BvhBuilder bvh = BvhBuilder::kSah;
+  std::string server;     // HOST:PORT of a glintd; "" renders in process
   std::string statsPath;  // "" none, "-" stdout
   bool quiet = false;
 };

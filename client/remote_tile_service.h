@@ -1,0 +1,56 @@
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <asio.hpp>
+
+#include "common/tile_service.h"
+#include "proto/framing.h"
+#include "proto/scene_bundle.h"
+
+namespace glint {
+
+// The tile interface over the network: a glintd holds the scene and fills
+// the tiles. Connecting says Hello, asks whether the server holds the
+// scene's hash and uploads the scene's bytes only when it does not. Errors
+// name the server's address and say what went wrong.
+class RemoteTileService : public TileService {
+ public:
+  struct Traffic {
+    std::uint64_t bytesSent = 0;
+    std::uint64_t bytesReceived = 0;
+    bool uploaded = false;  // the scene had to be sent
+    int serverThreads = 0;
+  };
+
+  RemoteTileService(const std::string& address, const proto::SceneBundle& bundle,
+                    std::chrono::milliseconds timeout = std::chrono::seconds(60));
+  ~RemoteTileService() override;
+
+  void render(const FrameSettings& frame, std::span<const TileJob> jobs,
+              const std::function<void(std::size_t, TileOutput&&)>& done) override;
+  const Traffic& traffic() const { return traffic_; }
+
+ private:
+  void send(const std::vector<std::uint8_t>& frame);
+  // The next message from the server (kept valid until the next receive).
+  const wire::Message& receive();
+  [[noreturn]] void fail(const std::string& what) const;
+  void throwIfError(const wire::Message& m) const;
+
+  std::string address_;
+  std::chrono::milliseconds timeout_;
+  asio::io_context io_;
+  asio::ip::tcp::socket socket_;
+  std::vector<std::uint8_t> buffer_;  // received, not yet decoded
+  std::vector<std::uint8_t> current_;  // the message receive() returned
+  std::size_t maxMessageBytes_ = proto::kDefaultMaxMessageBytes;
+  proto::SceneHash hash_{};
+  std::uint32_t nextFrame_ = 1;
+  Traffic traffic_;
+};
+
+}  // namespace glint

@@ -1,0 +1,13 @@
+#pragma once
+
+#include <string>
+
+#include <asio/ip/tcp.hpp>
+
+namespace glint::proto {
+
+// "HOST:PORT" (IPv4, "[IPv6]" or localhost) -> endpoint; throws InputError
+// naming `option` ("--server 10.0.0.2: expected HOST:PORT ...").
+asio::ip::tcp::endpoint parseEndpoint(const std::string& address, const std::string& option);
+
+}  // namespace glint::proto

@@ -1,0 +1,58 @@
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+
+#include <asio.hpp>
+
+#include "server/scene_cache.h"
+#include "server/server_options.h"
+#include "server/tile_scheduler.h"
+
+namespace glint::server {
+
+class Connection;
+
+// State the connections share; lives as long as the server.
+struct ServerContext {
+  asio::io_context& io;
+  TileScheduler& scheduler;
+  SceneCache& cache;
+  const ServerOptions& options;
+};
+
+// glintd: accepts clients, holds the scene cache and the tile scheduler.
+// All socket I/O runs on the thread that calls run(); tracing and scene
+// builds run on the scheduler's pool.
+class Server {
+ public:
+  // Binds the listening socket; throws InputError when it cannot.
+  explicit Server(const ServerOptions& options);
+  ~Server();
+
+  std::uint16_t port() const { return port_; }
+  int threads() const { return scheduler_.threads(); }
+  const SceneCache& cache() const { return cache_; }
+  // Serves until stop(), SIGINT or SIGTERM.
+  void run();
+  // Stops accepting, cancels queued tiles and closes every connection; safe
+  // from any thread.
+  void stop();
+
+ private:
+  void accept();
+
+  ServerOptions options_;
+  asio::io_context io_;
+  SceneCache cache_;
+  TileScheduler scheduler_;
+  ServerContext context_;
+  asio::ip::tcp::acceptor acceptor_;
+  asio::signal_set signals_;
+  std::uint16_t port_ = 0;
+  std::uint64_t nextId_ = 1;
+  std::map<std::uint64_t, std::weak_ptr<Connection>> connections_;
+};
+
+}  // namespace glint::server

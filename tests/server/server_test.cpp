@@ -1,0 +1,423 @@
+// glintd over loopback: the same pixels as in process, the scene cache, many
+// clients, and every kind of bad input followed by a good client that is
+// still served.
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <cstdio>
+#include <future>
+#include <random>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "client/remote_tile_service.h"
+#include "common/error.h"
+#include "common/frame.h"
+#include "proto/messages.h"
+#include "server/log.h"
+#include "server/server.h"
+#include "tests/common/test_support.h"
+
+extern char** environ;
+
+namespace glint::server {
+namespace {
+
+using namespace std::chrono_literals;
+
+ServerOptions quickOptions() {
+  ServerOptions o;
+  o.listen = "127.0.0.1:0";
+  o.threads = 2;
+  o.handshakeTimeout = 500ms;
+  o.readTimeout = 500ms;
+  o.idleTimeout = 2s;
+  o.handleSignals = false;
+  return o;
+}
+
+// A glintd in this process, serving on its own thread.
+class TestServer {
+ public:
+  explicit TestServer(const ServerOptions& o = quickOptions()) : server_(o), thread_([this] { server_.run(); }) {}
+  ~TestServer() {
+    server_.stop();
+    thread_.join();
+  }
+  std::string address() const { return "127.0.0.1:" + std::to_string(server_.port()); }
+  std::uint16_t port() const { return server_.port(); }
+  Server& server() { return server_; }
+
+ private:
+  Server server_;
+  std::thread thread_;
+};
+
+struct RoomFrame {
+  proto::LoadedBundle loaded;
+  FrameSettings frame;
+};
+
+RoomFrame smallRoom(const char* scene = "scenes/room.json") {
+  RoomFrame r{proto::loadSceneBundle(test::sourcePath(scene)), {}};
+  r.frame = r.loaded.scene.frame();
+  r.frame.width = 96;
+  r.frame.height = 72;
+  return r;
+}
+
+FrameImage localImage(const RoomFrame& r) {
+  const PreparedScene prepared(r.loaded.scene, BvhSettings{});
+  ThreadPool pool(2);
+  LocalTileService service(prepared, pool);
+  return renderFrame(service, r.frame, {}).image;
+}
+
+FrameImage remoteImage(const std::string& address, const RoomFrame& r) {
+  RemoteTileService service(address, r.loaded.bundle);
+  return renderFrame(service, r.frame, {}).image;
+}
+
+// A raw connection for sending bytes that a real client never would.
+class RawClient {
+ public:
+  explicit RawClient(std::uint16_t port) : socket_(io_) {
+    socket_.connect({asio::ip::make_address("127.0.0.1"), port});
+  }
+  void write(const std::vector<std::uint8_t>& bytes) {
+    asio::error_code ignored;
+    asio::write(socket_, asio::buffer(bytes), ignored);
+  }
+  void write(const std::string& text) { write(std::vector<std::uint8_t>(text.begin(), text.end())); }
+  // The next message (its body bytes), or nothing once the server closed
+  // the connection or `timeout` passed.
+  std::optional<std::vector<std::uint8_t>> read(std::chrono::milliseconds timeout = 3s) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    while (true) {
+      const proto::Decoded d = proto::decodeFrame(buffer_, proto::kDefaultMaxMessageBytes);
+      if (d.status == proto::DecodeStatus::kGood) {
+        std::vector<std::uint8_t> body(buffer_.begin() + proto::kHeaderBytes,
+                                       buffer_.begin() + static_cast<std::ptrdiff_t>(d.consumed));
+        buffer_.erase(buffer_.begin(), buffer_.begin() + static_cast<std::ptrdiff_t>(d.consumed));
+        return body;
+      }
+      if (d.status == proto::DecodeStatus::kBad || std::chrono::steady_clock::now() > deadline) return std::nullopt;
+      std::array<std::uint8_t, 4096> chunk;
+      asio::error_code error = asio::error::timed_out;
+      std::size_t got = 0;
+      socket_.async_read_some(asio::buffer(chunk), [&](const asio::error_code& e, std::size_t n) {
+        error = e;
+        got = n;
+      });
+      io_.restart();
+      io_.run_for(deadline - std::chrono::steady_clock::now());
+      if (error == asio::error::timed_out) {
+        socket_.cancel();
+        io_.restart();
+        io_.run();
+        return std::nullopt;
+      }
+      if (error) return std::nullopt;
+      buffer_.insert(buffer_.end(), chunk.begin(), chunk.begin() + static_cast<std::ptrdiff_t>(got));
+    }
+  }
+  // The next message must be an Error; returns its code and text.
+  std::pair<wire::ErrorCode, std::string> readError() {
+    const auto body = read();
+    if (!body) return {wire::ErrorCode::Internal, "(no message)"};
+    const auto* e = wire::GetMessage(body->data())->body_as_Error();
+    if (!e) return {wire::ErrorCode::Internal, "(not an error)"};
+    return {e->code(), e->message() ? e->message()->str() : ""};
+  }
+  // True when the server closes the connection within `timeout`.
+  bool closedWithin(std::chrono::milliseconds timeout) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    while (std::chrono::steady_clock::now() < deadline) {
+      if (!read(std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now()))) {
+        return probeClosed();
+      }
+    }
+    return false;
+  }
+  void hello() {
+    write(proto::encodeHello(1 << 20, 0, "raw"));
+    ASSERT_TRUE(read());
+  }
+
+ private:
+  bool probeClosed() {
+    std::array<std::uint8_t, 1> byte;
+    asio::error_code error;
+    socket_.non_blocking(true);
+    socket_.read_some(asio::buffer(byte), error);
+    return error == asio::error::eof || error == asio::error::connection_reset;
+  }
+  asio::io_context io_;
+  asio::ip::tcp::socket socket_;
+  std::vector<std::uint8_t> buffer_;
+};
+
+class ServerTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { setLogging(false); }
+};
+
+TEST_F(ServerTest, FramesThroughTheServerEqualInProcessFrames) {
+  TestServer server;
+  for (const char* scene : {"scenes/room.json", "scenes/glass.json", "scenes/bunny.json"}) {
+    const RoomFrame r = smallRoom(scene);
+    EXPECT_EQ(remoteImage(server.address(), r).rgb, localImage(r).rgb) << scene;
+  }
+}
+
+TEST_F(ServerTest, MaskedTilesEqualInProcessTiles) {
+  TestServer server;
+  const RoomFrame r = smallRoom();
+  std::vector<TileJob> jobs;
+  std::mt19937 rng(3);
+  for (const TileRect& rect : tileGrid(r.frame.width, r.frame.height, 16)) {
+    TileJob job{rect, std::vector<std::uint8_t>(maskByteCount(rect), 0)};
+    for (std::size_t i = 0; i < rect.pixelCount(); ++i) {
+      if (rng() % 3 == 0) setMaskBit(job.mask, i);
+    }
+    jobs.push_back(std::move(job));
+  }
+  jobs[2].mask.assign(jobs[2].mask.size(), 0);  // a tile with nothing to trace
+  std::vector<std::vector<std::uint8_t>> local(jobs.size()), remote(jobs.size());
+  const PreparedScene prepared(r.loaded.scene, BvhSettings{});
+  ThreadPool pool(2);
+  LocalTileService(prepared, pool).render(r.frame, jobs, [&](std::size_t i, TileOutput&& o) { local[i] = o.rgb; });
+  RemoteTileService service(server.address(), r.loaded.bundle);
+  service.render(r.frame, jobs, [&](std::size_t i, TileOutput&& o) { remote[i] = o.rgb; });
+  EXPECT_EQ(remote, local);
+  EXPECT_TRUE(remote[2].empty());
+  // On the wire: about 3 bytes per masked pixel plus mask bits and headers.
+  std::size_t masked = 0, maskBytes = 0;
+  for (const TileJob& j : jobs) {
+    masked += countMasked(j.rect, j.mask);
+    maskBytes += j.mask.size();
+  }
+  const auto& t = service.traffic();
+  EXPECT_LT(t.bytesReceived, masked * 3 + jobs.size() * 128 + 1024);
+  EXPECT_GT(t.bytesReceived, masked * 3);
+}
+
+TEST_F(ServerTest, SecondClientWithTheSameScenePaysNoUploadOrBuild) {
+  TestServer server;
+  const RoomFrame r = smallRoom();
+  RemoteTileService first(server.address(), r.loaded.bundle);
+  EXPECT_TRUE(first.traffic().uploaded);
+  RemoteTileService second(server.address(), r.loaded.bundle);
+  EXPECT_FALSE(second.traffic().uploaded);
+  EXPECT_LT(second.traffic().bytesSent, 200u);
+  EXPECT_EQ(server.server().cache().size(), 1u);
+}
+
+TEST_F(ServerTest, ManyClientsAtOnce) {
+  TestServer server;
+  const RoomFrame r = smallRoom();
+  const FrameImage expected = localImage(r);
+  for (int clients : {2, 8}) {
+    std::vector<std::future<FrameImage>> results;
+    for (int i = 0; i < clients; ++i) {
+      results.push_back(std::async(std::launch::async, [&] { return remoteImage(server.address(), r); }));
+    }
+    for (auto& f : results) EXPECT_EQ(f.get().rgb, expected.rgb) << clients;
+  }
+}
+
+TEST_F(ServerTest, UnreachableServerSaysWhichAddressAndWhy) {
+  const RoomFrame r = smallRoom();
+  try {
+    RemoteTileService service("127.0.0.1:1", r.loaded.bundle);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("server 127.0.0.1:1: cannot connect"), std::string::npos) << e.what();
+  }
+}
+
+// Each bad input gets a clear error or a closed connection, and a good
+// client right after it is still served.
+TEST_F(ServerTest, BadInputNeverStopsTheServer) {
+  TestServer server;
+  const RoomFrame r = smallRoom();
+  const FrameImage expected = localImage(r);
+  const auto stillServes = [&](const char* after) {
+    EXPECT_EQ(remoteImage(server.address(), r).rgb, expected.rgb) << "after " << after;
+  };
+  const proto::SceneHash hash = r.loaded.bundle.hash();
+  {  // An HTTP request.
+    RawClient c(server.port());
+    c.write("GET / HTTP/1.1\r\nHost: localhost\r\n\r\n");
+    EXPECT_EQ(c.readError().first, wire::ErrorCode::TooLarge);
+    EXPECT_TRUE(c.closedWithin(2s));
+  }
+  stillServes("HTTP");
+  {  // Random bytes with a plausible length.
+    RawClient c(server.port());
+    std::vector<std::uint8_t> junk = {64, 0, 0, 0};
+    std::mt19937 rng(1);
+    for (int i = 0; i < 64; ++i) junk.push_back(static_cast<std::uint8_t>(rng()));
+    c.write(junk);
+    EXPECT_EQ(c.readError().first, wire::ErrorCode::Malformed);
+    EXPECT_TRUE(c.closedWithin(2s));
+  }
+  stillServes("random bytes");
+  {  // A truncated frame, then silence: freed by the read timeout.
+    RawClient c(server.port());
+    c.write(std::vector<std::uint8_t>{100, 0, 0, 0, 1, 2, 3});
+    EXPECT_TRUE(c.closedWithin(3s));
+  }
+  stillServes("truncated frame");
+  {  // A client that connects and never speaks.
+    RawClient c(server.port());
+    EXPECT_TRUE(c.closedWithin(3s));
+  }
+  stillServes("silent client");
+  {  // Wrong protocol version.
+    RawClient c(server.port());
+    flatbuffers::FlatBufferBuilder b;
+    const auto hello = wire::CreateHelloDirect(b, 99, 0, 0, "future");
+    c.write(proto::finishFrame(b, wire::CreateMessage(b, wire::Body::Hello, hello.Union())));
+    const auto [code, text] = c.readError();
+    EXPECT_EQ(code, wire::ErrorCode::Version);
+    EXPECT_NE(text.find("version 99"), std::string::npos);
+    EXPECT_TRUE(c.closedWithin(2s));
+  }
+  {  // Anything before Hello.
+    RawClient c(server.port());
+    c.write(proto::encodeSceneQuery(hash));
+    EXPECT_EQ(c.readError().first, wire::ErrorCode::UnknownMessage);
+  }
+  {  // Messages a server does not take, and references to unknown things:
+     // errors, and the connection goes on.
+    RawClient c(server.port());
+    c.hello();
+    c.write(proto::encodeTileResult(1, 1, {}, {}, 0));
+    EXPECT_EQ(c.readError().first, wire::ErrorCode::UnknownMessage);
+    c.write(proto::encodeTileRequest(7, 1, {0, 0, 8, 8}, {}));
+    EXPECT_EQ(c.readError().first, wire::ErrorCode::UnknownFrame);
+    proto::SceneHash unknown{};
+    c.write(proto::encodeFrameSetup(1, unknown, r.frame));
+    EXPECT_EQ(c.readError().first, wire::ErrorCode::UnknownScene);
+    // A scene that fails to load: the error names the JSON path.
+    proto::SceneBundle bad{R"({"glint": 1, "image": {"width": 4, "height": 4},
+        "camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0]}, "materials": {"m": {}},
+        "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": -1, "material": "m"}]})", {}};
+    c.write(proto::encodeSceneUpload(bad.hash(), bad));
+    const auto [code, text] = c.readError();
+    EXPECT_EQ(code, wire::ErrorCode::BadScene);
+    EXPECT_NE(text.find("objects[0].radius: must be > 0"), std::string::npos) << text;
+    // A bundle whose bytes do not match its hash.
+    c.write(proto::encodeSceneUpload(unknown, r.loaded.bundle));
+    EXPECT_EQ(c.readError().first, wire::ErrorCode::BadScene);
+    // Now the real scene, then frames with bad values and bad tiles.
+    c.write(proto::encodeSceneQuery(hash));
+    ASSERT_TRUE(c.read());
+    c.write(proto::encodeSceneUpload(hash, r.loaded.bundle));
+    ASSERT_TRUE(c.read());  // SceneReady
+    FrameSettings nan = r.frame;
+    nan.camera.eye.x = std::nanf("");
+    c.write(proto::encodeFrameSetup(2, hash, nan));
+    const auto [nanCode, nanText] = c.readError();
+    EXPECT_EQ(nanCode, wire::ErrorCode::BadFrame);
+    EXPECT_NE(nanText.find("frame_setup.eye"), std::string::npos);
+    c.write(proto::encodeFrameSetup(3, hash, r.frame));
+    c.write(proto::encodeTileRequest(3, 1, {90, 0, 16, 16}, {}));
+    EXPECT_EQ(c.readError().first, wire::ErrorCode::BadTile);
+    c.write(proto::encodeTileRequest(3, 2, {0, 0, 8, 8}, std::vector<std::uint8_t>(3, 0xff)));
+    EXPECT_EQ(c.readError().first, wire::ErrorCode::BadTile);
+    // ...and a good tile on the same connection.
+    c.write(proto::encodeTileRequest(3, 4, {0, 0, 8, 8}, {}));
+    const auto body = c.read();
+    ASSERT_TRUE(body);
+    EXPECT_EQ(wire::GetMessage(body->data())->body_as_TileResult()->rgb()->size(), 8u * 8u * 3u);
+  }
+  stillServes("bad messages");
+  {  // Oversized: over the server's limit, refused before reading the body.
+    RawClient c(server.port());
+    c.write(std::vector<std::uint8_t>{0, 0, 0, 0x10});  // 256 MiB announced
+    EXPECT_EQ(c.readError().first, wire::ErrorCode::TooLarge);
+    EXPECT_TRUE(c.closedWithin(2s));
+  }
+  stillServes("oversized frame");
+}
+
+// A client that asks for many tiles and never reads the results is dropped
+// once its unread results pass the limit; others are served meanwhile.
+TEST_F(ServerTest, ClientThatStopsReadingIsDropped) {
+  ServerOptions o = quickOptions();
+  o.maxQueuedBytes = 1 << 20;
+  TestServer server(o);
+  const RoomFrame r = smallRoom();
+  const proto::SceneHash hash = r.loaded.bundle.hash();
+  RawClient c(server.port());
+  c.hello();
+  c.write(proto::encodeSceneQuery(hash));
+  ASSERT_TRUE(c.read());
+  c.write(proto::encodeSceneUpload(hash, r.loaded.bundle));
+  ASSERT_TRUE(c.read());
+  FrameSettings big = r.frame;
+  big.width = 640;
+  big.height = 480;
+  big.sampling.samples = 1;
+  big.sampling.pattern = SamplePattern::kRegular;
+  c.write(proto::encodeFrameSetup(1, hash, big));
+  // Far more results than the socket buffers and the 1 MiB limit hold.
+  for (int round = 0; round < 8; ++round) {
+    for (const TileRect& rect : tileGrid(640, 480, 64)) c.write(proto::encodeTileRequest(1, 0, rect, {}));
+  }
+  EXPECT_EQ(remoteImage(server.address(), r).rgb, localImage(r).rgb);
+  EXPECT_TRUE(c.closedWithin(10s));
+}
+
+// SIGTERM during a frame: the real glintd stops accepting, cancels queued
+// tiles, closes connections and exits 0; the client gets an error, not a hang.
+TEST_F(ServerTest, SigtermDuringAFrame) {
+  int out[2];
+  ASSERT_EQ(pipe(out), 0);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, out[1], 1);
+  posix_spawn_file_actions_addclose(&actions, out[0]);
+  const char* argv[] = {GLINTD_BIN, "--listen", "127.0.0.1:0", "--threads", "2", "--quiet", nullptr};
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, GLINTD_BIN, &actions, nullptr, const_cast<char**>(argv), environ), 0);
+  close(out[1]);
+  FILE* stdoutOfServer = fdopen(out[0], "r");
+  char line[256] = {};
+  ASSERT_TRUE(std::fgets(line, sizeof line, stdoutOfServer));
+  unsigned port = 0;
+  ASSERT_EQ(std::sscanf(line, "glintd: listening on 127.0.0.1:%u", &port), 1) << line;
+
+  RoomFrame r = smallRoom();
+  r.frame.width = 640;
+  r.frame.height = 480;
+  r.frame.sampling.samples = 64;
+  auto render = std::async(std::launch::async, [&] {
+    try {
+      remoteImage("127.0.0.1:" + std::to_string(port), r);
+      return std::string("finished");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+  });
+  std::this_thread::sleep_for(500ms);
+  kill(pid, SIGTERM);
+  int status = 0;
+  const auto start = std::chrono::steady_clock::now();
+  while (waitpid(pid, &status, WNOHANG) == 0 && std::chrono::steady_clock::now() - start < 10s) {
+    std::this_thread::sleep_for(20ms);
+  }
+  ASSERT_TRUE(WIFEXITED(status)) << "glintd did not exit after SIGTERM";
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  ASSERT_EQ(render.wait_for(10s), std::future_status::ready);
+  EXPECT_NE(render.get().find("server 127.0.0.1:"), std::string::npos);
+  std::fclose(stdoutOfServer);
+}
+
+}  // namespace
+}  // namespace glint::server
