@@ -58,7 +58,7 @@ int runCli(int argc, char** argv) {
       ->default_val(0);
   render->add_option("--tile-size", options.tileSize, "Tile edge in pixels (work unit of a thread)")
       ->check(CLI::Range(1, 4096))
-      ->default_val(32);
+      ->default_val(64);
   render->add_option("--samples", options.samples, "Samples per pixel (regular: 1, 2, 4, 9, 16 ...)")
       ->check(CLI::Range(1, 4096));
   render->add_option("--pattern", pattern, "Sample pattern: regular or jittered")

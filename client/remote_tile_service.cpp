@@ -87,14 +87,19 @@ void RemoteTileService::send(const std::vector<std::uint8_t>& frame) {
 
 const wire::Message& RemoteTileService::receive() {
   while (true) {
-    const proto::Decoded d = proto::decodeFrame(buffer_, proto::kDefaultMaxMessageBytes);
+    const std::span<const std::uint8_t> unread(buffer_.data() + consumed_, buffer_.size() - consumed_);
+    const proto::Decoded d = proto::decodeFrame(unread, proto::kDefaultMaxMessageBytes);
     if (d.status == proto::DecodeStatus::kBad) fail("sent a bad message: " + d.error);
     if (d.status == proto::DecodeStatus::kGood) {
-      current_.assign(buffer_.begin() + proto::kHeaderBytes, buffer_.begin() + static_cast<std::ptrdiff_t>(d.consumed));
-      buffer_.erase(buffer_.begin(), buffer_.begin() + static_cast<std::ptrdiff_t>(d.consumed));
+      // The message stays where it is until the next receive().
+      const std::uint8_t* body = unread.data() + proto::kHeaderBytes;
+      consumed_ += d.consumed;
       traffic_.bytesReceived += d.consumed;
-      return *wire::GetMessage(current_.data());
+      return *wire::GetMessage(body);
     }
+    // Drop what was consumed before reading more (the caller is done with it).
+    buffer_.erase(buffer_.begin(), buffer_.begin() + static_cast<std::ptrdiff_t>(consumed_));
+    consumed_ = 0;
     std::array<std::uint8_t, 65536> chunk;
     asio::error_code error = asio::error::timed_out;
     std::size_t got = 0;
@@ -125,7 +130,9 @@ void RemoteTileService::render(const FrameSettings& frame, std::span<const TileJ
   std::size_t outstanding = 0;
   std::size_t finished = 0;
   while (finished < jobs.size()) {
-    // Tiles without a masked pixel are never sent.
+    // Tiles without a masked pixel are never sent; the others go out in
+    // batches, one write for all requests that fit the window.
+    std::vector<std::uint8_t> batch;
     while (next < jobs.size() && outstanding < window) {
       const TileJob& job = jobs[next];
       if (!job.mask.empty() && countMasked(job.rect, job.mask) == 0) {
@@ -133,10 +140,12 @@ void RemoteTileService::render(const FrameSettings& frame, std::span<const TileJ
         ++finished;
         continue;
       }
-      send(proto::encodeTileRequest(frameId, static_cast<std::uint32_t>(next), job.rect, job.mask));
+      const auto request = proto::encodeTileRequest(frameId, static_cast<std::uint32_t>(next), job.rect, job.mask);
+      batch.insert(batch.end(), request.begin(), request.end());
       ++next;
       ++outstanding;
     }
+    if (!batch.empty()) send(batch);
     if (outstanding == 0) continue;
     const wire::Message& m = receive();
     throwIfError(m);

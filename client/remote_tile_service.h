@@ -45,8 +45,8 @@ class RemoteTileService : public TileService {
   std::chrono::milliseconds timeout_;
   asio::io_context io_;
   asio::ip::tcp::socket socket_;
-  std::vector<std::uint8_t> buffer_;  // received, not yet decoded
-  std::vector<std::uint8_t> current_;  // the message receive() returned
+  std::vector<std::uint8_t> buffer_;  // received bytes
+  std::size_t consumed_ = 0;          // of buffer_, decoded and returned
   std::size_t maxMessageBytes_ = proto::kDefaultMaxMessageBytes;
   proto::SceneHash hash_{};
   std::uint32_t nextFrame_ = 1;

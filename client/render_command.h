@@ -14,7 +14,7 @@ struct RenderOptions {
   std::string output;
   std::string mask = "scene";  // scene | auto | all | none
   int threads = 0;             // 0: every hardware thread
-  int tileSize = 32;
+  int tileSize = 64;
   std::optional<int> samples;
   std::optional<SamplePattern> pattern;
   std::optional<FilterType> filter;

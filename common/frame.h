@@ -19,7 +19,7 @@ struct FrameImage {
 };
 
 struct FrameOptions {
-  int tileSize = 32;
+  int tileSize = 64;
   // Called after each finished tile with (tiles done, tiles in all), from a
   // worker thread, never concurrently.
   std::function<void(int, int)> progress;

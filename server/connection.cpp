@@ -270,18 +270,25 @@ void Connection::writeNext() {
     if (closeAfterWrites_) close("closed after error");
     return;
   }
+  // Everything queued goes out in one gathered write (one system call for
+  // many small tile results); new results queue up behind it.
   writing_ = true;
   lastWrite_ = Clock::now();
-  asio::async_write(socket_, asio::buffer(writes_.front()),
-                    [self = shared_from_this()](const asio::error_code& error, std::size_t) {
-                      if (error) {
-                        self->close(error.message());
-                        return;
-                      }
-                      self->queuedBytes_ -= self->writes_.front().size();
-                      self->writes_.pop_front();
-                      self->writeNext();
-                    });
+  inFlight_ = writes_.size();
+  std::vector<asio::const_buffer> buffers;
+  buffers.reserve(inFlight_);
+  for (const auto& frame : writes_) buffers.push_back(asio::buffer(frame));
+  asio::async_write(socket_, buffers, [self = shared_from_this()](const asio::error_code& error, std::size_t) {
+    if (error) {
+      self->close(error.message());
+      return;
+    }
+    for (std::size_t i = 0; i < self->inFlight_; ++i) {
+      self->queuedBytes_ -= self->writes_.front().size();
+      self->writes_.pop_front();
+    }
+    self->writeNext();
+  });
 }
 
 void Connection::close(const std::string& why) {

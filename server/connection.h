@@ -63,6 +63,7 @@ class Connection : public std::enable_shared_from_this<Connection> {
   std::vector<std::uint8_t> body_;
   std::deque<std::vector<std::uint8_t>> writes_;
   std::size_t queuedBytes_ = 0;
+  std::size_t inFlight_ = 0;  // messages of writes_ in the current write
   bool writing_ = false;
   bool closeAfterWrites_ = false;
   bool closed_ = false;

@@ -8,13 +8,18 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "common/bvh.h"
 #include "common/frame.h"
+#include "client/remote_tile_service.h"
 #include "common/scene_load.h"
+#include "proto/scene_bundle.h"
+#include "server/log.h"
+#include "server/server.h"
 #include "tests/bench/bench_scenes.h"
 
 namespace glint::bench {
@@ -27,6 +32,8 @@ struct Options {
   bool quick = false;
   bool povray = true;
   int runs = 7;
+  std::vector<std::string> sections = {"bvh", "room", "accuracy", "protocol"};
+  bool wants(const std::string& s) const { return std::find(sections.begin(), sections.end(), s) != sections.end(); }
 };
 
 double medianMs(int runs, const std::function<void()>& work) {
@@ -179,6 +186,56 @@ void accuracySection(const Options& o, const Scene& room, ThreadPool& pool) {
               "min_weight 0.01); rays counts every primary, shadow, reflected and refracted ray.\n");
 }
 
+// The cost of going through glintd: the same frames in process and through a
+// server on loopback (in this process, its own 2 threads), medians of 20+.
+void protocolSection(const Options& o, const Scene& room) {
+  const int frames = o.quick ? 2 : 21;
+  const proto::LoadedBundle loaded = proto::loadSceneBundle(std::filesystem::path(o.scenes) / "room.json");
+  server::setLogging(false);
+  server::ServerOptions so;
+  so.listen = "127.0.0.1:0";
+  so.threads = 2;
+  so.handleSignals = false;
+  server::Server glintd(so);
+  std::thread serverThread([&] { glintd.run(); });
+  const std::string address = "127.0.0.1:" + std::to_string(glintd.port());
+  std::printf("\n## Through glintd on loopback vs in process (%d threads each, median of %d frames)\n\n",
+              so.threads, frames);
+  std::printf("| frame | in process ms | through glintd ms | overhead ms | bytes received | masked pixels x 3 | bytes sent |\n");
+  std::printf("|---|---|---|---|---|---|---|\n");
+  // The room as the thesis renders it, and the same view of an empty scene,
+  // where tracing costs almost nothing and the difference is the protocol.
+  Scene empty = room;
+  empty.geometry = Geometry{};
+  empty.lights.clear();
+  proto::SceneBundle emptyBundle = loaded.bundle;
+  emptyBundle.text = R"({"glint": 1, "image": {"width": 640, "height": 480},
+    "camera": {"eye": [0.3, 1.6, 5.2], "look_at": [0, 1.2, 0], "fov_y": 50}, "objects": []})";
+  emptyBundle.files.clear();
+  struct Case {
+    const char* name;
+    const Scene* scene;
+    const proto::SceneBundle* bundle;
+  };
+  ThreadPool pool(2);
+  for (const Case& c : {Case{"the room", &room, &loaded.bundle}, Case{"empty scene (protocol only)", &empty, &emptyBundle}}) {
+    const PreparedScene prepared(*c.scene, BvhSettings{});
+    LocalTileService local(prepared, pool);
+    RemoteTileService remote(address, *c.bundle);
+    const FrameSettings frame = c.scene->frame();
+    const double localMs = medianMs(frames, [&] { renderFrame(local, frame, {}); });
+    const auto before = remote.traffic();
+    const double remoteMs = medianMs(frames, [&] { renderFrame(remote, frame, {}); });
+    const auto after = remote.traffic();
+    const double received = static_cast<double>(after.bytesReceived - before.bytesReceived) / frames;
+    const double sent = static_cast<double>(after.bytesSent - before.bytesSent) / frames;
+    std::printf("| %s | %.1f | %.1f | %.2f | %.0f | %d | %.0f |\n", c.name, localMs, remoteMs, remoteMs - localMs,
+                received, frame.width * frame.height * 3, sent);
+  }
+  glintd.stop();
+  serverThread.join();
+}
+
 }  // namespace
 }  // namespace glint::bench
 
@@ -191,6 +248,9 @@ int main(int argc, char** argv) {
   app.add_option("--runs", o.runs, "Runs per measurement (the median is printed)")->check(CLI::Range(1, 101));
   bool noPovray = false;
   app.add_flag("--no-povray", noPovray, "Skip the POV-Ray comparison");
+  app.add_option("--sections", o.sections, "Sections to run: bvh, room, accuracy, protocol (default: all)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"bvh", "room", "accuracy", "protocol"}));
   CLI11_PARSE(app, argc, argv);
   o.povray = !noPovray;
   if (o.quick) o.runs = 1;
@@ -202,9 +262,10 @@ int main(int argc, char** argv) {
     }
     ThreadPool pool(2);
     std::printf("# glint-bench%s\n", o.quick ? " (quick: not a measurement)" : "");
-    bench::bvhSection(o, room);
-    bench::roomSection(o, room, pool);
-    bench::accuracySection(o, room, pool);
+    if (o.wants("bvh")) bench::bvhSection(o, room);
+    if (o.wants("room")) bench::roomSection(o, room, pool);
+    if (o.wants("accuracy")) bench::accuracySection(o, room, pool);
+    if (o.wants("protocol")) bench::protocolSection(o, room);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "glint-bench: %s\n", e.what());
     return 1;
