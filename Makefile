@@ -42,8 +42,7 @@ test: build
 	cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
 
 demo: build
-	@mkdir -p out
-	$(BUILD)/bin/glint render scenes/room.json -o out/room.png --mask all
+	deploy/local-demo.sh $(BUILD) out
 
 bench: bench-deps build
 	$(BUILD)/bin/glint-bench --scenes scenes
