@@ -9,9 +9,9 @@
 namespace glint {
 namespace {
 
-// Requests in flight at once: enough to keep every server thread busy,
-// few enough that a slow server does not make us queue the whole frame.
-constexpr std::size_t kWindowPerThread = 8;
+// Requests in flight at once per server thread: a whole frame of 64-pixel
+// tiles fits, which halves the wake-ups of a small window (docs/performance.md).
+constexpr std::size_t kWindowPerThread = 64;
 
 }  // namespace
 
