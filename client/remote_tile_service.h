@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
-#include <asio.hpp>
+#include <memory>
 
 #include "common/tile_service.h"
-#include "proto/framing.h"
+#include "proto/message_stream.h"
 #include "proto/scene_bundle.h"
 
 namespace glint {
@@ -36,17 +36,13 @@ class RemoteTileService : public TileService {
 
  private:
   void send(const std::vector<std::uint8_t>& frame);
-  // The next message from the server (kept valid until the next receive).
+  // The next message from the server (valid until the next receive); an
+  // Error from the server is thrown.
   const wire::Message& receive();
   [[noreturn]] void fail(const std::string& what) const;
-  void throwIfError(const wire::Message& m) const;
 
   std::string address_;
-  std::chrono::milliseconds timeout_;
-  asio::io_context io_;
-  asio::ip::tcp::socket socket_;
-  std::vector<std::uint8_t> buffer_;  // received bytes
-  std::size_t consumed_ = 0;          // of buffer_, decoded and returned
+  std::unique_ptr<proto::MessageStream> stream_;
   std::size_t maxMessageBytes_ = proto::kDefaultMaxMessageBytes;
   proto::SceneHash hash_{};
   std::uint32_t nextFrame_ = 1;

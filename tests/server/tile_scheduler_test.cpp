@@ -11,50 +11,54 @@
 namespace glint::server {
 namespace {
 
+// Occupies a scheduler's only worker until open() is called, so that
+// everything submitted meanwhile queues up.
+class Gate {
+ public:
+  explicit Gate(TileScheduler& scheduler) {
+    scheduler.submit(99, [this] {
+      std::unique_lock lock(mutex_);
+      cv_.wait(lock, [this] { return open_; });
+    });
+  }
+  void open() {
+    {
+      std::lock_guard lock(mutex_);
+      open_ = true;
+    }
+    cv_.notify_all();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  bool open_ = false;
+};
+
 // With one worker, queued tasks of three clients run in turn, one each,
 // whatever order and count they were submitted in.
 TEST(TileScheduler, ClientsTakeTurns) {
   TileScheduler scheduler(1);
+  Gate gate(scheduler);
   std::mutex m;
-  std::condition_variable cv;
-  bool release = false;
-  // Hold the only worker so everything below queues up first.
-  scheduler.submit(99, [&] {
-    std::unique_lock lock(m);
-    cv.wait(lock, [&] { return release; });
-  });
   std::vector<int> order;
   std::atomic<int> done{0};
   for (int i = 0; i < 6; ++i) scheduler.submit(1, [&] { std::lock_guard l(m); order.push_back(1); ++done; });
   for (int i = 0; i < 2; ++i) scheduler.submit(2, [&] { std::lock_guard l(m); order.push_back(2); ++done; });
   for (int i = 0; i < 2; ++i) scheduler.submit(3, [&] { std::lock_guard l(m); order.push_back(3); ++done; });
-  {
-    std::lock_guard lock(m);
-    release = true;
-  }
-  cv.notify_all();
+  gate.open();
   while (done < 10) std::this_thread::yield();
   EXPECT_EQ(order, (std::vector<int>{1, 2, 3, 1, 2, 3, 1, 1, 1, 1}));
 }
 
 TEST(TileScheduler, CancelDropsQueuedWorkOfOneClient) {
   TileScheduler scheduler(1);
-  std::mutex m;
-  std::condition_variable cv;
-  bool release = false;
-  scheduler.submit(99, [&] {
-    std::unique_lock lock(m);
-    cv.wait(lock, [&] { return release; });
-  });
+  Gate gate(scheduler);
   std::atomic<int> ran1{0}, ran2{0};
   for (int i = 0; i < 5; ++i) scheduler.submit(1, [&] { ++ran1; });
   for (int i = 0; i < 3; ++i) scheduler.submit(2, [&] { ++ran2; });
   EXPECT_EQ(scheduler.cancel(1), 5u);
-  {
-    std::lock_guard lock(m);
-    release = true;
-  }
-  cv.notify_all();
+  gate.open();
   while (ran2 < 3) std::this_thread::yield();
   while (scheduler.queued() > 0) std::this_thread::yield();
   EXPECT_EQ(ran1, 0);
