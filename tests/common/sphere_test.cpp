@@ -68,6 +68,8 @@ TEST(Sphere, TinySphereFarAwayAgreesWithDouble) {
   expectAgreesWithDouble(1e-3f, 50.0f);
 }
 
+TEST(Sphere, HugeSphereAgreesWithDouble) { expectAgreesWithDouble(1e6f, 1e6f + 1.0f); }
+
 TEST(Sphere, HugeSphereAsFloor) {
   const Sphere floor{{0.0f, -1e6f, 0.0f}, 1e6f, 0};
   const auto t = intersectSphere(floor, Ray({0.0f, 1.0f, 0.0f}, {0.0f, -1.0f, 0.0f}), 1e30f);
