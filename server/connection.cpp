@@ -235,10 +235,29 @@ void Connection::onTileRequest(const wire::TileRequest& request) {
     frame->renderer->renderTile(rect, mask, rgb, rays);
     const auto micros = static_cast<std::uint32_t>(msSince(start) * 1000.0);
     std::vector<std::uint8_t> result = proto::encodeTileResult(frameId, tileId, rgb, rays, micros);
-    asio::post(self->context_.io, [self, result = std::move(result)]() mutable {
-      --self->pending_;
-      self->send(std::move(result));
-    });
+    self->deliver(std::move(result));
+  });
+}
+
+// Called on pool threads. Results wait in the outbox; only the first one
+// into an empty outbox wakes the I/O thread, which then takes them all, so a
+// burst of finished tiles costs one wake-up and one gathered write.
+void Connection::deliver(std::vector<std::uint8_t> result) {
+  bool wake = false;
+  {
+    std::lock_guard lock(outboxMutex_);
+    wake = outbox_.empty();
+    outbox_.push_back(std::move(result));
+  }
+  if (!wake) return;
+  asio::post(context_.io, [self = shared_from_this()] {
+    std::vector<std::vector<std::uint8_t>> results;
+    {
+      std::lock_guard lock(self->outboxMutex_);
+      results.swap(self->outbox_);
+    }
+    self->pending_ -= static_cast<int>(results.size());
+    for (auto& r : results) self->send(std::move(r));
   });
 }
 

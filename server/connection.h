@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <deque>
 #include <map>
+#include <mutex>
 #include <memory>
 #include <string>
 #include <vector>
@@ -48,6 +49,7 @@ class Connection : public std::enable_shared_from_this<Connection> {
   void onSceneUpload(const wire::SceneUpload& upload);
   void onFrameSetup(const wire::FrameSetup& setup);
   void onTileRequest(const wire::TileRequest& tile);
+  void deliver(std::vector<std::uint8_t> result);  // from a pool thread
   void send(std::vector<std::uint8_t> frame);
   void sendError(wire::ErrorCode code, const std::string& message, std::uint32_t frameId = 0,
                  std::uint32_t tileId = 0);
@@ -72,6 +74,8 @@ class Connection : public std::enable_shared_from_this<Connection> {
   std::chrono::steady_clock::time_point lastWrite_;
   int pending_ = 0;  // tiles and scene builds queued or running for this client
   std::map<std::uint32_t, std::shared_ptr<Frame>> frames_;
+  std::mutex outboxMutex_;
+  std::vector<std::vector<std::uint8_t>> outbox_;  // finished tiles, not yet queued for writing
 };
 
 }  // namespace glint::server
