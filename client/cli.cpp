@@ -50,9 +50,13 @@ int runCli(int argc, char** argv) {
   render->add_option("-o,--output", options.output, "PNG file to write (written only when the render succeeds)")
       ->required();
   render->add_option("--mask", options.mask,
-                     "Which pixels are ray traced: all (full ray trace); auto and none need the GL "
-                     "client (not built yet). Default: the scene's mask rule")
+                     "Which pixels are ray traced: auto (objects whose materials need it, drawn by "
+                     "OpenGL otherwise), all (full ray trace), none (OpenGL only). Default: the scene's")
       ->check(CLI::IsMember({"scene", "auto", "all", "none"}));
+  render->add_option("--mask-threshold", options.maskThreshold,
+                     "Under --mask auto: materials with reflectivity above this are ray traced")
+      ->check(CLI::Range(0.0f, 1.0f));
+  render->add_option("--mask-out", options.maskOut, "Also write the mask as a PNG (white: ray traced)");
   render->add_option("--threads", options.threads, "Render threads; 0 = one per hardware thread")
       ->check(CLI::Range(0, 1024))
       ->default_val(0);

@@ -13,6 +13,8 @@ struct RenderOptions {
   std::string scene;
   std::string output;
   std::string mask = "scene";  // scene | auto | all | none
+  std::optional<float> maskThreshold;  // overrides the scene's min_reflectivity
+  std::string maskOut;                 // PNG of the mask, "" none
   int threads = 0;             // 0: every hardware thread
   int tileSize = 64;
   std::optional<int> samples;

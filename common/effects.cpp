@@ -78,6 +78,13 @@ EffectPlan EffectPlan::everything(const Scene& scene) {
   return plan;
 }
 
+EffectPlan EffectPlan::directLight(const Scene& scene, const FrameSettings& frame) {
+  EffectPlan plan = derive(scene, frame);
+  plan.shadows = plan.reflection = plan.refraction = false;
+  for (MaterialEffects& e : plan.materials) e.reflects = e.refracts = false;
+  return plan;
+}
+
 nlohmann::json toJson(const EffectPlan& plan) {
   nlohmann::json j = {{"shadows", plan.shadows},       {"reflection", plan.reflection},
                       {"refraction", plan.refraction}, {"textures", plan.textures},

@@ -36,6 +36,9 @@ struct EffectPlan {
   // Every effect switched on for every material and light: the reference the
   // tests compare derive() against.
   static EffectPlan everything(const Scene& scene);
+  // Direct light only, no shadow, reflected or refracted rays: what the
+  // OpenGL pass draws, for comparing the two.
+  static EffectPlan directLight(const Scene& scene, const FrameSettings& frame);
 };
 
 nlohmann::json toJson(const EffectPlan& plan);

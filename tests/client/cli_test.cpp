@@ -77,6 +77,20 @@ TEST_F(Cli, RendersThePngAndStats) {
   }
 }
 
+TEST_F(Cli, HybridRenderWritesImageMaskAndStepTimes) {
+  const Result run = glint("render " + scene("room.json") + " -o " + path("h.png") + " --mask auto --size 160x120" +
+                           " --mask-out " + path("m.png") + " --stats " + path("s.json"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_TRUE(fs::exists(path("h.png")));
+  EXPECT_TRUE(fs::exists(path("m.png")));
+  std::ifstream statsFile(path("s.json"));
+  std::string stats((std::istreambuf_iterator<char>(statsFile)), std::istreambuf_iterator<char>());
+  for (const char* key : {"\"raster_ms\":", "\"readback_ms\":", "\"compose_ms\":", "\"trace_ms\":", "\"tiles\":",
+                          "\"masked_pixels\":"}) {
+    EXPECT_NE(stats.find(key), std::string::npos) << key << " in " << stats;
+  }
+}
+
 TEST_F(Cli, BadValuesGiveClearErrorsAndWriteNothing) {
   const std::string out = " -o " + path("x.png");
   const std::string room = scene("room.json");
@@ -92,8 +106,8 @@ TEST_F(Cli, BadValuesGiveClearErrorsAndWriteNothing) {
       {"render " + room + out + " --mask all --size 0x10", "--size 0x10"},
       {"render " + room + out + " --mask all --size big", "--size big"},
       {"render " + room + out + " --mask all --min-weight 2", "--min-weight"},
-      {"render " + room + out + " --mask auto", "--mask auto"},
       {"render " + room + out + " --mask sometimes", "--mask"},
+      {"render " + room + out + " --mask auto --mask-threshold 1.5", "--mask-threshold"},
       {"render " + path("missing.json") + out + " --mask all", "missing.json"},
       {"render " + room + " --mask all", "--output"},
       {"render " + room + " -o " + path("no/such/folder/x.png") + " --mask all --size 8x8", "no/such/folder"},

@@ -1,0 +1,134 @@
+#include "client/hybrid_frame.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <string>
+
+#include "common/error.h"
+
+namespace glint {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// GL's rows run bottom-up; Glint's images top-down.
+std::vector<std::uint8_t> flipRows(const std::vector<std::uint8_t>& in, int width, int height, int channels) {
+  std::vector<std::uint8_t> out(in.size());
+  const auto row = static_cast<std::size_t>(width * channels);
+  for (int y = 0; y < height; ++y) {
+    std::memcpy(&out[static_cast<std::size_t>(y) * row], &in[static_cast<std::size_t>(height - 1 - y) * row], row);
+  }
+  return out;
+}
+
+FrameImage readColour(const gl::Api& gl, int width, int height) {
+  std::vector<std::uint8_t> rgba(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4);
+  gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+  gl.ReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  const std::vector<std::uint8_t> top = flipRows(rgba, width, height, 4);
+  FrameImage image{width, height, {}};
+  image.rgb.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3);
+  for (std::size_t i = 0, n = image.rgb.size() / 3; i < n; ++i) std::memcpy(&image.rgb[3 * i], &top[4 * i], 3);
+  return image;
+}
+
+}  // namespace
+
+HybridResult renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& service,
+                          const FrameSettings& frame, const MaskSettings& mask, int tileSize) {
+  const Clock::time_point start = Clock::now();
+  const int w = frame.width, h = frame.height;
+  HybridResult result;
+
+  raster.draw(frame, mask);
+  gl.Finish();
+  result.times.rasterMs = msSince(start);
+
+  const Clock::time_point readStart = Clock::now();
+  result.image = readColour(gl, w, h);
+  if (mask.rule == MaskRule::kAll) {
+    result.mask.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 1);
+  } else {
+    std::vector<std::uint8_t> stencil(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+    gl.ReadPixels(0, 0, w, h, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, stencil.data());
+    result.mask = flipRows(stencil, w, h, 1);
+  }
+  result.times.readbackMs = msSince(readStart);
+
+  // Tiles with at least one masked pixel, each with its mask bits.
+  std::vector<TileJob> jobs;
+  for (const TileRect& rect : tileGrid(w, h, std::max(1, tileSize))) {
+    TileJob job{rect, std::vector<std::uint8_t>(maskByteCount(rect), 0)};
+    std::size_t count = 0;
+    for (int y = 0; y < rect.height; ++y) {
+      for (int x = 0; x < rect.width; ++x) {
+        if (!result.mask[static_cast<std::size_t>(rect.y + y) * static_cast<std::size_t>(w) +
+                         static_cast<std::size_t>(rect.x + x)]) {
+          continue;
+        }
+        setMaskBit(job.mask, static_cast<std::size_t>(y * rect.width + x));
+        ++count;
+      }
+    }
+    result.maskedPixels += count;
+    if (count > 0) jobs.push_back(std::move(job));
+  }
+  result.tiles = static_cast<int>(jobs.size());
+
+  const Clock::time_point traceStart = Clock::now();
+  std::vector<TileOutput> outputs(jobs.size());
+  service.render(frame, jobs, [&](std::size_t i, TileOutput&& out) {
+    result.rays += out.rays;
+    outputs[i] = std::move(out);
+  });
+  result.times.traceMs = msSince(traceStart);
+
+  // Draw the traced pixels back; the stencil test keeps GL's own pixels.
+  const Clock::time_point composeStart = Clock::now();
+  gl.Disable(GL_DEPTH_TEST);
+  if (mask.rule == MaskRule::kAll) {
+    gl.Disable(GL_STENCIL_TEST);
+  } else {
+    gl.Enable(GL_STENCIL_TEST);
+    gl.StencilFunc(GL_EQUAL, 1, 0xff);
+    gl.StencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  }
+  gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  std::vector<std::uint8_t> rect;
+  for (std::size_t j = 0; j < jobs.size(); ++j) {
+    const TileRect& r = jobs[j].rect;
+    if (outputs[j].rgb.size() != countMasked(r, jobs[j].mask) * 3) {
+      throw InputError("tile " + std::to_string(j) + ": the tile service returned " +
+                       std::to_string(outputs[j].rgb.size()) + " bytes for " +
+                       std::to_string(countMasked(r, jobs[j].mask)) + " masked pixels");
+    }
+    rect.assign(r.pixelCount() * 3, 0);
+    std::size_t k = 0;
+    for (int y = 0; y < r.height; ++y) {
+      for (int x = 0; x < r.width; ++x) {
+        const auto i = static_cast<std::size_t>(y * r.width + x);
+        if (!maskBit(jobs[j].mask, i)) continue;
+        // Bottom-up rows for glDrawPixels.
+        const auto dst = (static_cast<std::size_t>(r.height - 1 - y) * static_cast<std::size_t>(r.width) +
+                          static_cast<std::size_t>(x)) * 3;
+        std::memcpy(&rect[dst], &outputs[j].rgb[k], 3);
+        k += 3;
+      }
+    }
+    gl.WindowPos2i(r.x, h - r.y - r.height);
+    gl.DrawPixels(r.width, r.height, GL_RGB, GL_UNSIGNED_BYTE, rect.data());
+  }
+  gl.Finish();
+  result.image = readColour(gl, w, h);
+  gl.Disable(GL_STENCIL_TEST);
+  result.times.composeMs = msSince(composeStart);
+  result.times.totalMs = msSince(start);
+  return result;
+}
+
+}  // namespace glint

@@ -1,0 +1,39 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "client/gl_api.h"
+#include "client/raster_scene.h"
+#include "common/frame.h"
+#include "common/tile_service.h"
+
+namespace glint {
+
+// Milliseconds spent in each step of a hybrid frame.
+struct HybridTimes {
+  double rasterMs = 0.0;    // OpenGL draws the scene and marks the mask
+  double readbackMs = 0.0;  // glReadPixels of colour and stencil
+  double traceMs = 0.0;     // the tile service fills the masked pixels
+  double composeMs = 0.0;   // glDrawPixels of the traced tiles, final read
+  double totalMs = 0.0;
+};
+
+struct HybridResult {
+  FrameImage image;
+  std::vector<std::uint8_t> mask;  // one byte per pixel, row 0 at the top: 1 traced, 0 OpenGL
+  std::size_t maskedPixels = 0;
+  int tiles = 0;  // tiles sent to the tile service (those with a masked pixel)
+  RayStats rays;
+  HybridTimes times;
+};
+
+// The thesis's frame: OpenGL rasterizes the scene and marks masked pixels
+// in the stencil buffer, the colour and mask are read back, tiles with masked
+// pixels go to the tile service, and the traced pixels are drawn back with
+// glDrawPixels through the stencil test. Under the mask rule "all" every
+// pixel is traced.
+HybridResult renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& service,
+                          const FrameSettings& frame, const MaskSettings& mask, int tileSize);
+
+}  // namespace glint

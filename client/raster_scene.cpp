@@ -1,0 +1,297 @@
+#include "client/raster_scene.h"
+
+#include <algorithm>
+#include <map>
+#include <string>
+
+#include <glm/ext/matrix_clip_space.hpp>
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "client/raster_shaders.h"
+#include "common/error.h"
+#include "common/mask_rule.h"
+
+namespace glint::gl {
+namespace {
+
+unsigned compile(const Api& gl, GLenum type, std::initializer_list<const char*> parts) {
+  const unsigned shader = gl.CreateShader(type);
+  const std::vector<const char*> sources(parts);
+  gl.ShaderSource(shader, static_cast<GLsizei>(sources.size()), sources.data(), nullptr);
+  gl.CompileShader(shader);
+  GLint ok = 0;
+  gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[4096] = {};
+    gl.GetShaderInfoLog(shader, sizeof log, nullptr, log);
+    gl.DeleteShader(shader);
+    throw InputError(std::string("OpenGL: shader does not compile: ") + log);
+  }
+  return shader;
+}
+
+unsigned link(const Api& gl, const char* vertex, const char* fragment) {
+  const unsigned vs = compile(gl, GL_VERTEX_SHADER, {vertex});
+  const unsigned fs = compile(gl, GL_FRAGMENT_SHADER, {kFragmentShading, fragment});
+  const unsigned program = gl.CreateProgram();
+  gl.AttachShader(program, vs);
+  gl.AttachShader(program, fs);
+  gl.LinkProgram(program);
+  gl.DeleteShader(vs);
+  gl.DeleteShader(fs);
+  GLint ok = 0;
+  gl.GetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[4096] = {};
+    gl.GetProgramInfoLog(program, sizeof log, nullptr, log);
+    throw InputError(std::string("OpenGL: shaders do not link: ") + log);
+  }
+  return program;
+}
+
+// Interleaved mesh vertex: position, shading normal, uv, face normal, material.
+struct MeshVertex {
+  glm::vec3 position;
+  glm::vec3 normal;
+  glm::vec2 uv;
+  glm::vec3 faceNormal;
+  std::int32_t material;
+};
+
+// Sphere impostor vertex: a corner of the bounding box and the sphere.
+struct SphereVertex {
+  glm::vec3 position;
+  glm::vec4 sphere;
+  std::int32_t material;
+};
+
+void attribute(const Api& gl, unsigned index, int size, std::size_t stride, std::size_t offset) {
+  gl.EnableVertexAttribArray(index);
+  gl.VertexAttribPointer(index, size, GL_FLOAT, GL_FALSE, static_cast<GLsizei>(stride),
+                         reinterpret_cast<const void*>(offset));
+}
+
+void intAttribute(const Api& gl, unsigned index, std::size_t stride, std::size_t offset) {
+  gl.EnableVertexAttribArray(index);
+  gl.VertexAttribIPointer(index, 1, GL_INT, static_cast<GLsizei>(stride), reinterpret_cast<const void*>(offset));
+}
+
+}  // namespace
+
+RasterScene::RasterScene(const Api& api, const Scene& scene) : gl_(api), scene_(scene) {
+  if (scene.lights.size() > kMaxLights) {
+    throw InputError("the OpenGL path draws at most " + std::to_string(kMaxLights) + " lights; the scene has " +
+                     std::to_string(scene.lights.size()));
+  }
+  if (scene.materials.size() > kMaxMaterials || scene.textures.size() > kMaxTextures) {
+    throw InputError("the OpenGL path takes at most " + std::to_string(kMaxMaterials) + " materials and " +
+                     std::to_string(kMaxTextures) + " textures");
+  }
+  meshProgram_ = link(gl_, kMeshVertexShader, kMeshFragmentShader);
+  sphereProgram_ = link(gl_, kSphereVertexShader, kSphereFragmentShader);
+  uploadTextures();
+  uploadMeshes();
+  uploadSpheres();
+}
+
+RasterScene::~RasterScene() {
+  for (Batch& b : batches_) {
+    gl_.DeleteBuffers(1, &b.vbo);
+    gl_.DeleteVertexArrays(1, &b.vao);
+  }
+  if (atlas_) gl_.DeleteTextures(1, &atlas_);
+  gl_.DeleteProgram(meshProgram_);
+  gl_.DeleteProgram(sphereProgram_);
+}
+
+void RasterScene::uploadTextures() {
+  // Every image texture, one above the other, in one float RGB texture that
+  // texelFetch reads exactly (no GL filtering: the shader filters as the tracer).
+  int width = 1, height = 0;
+  for (const Texture& t : scene_.textures) {
+    textureRows_.push_back(static_cast<float>(height));
+    if (t.type == TextureType::kImage) {
+      width = std::max(width, t.image->width);
+      height += t.image->height;
+    }
+  }
+  std::vector<glm::vec3> texels(static_cast<std::size_t>(width) * static_cast<std::size_t>(std::max(height, 1)));
+  int row = 0;
+  for (const Texture& t : scene_.textures) {
+    if (t.type != TextureType::kImage) continue;
+    for (int y = 0; y < t.image->height; ++y) {
+      std::copy_n(&t.image->texels[static_cast<std::size_t>(y * t.image->width)], t.image->width,
+                  &texels[static_cast<std::size_t>((row + y) * width)]);
+    }
+    row += t.image->height;
+  }
+  gl_.GenTextures(1, &atlas_);
+  gl_.BindTexture(GL_TEXTURE_2D, atlas_);
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, width, std::max(height, 1), 0, GL_RGB, GL_FLOAT, texels.data());
+}
+
+void RasterScene::uploadMeshes() {
+  const Geometry& g = scene_.geometry;
+  std::map<std::uint32_t, std::vector<MeshVertex>> byMaterial;
+  for (const Triangle& t : g.triangles()) {
+    const std::uint32_t material = g.models()[t.model].material;
+    const glm::vec3& a = g.positions()[t.v[0]];
+    const glm::vec3 face = glm::normalize(glm::cross(g.positions()[t.v[1]] - a, g.positions()[t.v[2]] - a));
+    auto& vertices = byMaterial[material];
+    for (std::uint32_t v : t.v) {
+      vertices.push_back({g.positions()[v], g.normals()[v], g.uvs()[v], face, static_cast<std::int32_t>(material)});
+    }
+  }
+  for (auto& [material, vertices] : byMaterial) {
+    Batch b;
+    b.material = material;
+    b.vertices = static_cast<int>(vertices.size());
+    gl_.GenVertexArrays(1, &b.vao);
+    gl_.BindVertexArray(b.vao);
+    gl_.GenBuffers(1, &b.vbo);
+    gl_.BindBuffer(GL_ARRAY_BUFFER, b.vbo);
+    gl_.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(MeshVertex)), vertices.data(),
+                   GL_STATIC_DRAW);
+    attribute(gl_, 0, 3, sizeof(MeshVertex), offsetof(MeshVertex, position));
+    attribute(gl_, 1, 3, sizeof(MeshVertex), offsetof(MeshVertex, normal));
+    attribute(gl_, 2, 2, sizeof(MeshVertex), offsetof(MeshVertex, uv));
+    attribute(gl_, 3, 3, sizeof(MeshVertex), offsetof(MeshVertex, faceNormal));
+    intAttribute(gl_, 4, sizeof(MeshVertex), offsetof(MeshVertex, material));
+    batches_.push_back(b);
+  }
+}
+
+void RasterScene::uploadSpheres() {
+  // The 12 triangles of a unit cube, corners in [-1, 1].
+  static const int kCube[36] = {0, 1, 3, 0, 3, 2, 4, 6, 7, 4, 7, 5, 0, 4, 5, 0, 5, 1,
+                                2, 3, 7, 2, 7, 6, 0, 2, 6, 0, 6, 4, 1, 5, 7, 1, 7, 3};
+  std::map<std::uint32_t, std::vector<SphereVertex>> byMaterial;
+  for (const Sphere& s : scene_.geometry.spheres()) {
+    auto& vertices = byMaterial[s.material];
+    // A box slightly larger than the sphere, so rasterization covers its edge.
+    const float half = s.radius * 1.01f;
+    for (int corner : kCube) {
+      const glm::vec3 c(corner & 1 ? 1.0f : -1.0f, corner & 2 ? 1.0f : -1.0f, corner & 4 ? 1.0f : -1.0f);
+      vertices.push_back({s.centre + half * c, glm::vec4(s.centre, s.radius), static_cast<std::int32_t>(s.material)});
+    }
+  }
+  for (auto& [material, vertices] : byMaterial) {
+    Batch b;
+    b.material = material;
+    b.spheres = true;
+    b.vertices = static_cast<int>(vertices.size());
+    gl_.GenVertexArrays(1, &b.vao);
+    gl_.BindVertexArray(b.vao);
+    gl_.GenBuffers(1, &b.vbo);
+    gl_.BindBuffer(GL_ARRAY_BUFFER, b.vbo);
+    gl_.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(SphereVertex)), vertices.data(),
+                   GL_STATIC_DRAW);
+    attribute(gl_, 0, 3, sizeof(SphereVertex), offsetof(SphereVertex, position));
+    attribute(gl_, 1, 4, sizeof(SphereVertex), offsetof(SphereVertex, sphere));
+    intAttribute(gl_, 2, sizeof(SphereVertex), offsetof(SphereVertex, material));
+    batches_.push_back(b);
+  }
+}
+
+glm::mat4 RasterScene::viewProjection(const FrameSettings& frame) const {
+  // The far plane just beyond the scene's farthest corner as seen from the eye.
+  Bounds3 bounds;
+  for (std::uint32_t i = 0; i < scene_.geometry.primitiveCount(); ++i) bounds.expand(scene_.geometry.primitiveBounds(i));
+  float far = 1.0f;
+  if (!bounds.empty()) {
+    for (int corner = 0; corner < 8; ++corner) {
+      const glm::vec3 p(corner & 1 ? bounds.max.x : bounds.min.x, corner & 2 ? bounds.max.y : bounds.min.y,
+                        corner & 4 ? bounds.max.z : bounds.min.z);
+      far = std::max(far, glm::length(p - frame.camera.eye) * 1.01f);
+    }
+  }
+  const glm::mat4 view = glm::lookAt(frame.camera.eye, frame.camera.lookAt, frame.camera.up);
+  // near = far / 1000 keeps 24-bit depth fine enough to separate surfaces a
+  // thousandth of the scene's depth apart at its far end (a mirror 1 cm in
+  // front of a wall 10 m away); what is nearer to the eye than far / 1000 is clipped.
+  const glm::mat4 projection = glm::perspective(glm::radians(frame.camera.fovY),
+                                                static_cast<float>(frame.width) / static_cast<float>(frame.height),
+                                                far * 1e-3f, far);
+  return projection * view;
+}
+
+void RasterScene::setUniforms(unsigned program, const FrameSettings& frame, const glm::mat4& viewProjection) {
+  gl_.UseProgram(program);
+  const auto at = [&](const char* name) { return gl_.GetUniformLocation(program, name); };
+  gl_.UniformMatrix4fv(at("uViewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
+  gl_.Uniform3fv(at("uEye"), 1, glm::value_ptr(frame.camera.eye));
+  std::vector<glm::vec3> positions, colors, attenuations;
+  for (const PointLight& l : scene_.lights) {
+    positions.push_back(l.position);
+    colors.push_back(l.color);
+    attenuations.push_back(l.attenuation);
+  }
+  gl_.Uniform1i(at("uLightCount"), static_cast<int>(scene_.lights.size()));
+  if (!positions.empty()) {
+    const auto n = static_cast<GLsizei>(positions.size());
+    gl_.Uniform3fv(at("uLightPosition"), n, glm::value_ptr(positions[0]));
+    gl_.Uniform3fv(at("uLightColor"), n, glm::value_ptr(colors[0]));
+    gl_.Uniform3fv(at("uLightAttenuation"), n, glm::value_ptr(attenuations[0]));
+  }
+  std::vector<glm::vec4> materialColor, materialTerms;
+  for (const Material& m : scene_.materials) {
+    materialColor.emplace_back(m.color, static_cast<float>(m.texture));
+    materialTerms.emplace_back(m.ambient, m.diffuse, m.specular, m.shininess);
+  }
+  if (!materialColor.empty()) {
+    const auto n = static_cast<GLsizei>(materialColor.size());
+    gl_.Uniform4fv(at("uMaterialColor"), n, glm::value_ptr(materialColor[0]));
+    gl_.Uniform4fv(at("uMaterialTerms"), n, glm::value_ptr(materialTerms[0]));
+  }
+  std::vector<glm::vec4> info, size;
+  std::vector<glm::vec3> color0, color1;
+  for (std::size_t i = 0; i < scene_.textures.size(); ++i) {
+    const Texture& t = scene_.textures[i];
+    const bool image = t.type == TextureType::kImage;
+    info.emplace_back(image ? 2.0f : 1.0f, t.scale, t.filter == ImageFilter::kBilinear ? 1.0f : 0.0f, textureRows_[i]);
+    size.emplace_back(image ? static_cast<float>(t.image->width) : 1.0f, image ? static_cast<float>(t.image->height) : 1.0f,
+                      0.0f, 0.0f);
+    color0.push_back(t.colors[0]);
+    color1.push_back(t.colors[1]);
+  }
+  if (!info.empty()) {
+    const auto n = static_cast<GLsizei>(info.size());
+    gl_.Uniform4fv(at("uTextureInfo"), n, glm::value_ptr(info[0]));
+    gl_.Uniform4fv(at("uTextureSize"), n, glm::value_ptr(size[0]));
+    gl_.Uniform3fv(at("uTextureColor0"), n, glm::value_ptr(color0[0]));
+    gl_.Uniform3fv(at("uTextureColor1"), n, glm::value_ptr(color1[0]));
+  }
+  gl_.ActiveTexture(GL_TEXTURE0);
+  gl_.BindTexture(GL_TEXTURE_2D, atlas_);
+  gl_.Uniform1i(at("uAtlas"), 0);
+}
+
+void RasterScene::draw(const FrameSettings& frame, const MaskSettings& mask) {
+  gl_.Viewport(0, 0, frame.width, frame.height);
+  gl_.ClearColor(scene_.background.r, scene_.background.g, scene_.background.b, 1.0f);
+  gl_.ClearStencil(0);
+  gl_.StencilMask(0xff);
+  gl_.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  gl_.Enable(GL_DEPTH_TEST);
+  gl_.DepthFunc(GL_LESS);
+  gl_.Enable(GL_STENCIL_TEST);
+  gl_.StencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);  // the visible object's flag wins
+  const glm::mat4 vp = viewProjection(frame);
+  for (unsigned program : {meshProgram_, sphereProgram_}) {
+    setUniforms(program, frame, vp);
+    for (const Batch& b : batches_) {
+      if ((program == sphereProgram_) != b.spheres) continue;
+      gl_.StencilFunc(GL_ALWAYS, materialMasked(scene_.materials[b.material], mask) ? 1 : 0, 0xff);
+      gl_.BindVertexArray(b.vao);
+      gl_.DrawArrays(GL_TRIANGLES, 0, b.vertices);
+    }
+  }
+  gl_.BindVertexArray(0);
+  gl_.UseProgram(0);
+}
+
+}  // namespace glint::gl

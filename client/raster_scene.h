@@ -1,0 +1,49 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+
+#include "client/gl_api.h"
+#include "common/scene.h"
+
+namespace glint::gl {
+
+// A scene uploaded to OpenGL once: triangle batches and sphere impostors,
+// grouped by material, the shader programs, and the texture atlas. draw()
+// renders one frame and marks each pixel's stencil with 1 where the visible
+// object's material is masked, 0 elsewhere (and for the background).
+class RasterScene {
+ public:
+  RasterScene(const Api& api, const Scene& scene);
+  ~RasterScene();
+  RasterScene(const RasterScene&) = delete;
+  RasterScene& operator=(const RasterScene&) = delete;
+
+  void draw(const FrameSettings& frame, const MaskSettings& mask);
+
+ private:
+  struct Batch {
+    unsigned vao = 0;
+    unsigned vbo = 0;
+    int vertices = 0;
+    std::uint32_t material = 0;
+    bool spheres = false;
+  };
+  void uploadMeshes();
+  void uploadSpheres();
+  void uploadTextures();
+  void setUniforms(unsigned program, const FrameSettings& frame, const glm::mat4& viewProjection);
+  glm::mat4 viewProjection(const FrameSettings& frame) const;
+
+  const Api& gl_;
+  const Scene& scene_;
+  unsigned meshProgram_ = 0;
+  unsigned sphereProgram_ = 0;
+  unsigned atlas_ = 0;
+  std::vector<float> textureRows_;  // atlas row of each texture
+  std::vector<Batch> batches_;
+};
+
+}  // namespace glint::gl

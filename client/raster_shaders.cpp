@@ -1,0 +1,171 @@
+#include "client/raster_shaders.h"
+
+namespace glint::gl {
+
+// Shared by both fragment shaders (array sizes as in raster_shaders.h):
+// material, texture and light data, and shade(), which mirrors Tracer::shade.
+const char* const kFragmentShading = R"(#version 330
+#define MAX_LIGHTS 16
+#define MAX_MATERIALS 128
+#define MAX_TEXTURES 32
+uniform vec3 uEye;
+uniform mat4 uViewProjection;
+uniform int uLightCount;
+uniform vec3 uLightPosition[MAX_LIGHTS];
+uniform vec3 uLightColor[MAX_LIGHTS];
+uniform vec3 uLightAttenuation[MAX_LIGHTS];
+uniform vec4 uMaterialColor[MAX_MATERIALS];  // rgb, texture index or -1
+uniform vec4 uMaterialTerms[MAX_MATERIALS];  // ambient, diffuse, specular, shininess
+uniform vec4 uTextureInfo[MAX_TEXTURES];     // type (1 checker, 2 image), checker scale, bilinear, atlas row
+uniform vec4 uTextureSize[MAX_TEXTURES];     // image width, height
+uniform vec3 uTextureColor0[MAX_TEXTURES];
+uniform vec3 uTextureColor1[MAX_TEXTURES];
+uniform sampler2D uAtlas;                    // every image texture, stacked rows, RGB float
+out vec4 fragColor;
+
+vec3 texel(int t, int x, int y) {
+  ivec2 size = ivec2(uTextureSize[t].xy);
+  x = ((x % size.x) + size.x) % size.x;
+  y = ((y % size.y) + size.y) % size.y;
+  return texelFetch(uAtlas, ivec2(x, int(uTextureInfo[t].w) + y), 0).rgb;
+}
+
+float wrap(float x) {
+  float w = x - floor(x);
+  return w < 1.0 ? w : 0.0;
+}
+
+vec3 textureColor(int t, vec2 uv) {
+  if (uTextureInfo[t].x == 1.0) {
+    float s = uTextureInfo[t].y;
+    float sum = floor(uv.x * s) + floor(uv.y * s);
+    return mod(abs(sum), 2.0) == 1.0 ? uTextureColor1[t] : uTextureColor0[t];
+  }
+  vec2 size = uTextureSize[t].xy;
+  float x = wrap(uv.x) * size.x;
+  float y = (1.0 - wrap(uv.y)) * size.y;
+  if (uTextureInfo[t].z == 0.0) return texel(t, int(x), int(y));
+  float fx = x - 0.5, fy = y - 0.5;
+  float x0 = floor(fx), y0 = floor(fy);
+  float tx = fx - x0, ty = fy - y0;
+  int ix = int(x0), iy = int(y0);
+  vec3 top = (1.0 - tx) * texel(t, ix, iy) + tx * texel(t, ix + 1, iy);
+  vec3 bottom = (1.0 - tx) * texel(t, ix, iy + 1) + tx * texel(t, ix + 1, iy + 1);
+  return (1.0 - ty) * top + ty * bottom;
+}
+
+vec3 shade(vec3 p, vec3 ng, vec3 ns, vec2 uv, int material) {
+  vec3 toViewer = normalize(uEye - p);
+  if (dot(ng, toViewer) < 0.0) ng = -ng;
+  float len = length(ns);
+  ns = len > 0.0 ? ns / len : ng;
+  if (dot(ns, ng) < 0.0) ns = -ns;
+  vec4 mc = uMaterialColor[material];
+  vec4 terms = uMaterialTerms[material];
+  vec3 c = mc.w >= 0.0 ? textureColor(int(mc.w), uv) : mc.rgb;
+  vec3 result = c * terms.x;
+  if (terms.y <= 0.0 && terms.z <= 0.0) return result;
+  for (int i = 0; i < uLightCount; ++i) {
+    vec3 toLight = uLightPosition[i] - p;
+    float d = length(toLight);
+    if (!(d > 0.0)) continue;
+    vec3 l = toLight / d;
+    if (dot(l, ng) <= 0.0 || dot(l, ns) <= 0.0) continue;
+    vec3 a = uLightAttenuation[i];
+    vec3 lightI = uLightColor[i] / (a.x + a.y * d + a.z * d * d);
+    float nl = dot(ns, l);
+    result += lightI * c * (terms.y * nl);
+    if (terms.z > 0.0) {
+      vec3 r = 2.0 * nl * ns - l;
+      float vr = dot(toViewer, r);
+      if (vr > 0.0) result += lightI * (terms.z * pow(vr, terms.w));
+    }
+  }
+  return result;
+}
+)";
+
+const char* const kMeshVertexShader = R"(#version 330
+layout(location = 0) in vec3 aPosition;
+layout(location = 1) in vec3 aNormal;
+layout(location = 2) in vec2 aUv;
+layout(location = 3) in vec3 aFaceNormal;
+layout(location = 4) in int aMaterial;
+uniform mat4 uViewProjection;
+out vec3 vPosition;
+out vec3 vNormal;
+out vec2 vUv;
+flat out vec3 vFaceNormal;
+flat out int vMaterial;
+void main() {
+  vPosition = aPosition;
+  vNormal = aNormal;
+  vUv = aUv;
+  vFaceNormal = aFaceNormal;
+  vMaterial = aMaterial;
+  gl_Position = uViewProjection * vec4(aPosition, 1.0);
+}
+)";
+
+const char* const kMeshFragmentShader = R"(
+in vec3 vPosition;
+in vec3 vNormal;
+in vec2 vUv;
+flat in vec3 vFaceNormal;
+flat in int vMaterial;
+void main() {
+  fragColor = vec4(clamp(shade(vPosition, vFaceNormal, vNormal, vUv, vMaterial), 0.0, 1.0), 1.0);
+}
+)";
+
+// Spheres are exact on screen: each sphere's bounding box is drawn and each
+// fragment casts the eye ray through it against the sphere (the tracer's
+// formula), writing the hit's depth; front and back faces of the box give
+// the same hit, so the camera may also be inside the box.
+const char* const kSphereVertexShader = R"(#version 330
+layout(location = 0) in vec3 aPosition;
+layout(location = 1) in vec4 aSphere;  // centre, radius
+layout(location = 2) in int aMaterial;
+uniform mat4 uViewProjection;
+out vec3 vPosition;
+flat out vec4 vSphere;
+flat out int vMaterial;
+void main() {
+  vPosition = aPosition;
+  vSphere = aSphere;
+  vMaterial = aMaterial;
+  gl_Position = uViewProjection * vec4(aPosition, 1.0);
+}
+)";
+
+const char* const kSphereFragmentShader = R"(
+in vec3 vPosition;
+flat in vec4 vSphere;
+flat in int vMaterial;
+void main() {
+  vec3 d = normalize(vPosition - uEye);
+  vec3 f = uEye - vSphere.xyz;
+  float b = -dot(f, d);
+  vec3 l = f + b * d;
+  float r2 = vSphere.w * vSphere.w;
+  float disc = r2 - dot(l, l);
+  if (!(disc >= 0.0)) discard;
+  float c = dot(f, f) - r2;
+  float q = b + (b < 0.0 ? -sqrt(disc) : sqrt(disc));
+  if (q == 0.0) discard;
+  float t0 = min(c / q, q), t1 = max(c / q, q);
+  float t = t0 > 0.0 ? t0 : t1;
+  if (!(t > 0.0)) discard;
+  vec3 p = uEye + t * d;
+  vec3 n = normalize(p - vSphere.xyz);
+  p = vSphere.xyz + vSphere.w * n;
+  float u = atan(n.x, n.z) / (2.0 * 3.14159265);
+  float v = acos(clamp(-n.y, -1.0, 1.0)) / 3.14159265;
+  vec2 uv = vec2(u < 0.0 ? u + 1.0 : u, v);
+  vec4 clip = uViewProjection * vec4(p, 1.0);
+  gl_FragDepth = clip.z / clip.w * 0.5 + 0.5;
+  fragColor = vec4(clamp(shade(p, n, n, uv, vMaterial), 0.0, 1.0), 1.0);
+}
+)";
+
+}  // namespace glint::gl

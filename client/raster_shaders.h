@@ -1,0 +1,21 @@
+#pragma once
+
+namespace glint::gl {
+
+// GLSL sources of the raster pass. The fragment shaders compute exactly the
+// tracer's direct lighting (common/shading.cpp, common/tracer.cpp Tracer::shade
+// without shadow rays): the same terms, face-forwarded normals, attenuation,
+// checker index and image lookups (common/texture.cpp).
+// Fragment shaders are kFragmentShading followed by their own main().
+extern const char* const kFragmentShading;
+extern const char* const kMeshVertexShader;
+extern const char* const kMeshFragmentShader;
+extern const char* const kSphereVertexShader;
+extern const char* const kSphereFragmentShader;
+
+// Limits of the uniform arrays the shaders declare.
+constexpr int kMaxLights = 16;
+constexpr int kMaxMaterials = 128;
+constexpr int kMaxTextures = 32;
+
+}  // namespace glint::gl

@@ -1,0 +1,176 @@
+// The hybrid frame: OpenGL (OSMesa) draws what the tracer computes for
+// direct light, masks exactly the objects the rule names, and the traced
+// pixels land in the frame unchanged, in process and through glintd.
+#include <thread>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "client/hybrid_frame.h"
+#include "client/offscreen_context.h"
+#include "client/raster_scene.h"
+#include "client/remote_tile_service.h"
+#include "common/mask_rule.h"
+#include "common/renderer.h"
+#include "proto/scene_bundle.h"
+#include "server/log.h"
+#include "server/server.h"
+#include "tests/common/test_support.h"
+
+namespace glint {
+namespace {
+
+struct SceneSetup {
+  proto::LoadedBundle loaded;
+  FrameSettings frame;
+};
+
+SceneSetup load(const char* scene, int width = 160, int height = 120) {
+  SceneSetup s{proto::loadSceneBundle(test::sourcePath(scene)), {}};
+  s.frame = s.loaded.scene.frame();
+  s.frame.width = width;
+  s.frame.height = height;
+  return s;
+}
+
+HybridResult hybrid(const Scene& scene, TileService& service, const FrameSettings& frame, const MaskSettings& mask) {
+  gl::OffscreenContext context(frame.width, frame.height);
+  gl::RasterScene raster(context.api(), scene);
+  return renderHybrid(context.api(), raster, service, frame, mask, 32);
+}
+
+// A pixel is "fully covered" when rays through its centre and four points
+// near its corners hit the same primitive with the same texture colour: no
+// silhouette or checker edge crosses it.
+std::vector<bool> fullyCovered(const PreparedScene& prepared, const FrameSettings& frame) {
+  const Scene& scene = prepared.scene();
+  const Camera camera(frame.camera, frame.width, frame.height);
+  std::vector<bool> covered(static_cast<std::size_t>(frame.width * frame.height), false);
+  const auto probe = [&](float x, float y) -> std::pair<long long, glm::vec3> {
+    const Ray ray = camera.generateRay({x, y});
+    const auto hit = prepared.bvh().intersect(scene.geometry, ray, 1e30f);
+    if (!hit) return {-1, glm::vec3(0.0f)};
+    const SurfaceHit s = scene.geometry.surface(ray, *hit);
+    const Material& m = scene.materials[s.material];
+    return {hit->prim, m.texture >= 0 ? scene.textures[static_cast<std::size_t>(m.texture)].evaluate(s.uv) : m.color};
+  };
+  for (int y = 0; y < frame.height; ++y) {
+    for (int x = 0; x < frame.width; ++x) {
+      const auto centre = probe(x + 0.5f, y + 0.5f);
+      bool same = true;
+      for (const glm::vec2 o : {glm::vec2(0.05f, 0.05f), glm::vec2(0.95f, 0.05f), glm::vec2(0.05f, 0.95f), glm::vec2(0.95f, 0.95f)}) {
+        const auto p = probe(x + o.x, y + o.y);
+        same = same && p.first == centre.first && p.second == centre.second;
+      }
+      covered[static_cast<std::size_t>(y * frame.width + x)] = same;
+    }
+  }
+  return covered;
+}
+
+// GL draws a surface as the tracer's direct light (no shadow rays, no
+// secondary rays, one sample at the pixel centre): within 2/255 per channel
+// on every fully covered pixel.
+void expectRasterMatchesDirectTrace(const char* sceneFile) {
+  SceneSetup s = load(sceneFile);
+  s.frame.sampling = {SamplePattern::kRegular, 1, FilterType::kBox, 0};
+  const PreparedScene prepared(s.loaded.scene, BvhSettings{});
+  const Renderer renderer(prepared, s.frame, EffectPlan::directLight(prepared.scene(), s.frame));
+  ThreadPool pool(2);
+  const FrameImage traced = renderFrame(renderer, pool, {}).image;
+
+  LocalTileService service(prepared, pool);
+  const HybridResult gl = hybrid(prepared.scene(), service, s.frame, {MaskRule::kNone, 0.2f, 0.0f});
+  EXPECT_EQ(gl.maskedPixels, 0u);
+  const std::vector<bool> covered = fullyCovered(prepared, s.frame);
+  int compared = 0, worst = 0, bad = 0;
+  for (std::size_t i = 0; i < covered.size(); ++i) {
+    if (!covered[i]) continue;
+    ++compared;
+    int d = 0;
+    for (int k = 0; k < 3; ++k) d = std::max(d, std::abs(gl.image.rgb[3 * i + k] - traced.rgb[3 * i + k]));
+    if (d > 2 && bad++ < 5) {
+      ADD_FAILURE() << sceneFile << " pixel " << i % static_cast<std::size_t>(s.frame.width) << ","
+                    << i / static_cast<std::size_t>(s.frame.width) << " gl " << int(gl.image.rgb[3 * i]) << " "
+                    << int(gl.image.rgb[3 * i + 1]) << " " << int(gl.image.rgb[3 * i + 2]) << " traced "
+                    << int(traced.rgb[3 * i]) << " " << int(traced.rgb[3 * i + 1]) << " " << int(traced.rgb[3 * i + 2]);
+    }
+    worst = std::max(worst, d);
+  }
+  EXPECT_EQ(bad, 0) << sceneFile;
+  EXPECT_LE(worst, 2) << sceneFile;
+  EXPECT_GT(compared, static_cast<int>(covered.size()) / 2) << sceneFile;
+}
+
+TEST(Hybrid, RasterMatchesTheTracersDirectLight) {
+  expectRasterMatchesDirectTrace("scenes/room.json");
+  expectRasterMatchesDirectTrace("scenes/glass.json");
+  expectRasterMatchesDirectTrace("scenes/bunny.json");
+}
+
+// A pixel is masked exactly when the object the tracer's primary ray meets
+// at the pixel centre is masked (silhouette pixels aside, where GL and the
+// ray may see different objects).
+TEST(Hybrid, MaskFollowsTheObjectAtThePixelCentre) {
+  const SceneSetup s = load("scenes/room.json");
+  const PreparedScene prepared(s.loaded.scene, BvhSettings{});
+  ThreadPool pool(2);
+  LocalTileService service(prepared, pool);
+  const MaskSettings mask = prepared.scene().mask;
+  const HybridResult h = hybrid(prepared.scene(), service, s.frame, mask);
+  const Camera camera(s.frame.camera, s.frame.width, s.frame.height);
+  const std::vector<bool> covered = fullyCovered(prepared, s.frame);
+  int mismatches = 0, masked = 0;
+  for (int y = 0; y < s.frame.height; ++y) {
+    for (int x = 0; x < s.frame.width; ++x) {
+      const auto i = static_cast<std::size_t>(y * s.frame.width + x);
+      const Ray ray = camera.generateRay({x + 0.5f, y + 0.5f});
+      const auto hit = prepared.bvh().intersect(prepared.scene().geometry, ray, 1e30f);
+      const bool expected =
+          hit && materialMasked(prepared.scene().materials[prepared.scene().geometry.materialOf(hit->prim)], mask);
+      masked += expected ? 1 : 0;
+      if (covered[i] && expected != (h.mask[i] == 1)) ++mismatches;
+    }
+  }
+  EXPECT_EQ(mismatches, 0);
+  EXPECT_GT(masked, 1000);
+  EXPECT_EQ(h.maskedPixels, static_cast<std::size_t>(std::count(h.mask.begin(), h.mask.end(), 1)));
+}
+
+// Masked pixels of the hybrid frame are the full trace's, byte for byte,
+// in process and through a glintd on loopback.
+TEST(Hybrid, MaskedPixelsEqualTheFullTrace) {
+  const SceneSetup s = load("scenes/room.json");
+  const PreparedScene prepared(s.loaded.scene, BvhSettings{});
+  ThreadPool pool(2);
+  LocalTileService local(prepared, pool);
+  const FrameImage full = renderFrame(local, s.frame, {}).image;
+
+  server::setLogging(false);
+  server::ServerOptions o;
+  o.listen = "127.0.0.1:0";
+  o.threads = 2;
+  o.handleSignals = false;
+  server::Server glintd(o);
+  std::thread serverThread([&] { glintd.run(); });
+  RemoteTileService remote("127.0.0.1:" + std::to_string(glintd.port()), s.loaded.bundle);
+
+  for (TileService* service : {static_cast<TileService*>(&local), static_cast<TileService*>(&remote)}) {
+    const HybridResult h = hybrid(prepared.scene(), *service, s.frame, prepared.scene().mask);
+    int differing = 0;
+    for (std::size_t i = 0; i < h.mask.size(); ++i) {
+      if (!h.mask[i]) continue;
+      for (int k = 0; k < 3; ++k) differing += h.image.rgb[3 * i + k] != full.rgb[3 * i + k] ? 1 : 0;
+    }
+    EXPECT_EQ(differing, 0);
+    EXPECT_GT(h.maskedPixels, 5000u);
+    EXPECT_GT(h.tiles, 0);
+  }
+  // Under "all" the hybrid frame is the full trace.
+  EXPECT_EQ(hybrid(prepared.scene(), local, s.frame, {MaskRule::kAll, 0.2f, 0.0f}).image.rgb, full.rgb);
+  glintd.stop();
+  serverThread.join();
+}
+
+}  // namespace
+}  // namespace glint
