@@ -85,6 +85,10 @@ int runCli(int argc, char** argv) {
   render->add_option("--stats", options.statsPath,
                      "Write one JSON object per frame (rays by kind, timings, effect plan) to FILE; "
                      "- for stdout");
+  render->add_option("--frames", options.frames,
+                     "Render N frames and print the median time of each step (like the thesis's Table 4.1)")
+      ->check(CLI::Range(1, 100000))
+      ->default_val(1);
   render->add_flag("-q,--quiet", options.quiet, "No summary line on stderr");
 
   try {

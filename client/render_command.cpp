@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <algorithm>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -36,12 +37,31 @@ void writeMaskPng(const std::string& path, const std::vector<std::uint8_t>& mask
   writePng(path, image);
 }
 
-void writeStats(const std::string& path, const nlohmann::json& record) {
+// Medians over the frames, as the thesis's Table 4.1: the RT unit's time
+// beside the whole frame, and each step of the hybrid frame.
+void printTimingTable(const std::vector<HybridTimes>& frames, bool hybrid) {
+  const auto median = [&](double HybridTimes::*field) {
+    std::vector<double> v;
+    for (const HybridTimes& t : frames) v.push_back(t.*field);
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  std::fprintf(stderr, "median of %zu frames:\n", frames.size());
+  if (hybrid) {
+    std::fprintf(stderr, "  raster     %8.1f ms\n  readback   %8.1f ms\n", median(&HybridTimes::rasterMs),
+                 median(&HybridTimes::readbackMs));
+  }
+  std::fprintf(stderr, "  RT unit    %8.1f ms\n", median(&HybridTimes::traceMs));
+  if (hybrid) std::fprintf(stderr, "  compose    %8.1f ms\n", median(&HybridTimes::composeMs));
+  std::fprintf(stderr, "  frame      %8.1f ms\n", median(&HybridTimes::totalMs));
+}
+
+void writeStats(const std::string& path, const nlohmann::json& record, bool append) {
   if (path == "-") {
     std::cout << record.dump() << '\n' << std::flush;
     return;
   }
-  std::ofstream out(path, std::ios::trunc);
+  std::ofstream out(path, append ? std::ios::app : std::ios::trunc);
   out << record.dump() << '\n';
   if (!out) throw InputError("--stats " + path + ": cannot write the file");
 }
@@ -70,13 +90,12 @@ void applyOverrides(const RenderOptions& o, Scene& scene) {
 
 void runRender(const RenderOptions& options) {
   const Clock::time_point start = Clock::now();
-  FrameTimes times;
   proto::LoadedBundle loaded = proto::loadSceneBundle(options.scene);
   applyOverrides(options, loaded.scene);
   const FrameSettings frame = loaded.scene.frame();
   const EffectPlan plan = EffectPlan::derive(loaded.scene, frame);
   const std::size_t dropped = loaded.scene.geometry.droppedTriangles();
-  times.loadMs = msSince(start);
+  const double loadMs = msSince(start);
 
   // In process (the default) or through a glintd: the same tiles either way.
   const Clock::time_point prepareStart = Clock::now();
@@ -92,58 +111,68 @@ void runRender(const RenderOptions& options) {
   } else {
     service = std::make_unique<RemoteTileService>(options.server, loaded.bundle);
   }
-  times.bvhMs = msSince(prepareStart);
+  const Scene& scene = prepared ? prepared->scene() : loaded.scene;
+  const double prepareMs = msSince(prepareStart);
 
   // --mask all is the full ray trace: every pixel through the tile service.
-  // Other rules draw the frame with OpenGL and trace only the masked pixels.
-  const Scene& scene = prepared ? prepared->scene() : loaded.scene;
-  FrameResult result;
-  std::size_t masked = static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height);
-  std::optional<HybridTimes> hybridTimes;
-  int tiles = 0;
-  const Clock::time_point traceStart = Clock::now();
-  if (scene.mask.rule == MaskRule::kAll && options.maskOut.empty()) {
-    FrameOptions frameOptions;
-    frameOptions.tileSize = options.tileSize;
-    ProgressBar progress("rendering");
-    frameOptions.progress = [&progress](int done, int total) { progress.update(done, total); };
-    result = renderFrame(*service, frame, frameOptions);
-    tiles = static_cast<int>(tileGrid(frame.width, frame.height, options.tileSize).size());
-  } else {
-    gl::OffscreenContext context(frame.width, frame.height);
-    gl::RasterScene raster(context.api(), scene);
-    HybridResult hybrid = renderHybrid(context.api(), raster, *service, frame, scene.mask, options.tileSize);
-    result.image = std::move(hybrid.image);
-    result.stats = hybrid.rays;
-    masked = hybrid.maskedPixels;
-    tiles = hybrid.tiles;
-    hybridTimes = hybrid.times;
-    if (!options.maskOut.empty()) writeMaskPng(options.maskOut, hybrid.mask, frame.width, frame.height);
+  // Other rules draw each frame with OpenGL and trace only the masked pixels.
+  const bool hybridPath = scene.mask.rule != MaskRule::kAll || !options.maskOut.empty();
+  std::optional<gl::OffscreenContext> context;
+  std::optional<gl::RasterScene> raster;
+  if (hybridPath) {
+    context.emplace(frame.width, frame.height);
+    raster.emplace(context->api(), scene);
   }
-  times.traceMs = hybridTimes ? hybridTimes->traceMs : msSince(traceStart);
-  writePng(options.output, result.image);
-  times.totalMs = msSince(start);
-
-  if (!options.statsPath.empty()) {
-    nlohmann::json record = frameStats(0, frame.width, frame.height, masked, result.stats, times, plan, dropped);
-    record["tiles"] = tiles;
-    if (hybridTimes) {
-      record["raster_ms"] = hybridTimes->rasterMs;
-      record["readback_ms"] = hybridTimes->readbackMs;
-      record["compose_ms"] = hybridTimes->composeMs;
+  std::vector<HybridTimes> frameTimes;
+  FrameImage image;
+  RayStats lastRays;
+  for (int f = 0; f < options.frames; ++f) {
+    const Clock::time_point frameStart = Clock::now();
+    HybridResult r;
+    if (hybridPath) {
+      r = renderHybrid(context->api(), *raster, *service, frame, scene.mask, options.tileSize);
+    } else {
+      FrameOptions frameOptions;
+      frameOptions.tileSize = options.tileSize;
+      ProgressBar progress("rendering");
+      frameOptions.progress = [&progress](int done, int total) { progress.update(done, total); };
+      FrameResult full = renderFrame(*service, frame, frameOptions);
+      r.image = std::move(full.image);
+      r.rays = full.stats;
+      r.maskedPixels = static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height);
+      r.tiles = static_cast<int>(tileGrid(frame.width, frame.height, options.tileSize).size());
+      r.times.traceMs = r.times.totalMs = msSince(frameStart);
     }
-    writeStats(options.statsPath, record);
+    if (f == 0 && !options.maskOut.empty()) writeMaskPng(options.maskOut, r.mask, frame.width, frame.height);
+    if (!options.statsPath.empty()) {
+      FrameTimes times{loadMs, prepareMs, r.times.traceMs, f == 0 ? msSince(start) : r.times.totalMs};
+      nlohmann::json record = frameStats(f, frame.width, frame.height, r.maskedPixels, r.rays, times, plan, dropped);
+      record["tiles"] = r.tiles;
+      record["frame_ms"] = r.times.totalMs;
+      if (hybridPath) {
+        record["raster_ms"] = r.times.rasterMs;
+        record["readback_ms"] = r.times.readbackMs;
+        record["compose_ms"] = r.times.composeMs;
+      }
+      writeStats(options.statsPath, record, f > 0);
+    }
+    frameTimes.push_back(r.times);
+    lastRays = r.rays;
+    image = std::move(r.image);
   }
+  writePng(options.output, image);
+
   if (!options.quiet) {
     const std::string where = options.server.empty() ? std::to_string(pool->size()) + " threads"
                                                      : "server " + options.server;
-    std::fprintf(stderr, "%s: %dx%d, %d spp, %s: trace %.1f ms, total %.1f ms, %.2f M rays -> %s\n",
+    std::fprintf(stderr, "%s: %dx%d, %d spp, %s: trace %.1f ms, frame %.1f ms, %.2f M rays -> %s\n",
                  options.scene.c_str(), frame.width, frame.height, frame.sampling.samples, where.c_str(),
-                 times.traceMs, times.totalMs, static_cast<double>(result.stats.total()) / 1e6,
+                 frameTimes.back().traceMs, frameTimes.back().totalMs, static_cast<double>(lastRays.total()) / 1e6,
                  options.output.c_str());
-    if (result.stats.nonFiniteSamples > 0) {
+    if (options.frames > 1) printTimingTable(frameTimes, hybridPath);
+    if (lastRays.nonFiniteSamples > 0) {
       std::fprintf(stderr, "warning: %llu samples were not finite and were discarded\n",
-                   static_cast<unsigned long long>(result.stats.nonFiniteSamples));
+                   static_cast<unsigned long long>(lastRays.nonFiniteSamples));
     }
   }
 }

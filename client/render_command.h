@@ -28,6 +28,7 @@ struct RenderOptions {
   BvhBuilder bvh = BvhBuilder::kSah;
   std::string server;     // HOST:PORT of a glintd; "" renders in process
   std::string statsPath;  // "" none, "-" stdout
+  int frames = 1;          // frames rendered (the last is written); > 1 prints medians
   bool quiet = false;
 };
 
