@@ -15,6 +15,9 @@
 
 #include "common/bvh.h"
 #include "common/frame.h"
+#include "client/hybrid_frame.h"
+#include "client/offscreen_context.h"
+#include "client/raster_scene.h"
 #include "client/remote_tile_service.h"
 #include "common/scene_load.h"
 #include "proto/scene_bundle.h"
@@ -33,7 +36,7 @@ struct Options {
   bool povray = true;
   int runs = 7;
   int tileSize = 64;
-  std::vector<std::string> sections = {"bvh", "room", "accuracy", "protocol"};
+  std::vector<std::string> sections = {"bvh", "room", "accuracy", "protocol", "hybrid"};
   bool wants(const std::string& s) const { return std::find(sections.begin(), sections.end(), s) != sections.end(); }
 };
 
@@ -250,6 +253,68 @@ void protocolSection(const Options& o, const Scene& room) {
   serverThread.join();
 }
 
+// The thesis's Table 4.1 with Glint's hybrid frame: scenes 1 and 2, each
+// step's median over the frames, in process and through glintd, beside
+// POV-Ray's full trace of the same room measured in the same run.
+void hybridSection(const Options& o) {
+  const int frames = o.quick ? 2 : 21;
+  server::setLogging(false);
+  server::ServerOptions so;
+  so.listen = "127.0.0.1:0";
+  so.threads = 2;
+  so.handleSignals = false;
+  server::Server glintd(so);
+  std::thread serverThread([&] { glintd.run(); });
+  const std::string address = "127.0.0.1:" + std::to_string(glintd.port());
+  std::printf("\n## The hybrid frame: the thesis's Table 4.1 (median of %d frames, 2 tracing threads)\n\n", frames);
+  std::printf("| scene | tiles from | raster ms | readback ms | RT unit ms | compose ms | frame ms | thesis RT unit / frame ms |\n");
+  std::printf("|---|---|---|---|---|---|---|---|\n");
+  const char* thesis[2] = {"2046 / 2068", "878 / 902"};
+  double sceneOneFrame = 0.0;
+  int index = 0;
+  for (const char* name : {"room.json", "room-gl-floor.json"}) {
+    proto::LoadedBundle loaded = proto::loadSceneBundle(std::filesystem::path(o.scenes) / name);
+    FrameSettings frame = loaded.scene.frame();
+    if (o.quick) {
+      frame.width = 160;
+      frame.height = 120;
+    }
+    const PreparedScene prepared(loaded.scene, BvhSettings{});
+    ThreadPool pool(2);
+    LocalTileService local(prepared, pool);
+    RemoteTileService remote(address, loaded.bundle);
+    gl::OffscreenContext context(frame.width, frame.height);
+    gl::RasterScene raster(context.api(), prepared.scene());
+    for (TileService* service : {static_cast<TileService*>(&local), static_cast<TileService*>(&remote)}) {
+      std::vector<HybridTimes> times;
+      for (int f = 0; f < frames + 1; ++f) {
+        const HybridResult r = renderHybrid(context.api(), raster, *service, frame, prepared.scene().mask, 64);
+        if (f > 0) times.push_back(r.times);  // the first frame compiles the shaders
+      }
+      const auto median = [&](double HybridTimes::*field) {
+        std::vector<double> v;
+        for (const HybridTimes& t : times) v.push_back(t.*field);
+        std::sort(v.begin(), v.end());
+        return v[v.size() / 2];
+      };
+      const bool inProcess = service == &local;
+      std::printf("| %d (%s) | %s | %.1f | %.1f | %.1f | %.1f | %.1f | %s |\n", index + 1, name,
+                  inProcess ? "in process" : "glintd", median(&HybridTimes::rasterMs), median(&HybridTimes::readbackMs),
+                  median(&HybridTimes::traceMs), median(&HybridTimes::composeMs), median(&HybridTimes::totalMs),
+                  thesis[index]);
+      if (index == 0 && inProcess) sceneOneFrame = median(&HybridTimes::totalMs);
+    }
+    ++index;
+  }
+  glintd.stop();
+  serverThread.join();
+  const double pov = o.povray ? povrayMs(o, 640, 480) : -1.0;
+  if (pov > 0.0 && !o.quick) {
+    std::printf("\nPOV-Ray 3.7 full trace of the room: %.1f ms; scene 1's hybrid frame is **%.1fx** faster.\n", pov,
+                pov / sceneOneFrame);
+  }
+}
+
 }  // namespace
 }  // namespace glint::bench
 
@@ -263,9 +328,9 @@ int main(int argc, char** argv) {
   bool noPovray = false;
   app.add_flag("--no-povray", noPovray, "Skip the POV-Ray comparison");
   app.add_option("--tile-size", o.tileSize, "Tile edge for the glintd comparison")->check(CLI::Range(8, 1024));
-  app.add_option("--sections", o.sections, "Sections to run: bvh, room, accuracy, protocol (default: all)")
+  app.add_option("--sections", o.sections, "Sections to run: bvh, room, accuracy, protocol, hybrid (default: all)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"bvh", "room", "accuracy", "protocol"}));
+      ->check(CLI::IsMember({"bvh", "room", "accuracy", "protocol", "hybrid"}));
   CLI11_PARSE(app, argc, argv);
   o.povray = !noPovray;
   if (o.quick) o.runs = 1;
@@ -281,6 +346,7 @@ int main(int argc, char** argv) {
     if (o.wants("room")) bench::roomSection(o, room, pool);
     if (o.wants("accuracy")) bench::accuracySection(o, room, pool);
     if (o.wants("protocol")) bench::protocolSection(o, room);
+    if (o.wants("hybrid")) bench::hybridSection(o);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "glint-bench: %s\n", e.what());
     return 1;
