@@ -5,7 +5,8 @@ JOBS  ?= 2
 # Debian packages the build and the tests need; `make deps` installs the missing ones.
 DEPS := cmake g++ make pkg-config libglm-dev nlohmann-json3-dev libtinyobjloader-dev \
         libstb-dev libcli11-dev libgtest-dev libgmock-dev \
-        libflatbuffers-dev flatbuffers-compiler libssl-dev libasio-dev libosmesa6-dev
+        libflatbuffers-dev flatbuffers-compiler libssl-dev libasio-dev libosmesa6-dev \
+        libglfw3-dev libgl1-mesa-dri xvfb xauth
 # The benchmark also compares against POV-Ray 3.7.
 BENCH_DEPS := povray
 

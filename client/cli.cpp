@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "client/render_command.h"
+#include "client/view_command.h"
 #include "common/error.h"
 
 namespace glint {
@@ -18,7 +19,7 @@ constexpr const char* kRenderHelp =
     "Settings given here override the scene file's. The image is the same\n"
     "whatever --threads and --tile-size are.";
 
-void parseSize(const std::string& text, RenderOptions& options) {
+void parseSize(const std::string& text, std::optional<int>& width, std::optional<int>& height) {
   static const std::regex pattern(R"((\d{1,5})x(\d{1,5}))");
   std::smatch m;
   if (!std::regex_match(text, m, pattern)) {
@@ -29,8 +30,8 @@ void parseSize(const std::string& text, RenderOptions& options) {
   if (w < 1 || h < 1 || w > 65536 || h > 65536) {
     throw InputError("--size " + text + ": width and height must be in [1, 65536]");
   }
-  options.width = w;
-  options.height = h;
+  width = w;
+  height = h;
 }
 
 }  // namespace
@@ -91,6 +92,22 @@ int runCli(int argc, char** argv) {
       ->default_val(1);
   render->add_flag("-q,--quiet", options.quiet, "No summary line on stderr");
 
+  ViewOptions view;
+  std::string viewSize;
+  CLI::App* viewCommand = app.add_subcommand(
+      "view", "Open a window on a scene: the hybrid frame, live. Left drag orbits, right drag pans, the wheel "
+              "zooms; M cycles the mask rule (auto, all, none), O shows the mask, Q or Escape closes.");
+  viewCommand->add_option("scene", view.scene, "Scene file (.json)")->required()->check(CLI::ExistingFile);
+  viewCommand->add_option("--server", view.server, "Trace through the glintd at HOST:PORT");
+  viewCommand->add_option("--mask", view.mask, "Initial mask rule: auto, all or none (default: the scene's)")
+      ->check(CLI::IsMember({"scene", "auto", "all", "none"}));
+  viewCommand->add_option("--threads", view.threads, "Tracing threads; 0 = one per hardware thread")
+      ->check(CLI::Range(0, 1024));
+  viewCommand->add_option("--tile-size", view.tileSize, "Tile edge in pixels")->check(CLI::Range(1, 4096));
+  viewCommand->add_option("--size", viewSize, "Window size WIDTHxHEIGHT (default: the scene's image size)");
+  viewCommand->add_option("--frames", view.frames, "Close after N frames (for scripts)")->check(CLI::Range(1, 1000000));
+  viewCommand->add_option("--screenshot", view.screenshot, "Write the last frame as PNG when the window closes");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -98,7 +115,12 @@ int runCli(int argc, char** argv) {
   }
 
   try {
-    if (!size.empty()) parseSize(size, options);
+    if (!size.empty()) parseSize(size, options.width, options.height);
+    if (!viewSize.empty()) parseSize(viewSize, view.width, view.height);
+    if (viewCommand->parsed()) {
+      runView(view);
+      return 0;
+    }
     if (!pattern.empty()) {
       options.pattern = pattern == "regular" ? SamplePattern::kRegular : SamplePattern::kJittered;
     }

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <cstdlib>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -19,8 +20,8 @@ struct Result {
   std::string output;
 };
 
-Result glint(const std::string& args) {
-  const std::string command = std::string(GLINT_BIN) + " " + args + " 2>&1";
+Result glint(const std::string& args, const std::string& prefix = "") {
+  const std::string command = prefix + std::string(GLINT_BIN) + " " + args + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   Result run{-1, ""};
   if (!pipe) return run;
@@ -89,6 +90,28 @@ TEST_F(Cli, HybridRenderWritesImageMaskAndStepTimes) {
                           "\"masked_pixels\":"}) {
     EXPECT_NE(stats.find(key), std::string::npos) << key << " in " << stats;
   }
+}
+
+// glint view in a real window (an X server in memory, Xvfb) shows exactly the
+// frame glint render writes.
+TEST_F(Cli, ViewShowsTheSameFrameAsRender) {
+  if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed";
+  const std::string args = scene("room.json") + " --size 160x120";
+  const Result view = glint("view " + args + " --frames 2 --screenshot " + path("view.png"), "xvfb-run -a ");
+  ASSERT_EQ(view.status, 0) << view.output;
+  const Result render = glint("render " + args + " -o " + path("render.png") + " -q");
+  ASSERT_EQ(render.status, 0) << render.output;
+  std::ifstream a(path("view.png"), std::ios::binary), b(path("render.png"), std::ios::binary);
+  const std::string viewBytes((std::istreambuf_iterator<char>(a)), std::istreambuf_iterator<char>());
+  const std::string renderBytes((std::istreambuf_iterator<char>(b)), std::istreambuf_iterator<char>());
+  EXPECT_FALSE(viewBytes.empty());
+  EXPECT_EQ(viewBytes, renderBytes);
+}
+
+TEST_F(Cli, ViewWithoutADisplaySaysSo) {
+  const Result run = glint("view " + scene("room.json") + " --frames 1", "env -u DISPLAY -u WAYLAND_DISPLAY ");
+  EXPECT_EQ(run.status, 1);
+  EXPECT_NE(run.output.find("needs a display"), std::string::npos) << run.output;
 }
 
 TEST_F(Cli, BadValuesGiveClearErrorsAndWriteNothing) {

@@ -1,0 +1,186 @@
+#include "client/view_command.h"
+
+// GL comes from client/gl_api.h (loaded through glfwGetProcAddress).
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "client/gl_api.h"
+#include "client/hybrid_frame.h"
+#include "client/raster_scene.h"
+#include "client/remote_tile_service.h"
+#include "common/error.h"
+#include "common/image_io.h"
+#include "proto/scene_bundle.h"
+
+namespace glint {
+namespace {
+
+// Mouse and keyboard state, reached from GLFW's callbacks.
+struct Controls {
+  CameraSpec camera;
+  MaskRule rule = MaskRule::kAuto;
+  bool overlay = false;
+  bool dragging = false;
+  bool panning = false;
+  double lastX = 0.0;
+  double lastY = 0.0;
+  bool changed = true;
+};
+
+void orbit(CameraSpec& c, float yaw, float pitch) {
+  glm::vec3 offset = c.eye - c.lookAt;
+  const glm::vec3 up = glm::normalize(c.up);
+  offset = glm::vec3(glm::rotate(glm::mat4(1.0f), yaw, up) * glm::vec4(offset, 0.0f));
+  const glm::vec3 right = glm::normalize(glm::cross(up, offset));
+  const glm::vec3 pitched = glm::vec3(glm::rotate(glm::mat4(1.0f), pitch, right) * glm::vec4(offset, 0.0f));
+  // Stop short of looking straight along the up vector.
+  if (std::abs(glm::dot(glm::normalize(pitched), up)) < 0.99f) offset = pitched;
+  c.eye = c.lookAt + offset;
+}
+
+void pan(CameraSpec& c, float dx, float dy) {
+  const glm::vec3 forward = c.lookAt - c.eye;
+  const float scale = glm::length(forward) * 0.002f;
+  const glm::vec3 right = glm::normalize(glm::cross(forward, c.up));
+  const glm::vec3 up = glm::normalize(glm::cross(right, forward));
+  const glm::vec3 move = (-dx * right + dy * up) * scale;
+  c.eye += move;
+  c.lookAt += move;
+}
+
+Controls& controlsOf(GLFWwindow* window) { return *static_cast<Controls*>(glfwGetWindowUserPointer(window)); }
+
+void installCallbacks(GLFWwindow* window) {
+  glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) {
+    Controls& c = controlsOf(w);
+    glfwGetCursorPos(w, &c.lastX, &c.lastY);
+    if (button == GLFW_MOUSE_BUTTON_LEFT) c.dragging = action == GLFW_PRESS;
+    if (button == GLFW_MOUSE_BUTTON_RIGHT) c.panning = action == GLFW_PRESS;
+  });
+  glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) {
+    Controls& c = controlsOf(w);
+    const auto dx = static_cast<float>(x - c.lastX), dy = static_cast<float>(y - c.lastY);
+    c.lastX = x;
+    c.lastY = y;
+    if (c.dragging) orbit(c.camera, -dx * 0.005f, -dy * 0.005f);
+    if (c.panning) pan(c.camera, dx, dy);
+    c.changed = c.changed || c.dragging || c.panning;
+  });
+  glfwSetScrollCallback(window, [](GLFWwindow* w, double, double dy) {
+    Controls& c = controlsOf(w);
+    c.camera.eye = c.camera.lookAt + (c.camera.eye - c.camera.lookAt) * std::pow(0.9f, static_cast<float>(dy));
+    c.changed = true;
+  });
+  glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
+    if (action != GLFW_PRESS) return;
+    Controls& c = controlsOf(w);
+    if (key == GLFW_KEY_Q || key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(w, GLFW_TRUE);
+    if (key == GLFW_KEY_M) {
+      c.rule = c.rule == MaskRule::kAuto ? MaskRule::kAll : c.rule == MaskRule::kAll ? MaskRule::kNone : MaskRule::kAuto;
+    }
+    if (key == GLFW_KEY_O) c.overlay = !c.overlay;
+    c.changed = true;
+  });
+}
+
+// Tints the traced pixels (the mask) red over the frame.
+void drawOverlay(const gl::Api& gl, const HybridResult& r, int width, int height) {
+  std::vector<std::uint8_t> rgb = r.image.rgb;
+  for (std::size_t i = 0; i < r.mask.size(); ++i) {
+    if (r.mask[i]) rgb[3 * i] = static_cast<std::uint8_t>(std::min(255, rgb[3 * i] / 2 + 128));
+  }
+  std::vector<std::uint8_t> flipped(rgb.size());
+  const auto row = static_cast<std::size_t>(width) * 3;
+  for (int y = 0; y < height; ++y) {
+    std::copy_n(&rgb[static_cast<std::size_t>(y) * row], row, &flipped[static_cast<std::size_t>(height - 1 - y) * row]);
+  }
+  gl.Disable(GL_STENCIL_TEST);
+  gl.WindowPos2i(0, 0);
+  gl.DrawPixels(width, height, GL_RGB, GL_UNSIGNED_BYTE, flipped.data());
+}
+
+const char* ruleName(MaskRule r) { return r == MaskRule::kAll ? "all" : r == MaskRule::kNone ? "none" : "auto"; }
+
+}  // namespace
+
+void runView(const ViewOptions& options) {
+  proto::LoadedBundle loaded = proto::loadSceneBundle(options.scene);
+  Scene& scene = loaded.scene;
+  if (options.width) scene.width = *options.width;
+  if (options.height) scene.height = *options.height;
+  if (options.mask == "auto") scene.mask.rule = MaskRule::kAuto;
+  if (options.mask == "all") scene.mask.rule = MaskRule::kAll;
+  if (options.mask == "none") scene.mask.rule = MaskRule::kNone;
+
+  if (!glfwInit()) {
+    throw InputError("glint view needs a display: cannot initialise GLFW (is DISPLAY set? glint render works headless)");
+  }
+  struct Terminate {
+    ~Terminate() { glfwTerminate(); }
+  } terminate;
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_COMPAT_PROFILE);
+  glfwWindowHint(GLFW_STENCIL_BITS, 8);
+  glfwWindowHint(GLFW_DEPTH_BITS, 24);
+  glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
+  GLFWwindow* window = glfwCreateWindow(scene.width, scene.height, "glint view", nullptr, nullptr);
+  if (!window) throw InputError("glint view: cannot open an OpenGL 3.3 compatibility window");
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(0);
+  const gl::Api api = gl::loadApi([](const char* name) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); });
+
+  std::optional<PreparedScene> prepared;
+  std::optional<ThreadPool> pool;
+  std::unique_ptr<TileService> service;
+  if (options.server.empty()) {
+    prepared.emplace(scene, BvhSettings{});
+    pool.emplace(resolveThreadCount(options.threads));
+    service = std::make_unique<LocalTileService>(*prepared, *pool);
+  } else {
+    service = std::make_unique<RemoteTileService>(options.server, loaded.bundle);
+  }
+  gl::RasterScene raster(api, scene);
+
+  Controls controls;
+  controls.camera = scene.camera;
+  controls.rule = scene.mask.rule;
+  glfwSetWindowUserPointer(window, &controls);
+  installCallbacks(window);
+
+  int frames = 0;
+  HybridResult last;
+  while (!glfwWindowShouldClose(window)) {
+    if (controls.changed || options.frames > 0) {
+      controls.changed = false;
+      FrameSettings frame = scene.frame();
+      glfwGetFramebufferSize(window, &frame.width, &frame.height);
+      frame.camera = controls.camera;
+      MaskSettings mask = scene.mask;
+      mask.rule = controls.rule;
+      last = renderHybrid(api, raster, *service, frame, mask, options.tileSize);
+      if (controls.overlay) drawOverlay(api, last, frame.width, frame.height);
+      glfwSwapBuffers(window);
+      char title[256];
+      std::snprintf(title, sizeof title,
+                    "glint view  |  mask %s%s  |  frame %.0f ms: raster %.0f, read %.0f, RT %.0f, compose %.0f  |  %s",
+                    ruleName(controls.rule), controls.overlay ? " (shown)" : "", last.times.totalMs,
+                    last.times.rasterMs, last.times.readbackMs, last.times.traceMs, last.times.composeMs,
+                    options.server.empty() ? "in process" : options.server.c_str());
+      glfwSetWindowTitle(window, title);
+      if (options.frames > 0 && ++frames >= options.frames) break;
+    }
+    glfwWaitEventsTimeout(0.1);
+  }
+  if (!options.screenshot.empty()) writePng(options.screenshot, last.image);
+  glfwDestroyWindow(window);
+}
+
+}  // namespace glint

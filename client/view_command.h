@@ -1,0 +1,27 @@
+#pragma once
+
+#include <optional>
+#include <string>
+
+namespace glint {
+
+// Options of `glint view`.
+struct ViewOptions {
+  std::string scene;
+  std::string server;          // HOST:PORT of a glintd; "" traces in process
+  std::string mask = "scene";  // scene | auto | all | none
+  int threads = 0;
+  int tileSize = 64;
+  std::optional<int> width;
+  std::optional<int> height;
+  int frames = 0;              // > 0: close after this many frames (scripts, tests)
+  std::string screenshot;      // PNG of the last frame, "" none
+};
+
+// Opens a window on the scene: left drag orbits around the camera's target,
+// right drag pans, the wheel zooms; M cycles the mask rule (auto, all,
+// none), O shows the mask over the image, Q or Escape closes. The title shows
+// the frame time and its steps. Throws InputError for bad input.
+void runView(const ViewOptions& options);
+
+}  // namespace glint
