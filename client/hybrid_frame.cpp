@@ -82,11 +82,14 @@ HybridResult renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileServic
 
   const Clock::time_point traceStart = Clock::now();
   std::vector<TileOutput> outputs(jobs.size());
+  double computeMs = 0.0;
   service.render(frame, jobs, [&](std::size_t i, TileOutput&& out) {
     result.rays += out.rays;
+    computeMs += out.computeMs;
     outputs[i] = std::move(out);
   });
   result.times.traceMs = msSince(traceStart);
+  result.times.networkMs = std::max(0.0, result.times.traceMs - computeMs / std::max(1, service.parallelism()));
 
   // Draw the traced pixels back; the stencil test keeps GL's own pixels.
   const Clock::time_point composeStart = Clock::now();

@@ -15,6 +15,7 @@ struct HybridTimes {
   double rasterMs = 0.0;    // OpenGL draws the scene and marks the mask
   double readbackMs = 0.0;  // glReadPixels of colour and stencil
   double traceMs = 0.0;     // the tile service fills the masked pixels
+  double networkMs = 0.0;   // of traceMs, not spent tracing: traceMs - compute / parallelism
   double composeMs = 0.0;   // glDrawPixels of the traced tiles, final read
   double totalMs = 0.0;
 };

@@ -115,6 +115,7 @@ void RemoteTileService::render(const FrameSettings& frame, std::span<const TileJ
     TileOutput out;
     if (result->rgb()) out.rgb.assign(result->rgb()->begin(), result->rgb()->end());
     out.rays = proto::decodeRays(result->rays());
+    out.computeMs = result->compute_us() / 1000.0;
     done(result->tile_id(), std::move(out));
     --outstanding;
     ++finished;

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include <algorithm>
 #include <memory>
 
 #include "common/tile_service.h"
@@ -32,6 +33,7 @@ class RemoteTileService : public TileService {
 
   void render(const FrameSettings& frame, std::span<const TileJob> jobs,
               const std::function<void(std::size_t, TileOutput&&)>& done) override;
+  int parallelism() const override { return std::max(1, traffic_.serverThreads); }
   const Traffic& traffic() const { return traffic_; }
 
  private:

@@ -152,6 +152,7 @@ void runRender(const RenderOptions& options) {
       if (hybridPath) {
         record["raster_ms"] = r.times.rasterMs;
         record["readback_ms"] = r.times.readbackMs;
+        record["network_ms"] = r.times.networkMs;
         record["compose_ms"] = r.times.composeMs;
       }
       writeStats(options.statsPath, record, f > 0);

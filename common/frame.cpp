@@ -45,6 +45,7 @@ FrameResult renderFrame(const Renderer& renderer, ThreadPool& pool, const FrameO
                 const std::function<void(std::size_t, TileOutput&&)>& done) override {
       renderTiles(renderer, pool, jobs, done);
     }
+    int parallelism() const override { return pool.size(); }
   } service(renderer, pool);
   return renderFrame(service, renderer.frame(), options);
 }

@@ -1,5 +1,6 @@
 #include "common/tile_service.h"
 
+#include <chrono>
 #include <mutex>
 
 #include "common/renderer.h"
@@ -18,7 +19,9 @@ void renderTiles(const Renderer& renderer, ThreadPool& pool, std::span<const Til
   pool.parallelFor(jobs.size(), [&](std::size_t i) {
     TileOutput out;
     out.rgb.reserve(jobs[i].rect.pixelCount() * 3);
+    const auto start = std::chrono::steady_clock::now();
     renderer.renderTile(jobs[i].rect, jobs[i].mask, out.rgb, out.rays);
+    out.computeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     std::lock_guard lock(doneMutex);
     done(i, std::move(out));
   });

@@ -23,6 +23,7 @@ struct TileJob {
 struct TileOutput {
   std::vector<std::uint8_t> rgb;
   RayStats rays;
+  double computeMs = 0.0;  // time spent tracing the tile, wherever it ran
 };
 
 // Fills tiles of frames of one scene. The in-process service, the remote
@@ -35,6 +36,8 @@ class TileService {
   // InputError when the frame cannot be rendered.
   virtual void render(const FrameSettings& frame, std::span<const TileJob> jobs,
                       const std::function<void(std::size_t, TileOutput&&)>& done) = 0;
+  // Tiles traced at once (threads of the pool or of the server).
+  virtual int parallelism() const = 0;
 };
 
 class Renderer;
@@ -50,6 +53,7 @@ class LocalTileService : public TileService {
   LocalTileService(const PreparedScene& prepared, ThreadPool& pool) : prepared_(prepared), pool_(pool) {}
   void render(const FrameSettings& frame, std::span<const TileJob> jobs,
               const std::function<void(std::size_t, TileOutput&&)>& done) override;
+  int parallelism() const override { return pool_.size(); }
 
  private:
   const PreparedScene& prepared_;

@@ -86,7 +86,7 @@ TEST_F(Cli, HybridRenderWritesImageMaskAndStepTimes) {
   EXPECT_TRUE(fs::exists(path("m.png")));
   std::ifstream statsFile(path("s.json"));
   std::string stats((std::istreambuf_iterator<char>(statsFile)), std::istreambuf_iterator<char>());
-  for (const char* key : {"\"raster_ms\":", "\"readback_ms\":", "\"compose_ms\":", "\"trace_ms\":", "\"tiles\":",
+  for (const char* key : {"\"raster_ms\":", "\"readback_ms\":", "\"network_ms\":", "\"compose_ms\":", "\"trace_ms\":", "\"tiles\":",
                           "\"masked_pixels\":"}) {
     EXPECT_NE(stats.find(key), std::string::npos) << key << " in " << stats;
   }

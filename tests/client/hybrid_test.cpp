@@ -1,6 +1,7 @@
 // The hybrid frame: OpenGL (OSMesa) draws what the tracer computes for
 // direct light, masks exactly the objects the rule names, and the traced
 // pixels land in the frame unchanged, in process and through glintd.
+#include <cmath>
 #include <thread>
 
 #include <glm/geometric.hpp>
@@ -100,6 +101,56 @@ void expectRasterMatchesDirectTrace(const char* sceneFile) {
   EXPECT_EQ(bad, 0) << sceneFile;
   EXPECT_LE(worst, 2) << sceneFile;
   EXPECT_GT(compared, static_cast<int>(covered.size()) / 2) << sceneFile;
+}
+
+// A GL-only frame of an analytic scene: a diffuse, specular sphere lit by one
+// point light, every pixel computed here in double precision from the
+// scene's definition (gluLookAt / gluPerspective rays, Lambert and Phong).
+TEST(Hybrid, RasterOfAnAnalyticSphere) {
+  const Scene scene = test::sceneFromJson(R"({
+    "glint": 1, "image": {"width": 64, "height": 64},
+    "camera": {"eye": [0, 0, 6], "look_at": [0, 0, 0], "fov_y": 30},
+    "materials": {"m": {"color": [1, 0.5, 0.25], "ambient": 0.05, "diffuse": 0.7, "specular": 0.4, "shininess": 20}},
+    "lights": [{"type": "point", "position": [3, 4, 5], "attenuation": [1, 0.02, 0.01]}],
+    "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})");
+  const PreparedScene prepared(scene, BvhSettings{});
+  ThreadPool pool(1);
+  LocalTileService service(prepared, pool);
+  const HybridResult gl = hybrid(scene, service, scene.frame(), {MaskRule::kNone, 0.2f, 0.0f});
+  const double tanHalf = std::tan(15.0 * M_PI / 180.0);
+  const glm::dvec3 eye(0, 0, 6), light(3, 4, 5), c(1.0, 0.5, 0.25);
+  int compared = 0;
+  for (int y = 0; y < 64; ++y) {
+    for (int x = 0; x < 64; ++x) {
+      const glm::dvec3 d = glm::normalize(glm::dvec3((2.0 * (x + 0.5) / 64 - 1.0) * tanHalf,
+                                                     (1.0 - 2.0 * (y + 0.5) / 64) * tanHalf, -1.0));
+      const double b = glm::dot(eye, d);
+      const double disc = b * b - (glm::dot(eye, eye) - 1.0);
+      if (std::abs(disc) < 0.02) continue;  // the silhouette
+      glm::dvec3 want(0.0);
+      if (disc > 0.0) {
+        const glm::dvec3 p = eye + (-b - std::sqrt(disc)) * d;
+        const glm::dvec3 n = glm::normalize(p);
+        const double dist = glm::length(light - p);
+        const glm::dvec3 l = (light - p) / dist;
+        want = c * 0.05;
+        const double nl = glm::dot(n, l);
+        if (nl > 0.0) {
+          const double li = 1.0 / (1.0 + 0.02 * dist + 0.01 * dist * dist);
+          want += li * c * 0.7 * nl;
+          const double vr = glm::dot(-d, 2.0 * nl * n - l);
+          if (vr > 0.0) want += glm::dvec3(li * 0.4 * std::pow(vr, 20.0));
+        }
+      }
+      want = glm::clamp(want, 0.0, 1.0) * 255.0;
+      const auto i = static_cast<std::size_t>(y * 64 + x) * 3;
+      ASSERT_NEAR(gl.image.rgb[i], want.r, 2.0) << x << "," << y;
+      ASSERT_NEAR(gl.image.rgb[i + 1], want.g, 2.0) << x << "," << y;
+      ASSERT_NEAR(gl.image.rgb[i + 2], want.b, 2.0) << x << "," << y;
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 64 * 64 * 9 / 10);
 }
 
 TEST(Hybrid, RasterMatchesTheTracersDirectLight) {
