@@ -13,20 +13,19 @@ namespace {
 template <typename Visit>
 void walk(const std::vector<BvhNode>& nodes, const Ray& ray, float& tMax, Visit visitLeaf) {
   if (nodes.empty()) return;  // all geometry may have been invalid
-  const std::array<bool, 3> negative = {std::signbit(ray.invD.x), std::signbit(ray.invD.y),
-                                        std::signbit(ray.invD.z)};
+  const SlabRay slabRay(ray);
   std::array<std::uint32_t, kBvhMaxDepth> stack;
   int top = 0;
   std::uint32_t index = 0;
   while (true) {
     const BvhNode& node = nodes[index];
-    if (intersectSlabs(node.bounds, ray, 0.0f, tMax, nullptr)) {
+    if (intersectSlabs(node.bounds, slabRay, 0.0f, tMax)) {
       if (node.count > 0) {
         if (visitLeaf(node)) return;
       } else {
         // Visit the child on the near side of the split plane first, so that
         // a close hit prunes the far child's box.
-        const bool farFirst = negative[node.axis];
+        const bool farFirst = slabRay.nearIndex[node.axis] >= 3;
         stack[top++] = farFirst ? index + 1 : node.offset;
         index = farFirst ? node.offset : index + 1;
         continue;
@@ -41,7 +40,7 @@ void walk(const std::vector<BvhNode>& nodes, const Ray& ray, float& tMax, Visit 
 
 std::optional<Hit> Bvh::intersect(const Geometry& geometry, const Ray& ray, float tMax) const {
   std::optional<Hit> nearest;
-  const WatertightRay w(ray);
+  const WatertightRay w(ray);  // per ray, not per triangle
   walk(nodes_, ray, tMax, [&](const BvhNode& leaf) {
     for (std::uint32_t i = leaf.offset; i < leaf.offset + leaf.count; ++i) {
       // One ulp beyond the nearest hit so far, so that a hit at exactly the

@@ -59,6 +59,7 @@ TEST(Slab, AxisParallelRaysWithSignedZerosAndOriginsOnPlanes) {
                 const bool reaches = travel > 0.0f ? s <= 1.0f : s >= 0.0f;
                 SlabHit hit{-7.0f, -7.0f};
                 const bool got = intersectSlabs(kUnit, Ray(o, d), 0.0f, 1e30f, &hit);
+                EXPECT_EQ(intersectSlabs(kUnit, SlabRay(Ray(o, d)), 0.0f, 1e30f), got);  // the traversal's form
                 EXPECT_EQ(got, insideAcross && reaches)
                     << "axis " << axis << " travel " << travel << " origin " << o.x << "," << o.y << ","
                     << o.z << " zeros " << std::signbit(z1) << std::signbit(z2);
