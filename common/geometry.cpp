@@ -73,8 +73,9 @@ std::optional<Hit> Geometry::intersect(std::uint32_t prim, const Ray& ray, const
   return Hit{h->t, prim, h->b0, h->b1, h->b2};
 }
 
-SurfaceHit Geometry::surface(const Ray& ray, const Hit& hit) const {
+SurfaceHit Geometry::surface(const Ray& ray, const Hit& hit, bool withUv) const {
   SurfaceHit s;
+  s.uv = glm::vec2(0.0f);
   s.material = materialOf(hit.prim);
   if (isSphere(hit.prim)) {
     const Sphere& sphere = spheres_[hit.prim - triangles_.size()];
@@ -86,10 +87,12 @@ SurfaceHit Geometry::surface(const Ray& ray, const Hit& hit) const {
     const glm::vec3 n = (s.p - sphere.centre) / sphere.radius;
     s.ng = faceForward(n, ray.d);
     s.ns = s.ng;
-    // u: longitude / 360, v: latitude from the south pole / 180 (y is up).
-    const float u = std::atan2(n.x, n.z) / (2.0f * 3.14159265f);
-    const float v = std::acos(std::clamp(-n.y, -1.0f, 1.0f)) / 3.14159265f;
-    s.uv = {u < 0.0f ? u + 1.0f : u, v};
+    if (withUv) {
+      // u: longitude / 360, v: latitude from the south pole / 180 (y is up).
+      const float u = std::atan2(n.x, n.z) / (2.0f * 3.14159265f);
+      const float v = std::acos(std::clamp(-n.y, -1.0f, 1.0f)) / 3.14159265f;
+      s.uv = {u < 0.0f ? u + 1.0f : u, v};
+    }
     return s;
   }
   const Triangle& tri = triangles_[hit.prim];
@@ -108,7 +111,7 @@ SurfaceHit Geometry::surface(const Ray& ray, const Hit& hit) const {
   const float len = glm::length(n);
   s.ns = len > 0.0f && std::isfinite(len) ? n / len : s.ng;
   if (glm::dot(s.ns, s.ng) < 0.0f) s.ns = -s.ns;
-  s.uv = hit.b0 * uvs_[tri.v[0]] + hit.b1 * uvs_[tri.v[1]] + hit.b2 * uvs_[tri.v[2]];
+  if (withUv) s.uv = hit.b0 * uvs_[tri.v[0]] + hit.b1 * uvs_[tri.v[1]] + hit.b2 * uvs_[tri.v[2]];
   return s;
 }
 

@@ -88,7 +88,9 @@ class Geometry {
     return intersect(prim, ray, WatertightRay(ray), tMax);
   }
   std::optional<Hit> intersect(std::uint32_t prim, const Ray& ray, const WatertightRay& w, float tMax) const;
-  SurfaceHit surface(const Ray& ray, const Hit& hit) const;
+  // withUv false skips the texture coordinates (uv stays (0, 0)): no work
+  // for a lookup that a plain-coloured material never makes.
+  SurfaceHit surface(const Ray& ray, const Hit& hit, bool withUv = true) const;
   std::uint32_t materialOf(std::uint32_t prim) const;
 
   const std::vector<Triangle>& triangles() const { return triangles_; }

@@ -57,9 +57,10 @@ glm::vec3 Tracer::trace(const Ray& ray, int depth, float weight, bool inside,
                         RayStats& stats) const {
   const std::optional<Hit> hit = bvh_.intersect(scene_.geometry, ray, kInfinity);
   if (!hit) return scene_.background;
-  const SurfaceHit s = scene_.geometry.surface(ray, *hit);
-  const Material& m = scene_.materials[s.material];
-  const MaterialEffects& e = plan_.materials[s.material];
+  const std::uint32_t material = scene_.geometry.materialOf(hit->prim);
+  const Material& m = scene_.materials[material];
+  const MaterialEffects& e = plan_.materials[material];
+  const SurfaceHit s = scene_.geometry.surface(ray, *hit, e.textured);
   glm::vec3 color = shade(s, -ray.d, m, e, stats);
   if (depth >= tracing_.maxDepth || !(e.reflects || e.refracts)) return color;
 
