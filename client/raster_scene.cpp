@@ -134,6 +134,22 @@ void RasterScene::uploadTextures() {
   gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, width, std::max(height, 1), 0, GL_RGB, GL_FLOAT, texels.data());
 }
 
+// A vertex array and buffer holding `count` vertices; left bound, so the
+// caller describes the attributes next.
+void RasterScene::newBatch(std::uint32_t material, bool spheres, const void* vertices, std::size_t count,
+                           std::size_t vertexBytes) {
+  Batch b;
+  b.material = material;
+  b.spheres = spheres;
+  b.vertices = static_cast<int>(count);
+  gl_.GenVertexArrays(1, &b.vao);
+  gl_.BindVertexArray(b.vao);
+  gl_.GenBuffers(1, &b.vbo);
+  gl_.BindBuffer(GL_ARRAY_BUFFER, b.vbo);
+  gl_.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(count * vertexBytes), vertices, GL_STATIC_DRAW);
+  batches_.push_back(b);
+}
+
 void RasterScene::uploadMeshes() {
   const Geometry& g = scene_.geometry;
   std::map<std::uint32_t, std::vector<MeshVertex>> byMaterial;
@@ -147,21 +163,12 @@ void RasterScene::uploadMeshes() {
     }
   }
   for (auto& [material, vertices] : byMaterial) {
-    Batch b;
-    b.material = material;
-    b.vertices = static_cast<int>(vertices.size());
-    gl_.GenVertexArrays(1, &b.vao);
-    gl_.BindVertexArray(b.vao);
-    gl_.GenBuffers(1, &b.vbo);
-    gl_.BindBuffer(GL_ARRAY_BUFFER, b.vbo);
-    gl_.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(MeshVertex)), vertices.data(),
-                   GL_STATIC_DRAW);
+    newBatch(material, false, vertices.data(), vertices.size(), sizeof(MeshVertex));
     attribute(gl_, 0, 3, sizeof(MeshVertex), offsetof(MeshVertex, position));
     attribute(gl_, 1, 3, sizeof(MeshVertex), offsetof(MeshVertex, normal));
     attribute(gl_, 2, 2, sizeof(MeshVertex), offsetof(MeshVertex, uv));
     attribute(gl_, 3, 3, sizeof(MeshVertex), offsetof(MeshVertex, faceNormal));
     intAttribute(gl_, 4, sizeof(MeshVertex), offsetof(MeshVertex, material));
-    batches_.push_back(b);
   }
 }
 
@@ -180,20 +187,10 @@ void RasterScene::uploadSpheres() {
     }
   }
   for (auto& [material, vertices] : byMaterial) {
-    Batch b;
-    b.material = material;
-    b.spheres = true;
-    b.vertices = static_cast<int>(vertices.size());
-    gl_.GenVertexArrays(1, &b.vao);
-    gl_.BindVertexArray(b.vao);
-    gl_.GenBuffers(1, &b.vbo);
-    gl_.BindBuffer(GL_ARRAY_BUFFER, b.vbo);
-    gl_.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(SphereVertex)), vertices.data(),
-                   GL_STATIC_DRAW);
+    newBatch(material, true, vertices.data(), vertices.size(), sizeof(SphereVertex));
     attribute(gl_, 0, 3, sizeof(SphereVertex), offsetof(SphereVertex, position));
     attribute(gl_, 1, 4, sizeof(SphereVertex), offsetof(SphereVertex, sphere));
     intAttribute(gl_, 2, sizeof(SphereVertex), offsetof(SphereVertex, material));
-    batches_.push_back(b);
   }
 }
 

@@ -31,6 +31,8 @@ class RasterScene {
     std::uint32_t material = 0;
     bool spheres = false;
   };
+  void newBatch(std::uint32_t material, bool spheres, const void* vertices, std::size_t count,
+                std::size_t vertexBytes);
   void uploadMeshes();
   void uploadSpheres();
   void uploadTextures();

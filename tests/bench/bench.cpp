@@ -22,7 +22,7 @@
 #include "common/scene_load.h"
 #include "proto/scene_bundle.h"
 #include "server/log.h"
-#include "server/server.h"
+#include "server/background_server.h"
 #include "tests/bench/bench_scenes.h"
 
 namespace glint::bench {
@@ -190,21 +190,26 @@ void accuracySection(const Options& o, const Scene& room, ThreadPool& pool) {
               "min_weight 0.01); rays counts every primary, shadow, reflected and refracted ray.\n");
 }
 
+// A quiet glintd on a free loopback port with 2 tracing threads, as the
+// in-process side has.
+server::ServerOptions loopbackServer() {
+  server::setLogging(false);
+  server::ServerOptions o;
+  o.listen = "127.0.0.1:0";
+  o.threads = 2;
+  o.handleSignals = false;
+  return o;
+}
+
 // The cost of going through glintd: the same frames in process and through a
 // server on loopback (in this process, its own 2 threads), medians of 20+.
 void protocolSection(const Options& o, const Scene& room) {
   const int frames = o.quick ? 2 : 21;
   const proto::LoadedBundle loaded = proto::loadSceneBundle(std::filesystem::path(o.scenes) / "room.json");
-  server::setLogging(false);
-  server::ServerOptions so;
-  so.listen = "127.0.0.1:0";
-  so.threads = 2;
-  so.handleSignals = false;
-  server::Server glintd(so);
-  std::thread serverThread([&] { glintd.run(); });
-  const std::string address = "127.0.0.1:" + std::to_string(glintd.port());
-  std::printf("\n## Through glintd on loopback vs in process (%d threads each, %d-pixel tiles, %d frames)\n\n",
-              so.threads, o.tileSize, frames);
+  server::BackgroundServer glintd(loopbackServer());
+  const std::string address = glintd.address();
+  std::printf("\n## Through glintd on loopback vs in process (2 threads each, %d-pixel tiles, %d frames)\n\n",
+              o.tileSize, frames);
   std::printf("| frame | in process ms | through glintd ms | overhead ms (median of pairs) | bytes received | masked pixels x 3 | bytes sent |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   // The room as the thesis renders it, and the same view of an empty scene,
@@ -249,8 +254,6 @@ void protocolSection(const Options& o, const Scene& room) {
     std::printf("| %s | %.1f | %.1f | %.2f | %.0f | %d | %.0f |\n", c.name, localMs, remoteMs, median(differences),
                 received, frame.width * frame.height * 3, sent);
   }
-  glintd.stop();
-  serverThread.join();
 }
 
 // The thesis's Table 4.1 with Glint's hybrid frame: scenes 1 and 2, each
@@ -258,14 +261,8 @@ void protocolSection(const Options& o, const Scene& room) {
 // POV-Ray's full trace of the same room measured in the same run.
 void hybridSection(const Options& o) {
   const int frames = o.quick ? 2 : 21;
-  server::setLogging(false);
-  server::ServerOptions so;
-  so.listen = "127.0.0.1:0";
-  so.threads = 2;
-  so.handleSignals = false;
-  server::Server glintd(so);
-  std::thread serverThread([&] { glintd.run(); });
-  const std::string address = "127.0.0.1:" + std::to_string(glintd.port());
+  server::BackgroundServer glintd(loopbackServer());
+  const std::string address = glintd.address();
   std::printf("\n## The hybrid frame: the thesis's Table 4.1 (median of %d frames, 2 tracing threads)\n\n", frames);
   std::printf("| scene | tiles from | raster ms | readback ms | RT unit ms | compose ms | frame ms | thesis RT unit / frame ms |\n");
   std::printf("|---|---|---|---|---|---|---|---|\n");
@@ -306,8 +303,6 @@ void hybridSection(const Options& o) {
     }
     ++index;
   }
-  glintd.stop();
-  serverThread.join();
   const double pov = o.povray ? povrayMs(o, 640, 480) : -1.0;
   if (pov > 0.0 && !o.quick) {
     std::printf("\nPOV-Ray 3.7 full trace of the room: %.1f ms; scene 1's hybrid frame is **%.1fx** faster.\n", pov,

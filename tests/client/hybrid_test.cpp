@@ -15,7 +15,7 @@
 #include "common/renderer.h"
 #include "proto/scene_bundle.h"
 #include "server/log.h"
-#include "server/server.h"
+#include "server/background_server.h"
 #include "tests/common/test_support.h"
 
 namespace glint {
@@ -202,9 +202,8 @@ TEST(Hybrid, MaskedPixelsEqualTheFullTrace) {
   o.listen = "127.0.0.1:0";
   o.threads = 2;
   o.handleSignals = false;
-  server::Server glintd(o);
-  std::thread serverThread([&] { glintd.run(); });
-  RemoteTileService remote("127.0.0.1:" + std::to_string(glintd.port()), s.loaded.bundle);
+  server::BackgroundServer glintd(o);
+  RemoteTileService remote(glintd.address(), s.loaded.bundle);
 
   for (TileService* service : {static_cast<TileService*>(&local), static_cast<TileService*>(&remote)}) {
     const HybridResult h = hybrid(prepared.scene(), *service, s.frame, prepared.scene().mask);
@@ -219,8 +218,6 @@ TEST(Hybrid, MaskedPixelsEqualTheFullTrace) {
   }
   // Under "all" the hybrid frame is the full trace.
   EXPECT_EQ(hybrid(prepared.scene(), local, s.frame, {MaskRule::kAll, 0.2f, 0.0f}).image.rgb, full.rgb);
-  glintd.stop();
-  serverThread.join();
 }
 
 }  // namespace

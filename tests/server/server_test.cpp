@@ -19,7 +19,7 @@
 #include "proto/message_stream.h"
 #include "proto/messages.h"
 #include "server/log.h"
-#include "server/server.h"
+#include "server/background_server.h"
 #include "tests/common/test_support.h"
 
 extern char** environ;
@@ -40,21 +40,10 @@ ServerOptions quickOptions() {
   return o;
 }
 
-// A glintd in this process, serving on its own thread.
-class TestServer {
+// A glintd in this process with quick timeouts.
+class TestServer : public BackgroundServer {
  public:
-  explicit TestServer(const ServerOptions& o = quickOptions()) : server_(o), thread_([this] { server_.run(); }) {}
-  ~TestServer() {
-    server_.stop();
-    thread_.join();
-  }
-  std::string address() const { return "127.0.0.1:" + std::to_string(server_.port()); }
-  std::uint16_t port() const { return server_.port(); }
-  Server& server() { return server_; }
-
- private:
-  Server server_;
-  std::thread thread_;
+  explicit TestServer(const ServerOptions& o = quickOptions()) : BackgroundServer(o) {}
 };
 
 struct RoomFrame {
