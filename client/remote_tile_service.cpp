@@ -29,7 +29,7 @@ RemoteTileService::RemoteTileService(const std::string& address, const proto::Sc
   const wire::Hello* hello = receive().body_as_Hello();
   if (!hello) fail("the server did not answer Hello");
   maxMessageBytes_ = std::min<std::size_t>(maxMessageBytes_, hello->max_message_bytes());
-  traffic_.serverThreads = static_cast<int>(hello->threads());
+  serverThreads_ = static_cast<int>(hello->threads());
 
   hash_ = bundle.hash();
   send(proto::encodeSceneQuery(hash_));
@@ -42,7 +42,7 @@ RemoteTileService::RemoteTileService(const std::string& address, const proto::Sc
            std::to_string(maxMessageBytes_) + " bytes; start glintd with a larger --max-message-mb");
     }
     send(upload);
-    traffic_.uploaded = true;
+    uploaded_ = true;
     if (!receive().body_as_SceneReady()) fail("the server did not confirm the scene");
   }
 }
@@ -65,13 +65,11 @@ void RemoteTileService::send(const std::vector<std::uint8_t>& frame) {
     stream_->close();
     fail(e.what());
   }
-  traffic_.bytesSent = stream_->bytesSent();
 }
 
 const wire::Message& RemoteTileService::receive() {
   try {
     const wire::Message& m = stream_->receive();
-    traffic_.bytesReceived = stream_->bytesReceived();
     if (const auto* e = m.body_as_Error()) {
       fail(std::string(wire::EnumNameErrorCode(e->code())) + ": " + (e->message() ? e->message()->str() : ""));
     }
@@ -86,7 +84,7 @@ void RemoteTileService::render(const FrameSettings& frame, std::span<const TileJ
                                const std::function<void(std::size_t, TileOutput&&)>& done) {
   const std::uint32_t frameId = nextFrame_++;
   send(proto::encodeFrameSetup(frameId, hash_, frame));
-  const std::size_t window = kWindowPerThread * static_cast<std::size_t>(std::max(1, traffic_.serverThreads));
+  const std::size_t window = kWindowPerThread * static_cast<std::size_t>(std::max(1, serverThreads_));
   std::size_t next = 0;
   std::size_t outstanding = 0;
   std::size_t finished = 0;

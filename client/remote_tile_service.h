@@ -33,8 +33,10 @@ class RemoteTileService : public TileService {
 
   void render(const FrameSettings& frame, std::span<const TileJob> jobs,
               const std::function<void(std::size_t, TileOutput&&)>& done) override;
-  int parallelism() const override { return std::max(1, traffic_.serverThreads); }
-  const Traffic& traffic() const { return traffic_; }
+  int parallelism() const override { return std::max(1, serverThreads_); }
+  Traffic traffic() const {
+    return {stream_->bytesSent(), stream_->bytesReceived(), uploaded_, serverThreads_};
+  }
 
  private:
   void send(const std::vector<std::uint8_t>& frame);
@@ -48,7 +50,8 @@ class RemoteTileService : public TileService {
   std::size_t maxMessageBytes_ = proto::kDefaultMaxMessageBytes;
   proto::SceneHash hash_{};
   std::uint32_t nextFrame_ = 1;
-  Traffic traffic_;
+  bool uploaded_ = false;
+  int serverThreads_ = 0;
 };
 
 }  // namespace glint

@@ -76,7 +76,6 @@ std::optional<Hit> Geometry::intersect(std::uint32_t prim, const Ray& ray, const
 SurfaceHit Geometry::surface(const Ray& ray, const Hit& hit, bool withUv) const {
   SurfaceHit s;
   s.uv = glm::vec2(0.0f);
-  s.material = materialOf(hit.prim);
   if (isSphere(hit.prim)) {
     const Sphere& sphere = spheres_[hit.prim - triangles_.size()];
     s.p = projectToSphere(sphere, ray.o + hit.t * ray.d);

@@ -64,7 +64,6 @@ struct SurfaceHit {
   glm::vec3 ng;  // unit geometric normal, facing the incoming ray
   glm::vec3 ns;  // unit shading normal, in the hemisphere of ng
   glm::vec2 uv;
-  std::uint32_t material;
   // Bound on the rounding error of each coordinate of p (absolute): how far
   // a spawned ray's origin must move off the surface at least.
   float error;

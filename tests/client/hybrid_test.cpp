@@ -52,7 +52,7 @@ std::vector<bool> fullyCovered(const PreparedScene& prepared, const FrameSetting
     const auto hit = prepared.bvh().intersect(scene.geometry, ray, 1e30f);
     if (!hit) return {-1, glm::vec3(0.0f)};
     const SurfaceHit s = scene.geometry.surface(ray, *hit);
-    const Material& m = scene.materials[s.material];
+    const Material& m = scene.materials[scene.geometry.materialOf(hit->prim)];
     return {hit->prim, m.texture >= 0 ? scene.textures[static_cast<std::size_t>(m.texture)].evaluate(s.uv) : m.color};
   };
   for (int y = 0; y < frame.height; ++y) {
