@@ -18,10 +18,6 @@ int Bounds3::longestAxis() const {
   return e.y >= e.z ? 1 : 2;
 }
 
-SlabRay::SlabRay(const Ray& ray) : o(ray.o), invD(ray.invD) {
-  for (int axis = 0; axis < 3; ++axis) nearIndex[axis] = std::signbit(ray.invD[axis]) ? axis + 3 : axis;
-}
-
 bool intersectSlabs(const Bounds3& b, const Ray& ray, float tMin, float tMax, SlabHit* hit) {
   float t0 = tMin;
   float t1 = tMax;

@@ -5,7 +5,6 @@
 #include <glm/common.hpp>
 #include <glm/vec3.hpp>
 
-#include "common/float_bits.h"
 #include "common/ray.h"
 
 namespace glint {
@@ -45,32 +44,5 @@ struct SlabHit {
 // the running interval: boundaries count as inside. Returns false on a miss;
 // on a hit, t0 <= t1 and neither is NaN.
 bool intersectSlabs(const Bounds3& b, const Ray& ray, float tMin, float tMax, SlabHit* hit);
-
-// The per-ray part of the slab test, computed once for a whole traversal:
-// which of min / max is the near plane on each axis (by the sign bit of 1/d).
-struct SlabRay {
-  glm::vec3 o;
-  glm::vec3 invD;
-  int nearIndex[3];  // 0..2 picks min.x..z, 3..5 max.x..z
-  explicit SlabRay(const Ray& ray);
-};
-
-// The same test as above with the signs precomputed.
-inline bool intersectSlabs(const Bounds3& b, const SlabRay& r, float tMin, float tMax) {
-  static_assert(sizeof(Bounds3) == 6 * sizeof(float), "min then max, packed");
-  const float* planes = &b.min.x;
-  constexpr float kFarScale = 1.0f + 2.0f * gamma(3);
-  float t0 = tMin;
-  float t1 = tMax;
-  for (int axis = 0; axis < 3; ++axis) {
-    const int n = r.nearIndex[axis];
-    const float tNear = (planes[n] - r.o[axis]) * r.invD[axis];
-    const float tFar = (planes[(n + 3) % 6] - r.o[axis]) * r.invD[axis] * kFarScale;
-    t0 = tNear > t0 ? tNear : t0;  // a NaN leaves the interval unchanged
-    t1 = tFar < t1 ? tFar : t1;
-    if (t0 > t1) return false;
-  }
-  return true;
-}
 
 }  // namespace glint

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -7,6 +8,7 @@
 #include "common/bounds.h"
 #include "common/geometry.h"
 #include "common/ray.h"
+#include "common/wide_slab.h"
 
 namespace glint {
 
@@ -23,24 +25,28 @@ struct BvhSettings {
   float traversalCost = 1.0f;  // SAH cost of visiting a node, relative to one primitive test
 };
 
-// One node of the flattened tree, 32 bytes, depth-first order:
-//   bytes  0-23  bounds (min xyz, max xyz as float)
-//   bytes 24-27  offset: leaf -> first entry in Bvh::primIds;
-//                interior -> index of the second child (the first child is
-//                the next node)
-//   bytes 28-29  count: primitives in a leaf, 0 for an interior node
-//   byte  30     axis the interior node was split on (near child first)
-//   byte  31     padding
+// One node of the 4-wide tree that traversal walks, 128 bytes. The builder
+// makes a binary tree (QSplit or SAH) and collapses it: each node takes up to
+// four of the binary tree's nodes below it as children, so that one 4-lane
+// slab test replaces up to three levels of binary box tests.
+//   bytes   0-95   the children's boxes, structure of arrays (Boxes4)
+//   bytes  96-111  offset per child: an interior child's node index, or a
+//                  leaf child's first entry in Bvh::primIds
+//   bytes 112-119  count per child: a leaf child's primitives (>= 1), 0 for
+//                  an interior child
+//   byte  120      children in use (1 to 4; unused lanes hold empty boxes)
+//   bytes 121-127  padding
+// The root is node 0.
 struct BvhNode {
-  Bounds3 bounds;
-  std::uint32_t offset;
-  std::uint16_t count;
-  std::uint8_t axis;
-  std::uint8_t pad;
+  Boxes4 boxes;
+  std::array<std::uint32_t, 4> offset;
+  std::array<std::uint16_t, 4> count;
+  std::uint8_t children;
 };
-static_assert(sizeof(BvhNode) == 32, "BvhNode is documented as 32 bytes");
+static_assert(sizeof(BvhNode) == 128, "BvhNode is documented as 128 bytes");
 
-// Traversal keeps a fixed stack; the builder guarantees the tree is no deeper.
+// The builder's binary tree is at most this deep (a depth guard switches to
+// median splits before it could grow deeper); traversal sizes its stack by it.
 constexpr int kBvhMaxDepth = 64;
 
 // What the builder sees of a primitive.
@@ -62,6 +68,7 @@ class Bvh {
 
   const std::vector<BvhNode>& nodes() const { return nodes_; }
   const std::vector<std::uint32_t>& primIds() const { return primIds_; }
+  // Levels of the binary tree the builder made (at most kBvhMaxDepth).
   int depth() const { return depth_; }
 
  private:

@@ -8,53 +8,113 @@
 #include "common/bvh.h"
 
 namespace glint {
+namespace {
 
-// Builds the flat tree depth-first: a node is appended, its first child
-// follows it, and the second child's index is patched in afterwards.
+// A node of the binary tree the splits make, before it is collapsed into the
+// 4-wide nodes that traversal walks.
+struct BinaryNode {
+  Bounds3 bounds;
+  std::uint32_t offset = 0;  // leaf: first entry in primIds; interior: the second child
+  std::uint32_t count = 0;   // leaf: primitives; interior: 0 (the first child is the next node)
+};
+
+}  // namespace
+
+// Builds the binary tree depth-first (a node is appended, its first child
+// follows it, and the second child's index is patched in afterwards), then
+// collapses it into 4-wide nodes.
 class BvhBuilderImpl {
  public:
   BvhBuilderImpl(Bvh& bvh, const BvhSettings& settings) : bvh_(bvh), settings_(settings) {}
 
-  void build(std::span<BuildPrimitive> prims, int depth) {
+  void build(std::span<BuildPrimitive> prims) {
+    binary_.reserve(2 * prims.size() / std::max(1, settings_.maxLeafSize) + 1);
+    split(prims, 0);
+    bvh_.nodes_.reserve(binary_.size() / 3 + 1);
+    collapse(0);
+  }
+
+ private:
+  void split(std::span<BuildPrimitive> prims, int depth) {
     bvh_.depth_ = std::max(bvh_.depth_, depth + 1);
-    const auto nodeIndex = static_cast<std::uint32_t>(bvh_.nodes_.size());
-    bvh_.nodes_.push_back({});
+    const auto nodeIndex = static_cast<std::uint32_t>(binary_.size());
+    binary_.push_back({});
     Bounds3 bounds;
     Bounds3 centroids;
     for (const BuildPrimitive& p : prims) {
       bounds.expand(p.bounds);
       centroids.expand(p.bounds.centre());
     }
-    bvh_.nodes_[nodeIndex].bounds = bounds;
+    binary_[nodeIndex].bounds = bounds;
 
     const auto count = static_cast<int>(prims.size());
     std::size_t mid = 0;
-    int axis = 0;
-    if (count > 1) mid = chooseSplit(prims, bounds, centroids, depth, &axis);
+    if (count > 1) mid = chooseSplit(prims, bounds, centroids, depth);
     if (mid == 0) {
       makeLeaf(nodeIndex, prims);
       return;
     }
-    build(prims.first(mid), depth + 1);
-    const auto second = static_cast<std::uint32_t>(bvh_.nodes_.size());
-    build(prims.subspan(mid), depth + 1);
-    BvhNode& node = bvh_.nodes_[nodeIndex];
-    node.offset = second;
-    node.count = 0;
-    node.axis = static_cast<std::uint8_t>(axis);
+    split(prims.first(mid), depth + 1);
+    const auto second = static_cast<std::uint32_t>(binary_.size());
+    split(prims.subspan(mid), depth + 1);
+    binary_[nodeIndex].offset = second;
   }
 
- private:
   void makeLeaf(std::uint32_t nodeIndex, std::span<BuildPrimitive> prims) {
-    BvhNode& node = bvh_.nodes_[nodeIndex];
+    BinaryNode& node = binary_[nodeIndex];
     node.offset = static_cast<std::uint32_t>(bvh_.primIds_.size());
-    node.count = static_cast<std::uint16_t>(prims.size());
+    node.count = static_cast<std::uint32_t>(prims.size());
     for (const BuildPrimitive& p : prims) bvh_.primIds_.push_back(p.id);
+  }
+
+  // Makes the 4-wide node for binary node `index` and, recursively, those
+  // below it; returns its index. Its children start as the binary node's two
+  // (or the node itself when the whole tree is one leaf); while there are
+  // fewer than four, the interior child with the largest surface area (the
+  // one most rays enter) is replaced by its own two children.
+  std::uint32_t collapse(std::uint32_t index) {
+    std::array<std::uint32_t, 4> children{};
+    int n = 0;
+    if (binary_[index].count > 0) {
+      children[n++] = index;
+    } else {
+      children[n++] = index + 1;
+      children[n++] = binary_[index].offset;
+    }
+    while (n < 4) {
+      int widest = -1;
+      float widestArea = -1.0f;
+      for (int i = 0; i < n; ++i) {
+        const BinaryNode& c = binary_[children[i]];
+        if (c.count == 0 && c.bounds.surfaceArea() > widestArea) {
+          widest = i;
+          widestArea = c.bounds.surfaceArea();
+        }
+      }
+      if (widest < 0) break;
+      const std::uint32_t opened = children[widest];
+      children[widest] = opened + 1;
+      children[n++] = binary_[opened].offset;
+    }
+    const auto wideIndex = static_cast<std::uint32_t>(bvh_.nodes_.size());
+    bvh_.nodes_.emplace_back();
+    for (int lane = 0; lane < 4; ++lane) bvh_.nodes_[wideIndex].boxes.set(lane, Bounds3{});
+    bvh_.nodes_[wideIndex].children = static_cast<std::uint8_t>(n);
+    for (int lane = 0; lane < n; ++lane) {
+      const BinaryNode& c = binary_[children[lane]];
+      // The recursion appends nodes: index the vector afresh after it.
+      const std::uint32_t offset = c.count > 0 ? c.offset : collapse(children[lane]);
+      BvhNode& node = bvh_.nodes_[wideIndex];
+      node.boxes.set(lane, c.bounds);
+      node.offset[lane] = offset;
+      node.count[lane] = static_cast<std::uint16_t>(c.count);
+    }
+    return wideIndex;
   }
 
   // Returns the size of the first half after partitioning prims (0: leaf).
   std::size_t chooseSplit(std::span<BuildPrimitive> prims, const Bounds3& bounds,
-                          const Bounds3& centroids, int depth, int* axis) {
+                          const Bounds3& centroids, int depth) {
     const std::size_t n = prims.size();
     const bool fitsLeaf = n <= leafCapacity();
     // Depth guard: a count-median split from here on always fits the
@@ -62,8 +122,8 @@ class BvhBuilderImpl {
     const int levelsLeft = kBvhMaxDepth - 1 - depth;
     if (static_cast<int>(std::bit_width(n)) < levelsLeft) {
       const std::optional<std::size_t> mid = settings_.builder == BvhBuilder::kQSplit
-                                                 ? qsplit(prims, bounds, depth, axis)
-                                                 : sah(prims, bounds, centroids, axis);
+                                                 ? qsplit(prims, bounds, depth)
+                                                 : sah(prims, bounds, centroids);
       if (!mid) return 0;
       if (*mid > 0 && *mid < n) return *mid;
     }
@@ -71,7 +131,6 @@ class BvhBuilderImpl {
     // Median by centroid along the longest centroid axis: always halves, also
     // where every centroid is the same point.
     const int a = centroids.longestAxis();
-    *axis = a;
     const std::size_t half = n / 2;
     std::nth_element(prims.begin(), prims.begin() + static_cast<std::ptrdiff_t>(half), prims.end(),
                      [a](const BuildPrimitive& x, const BuildPrimitive& y) {
@@ -89,10 +148,9 @@ class BvhBuilderImpl {
   // Returns nullopt for a leaf, else the partition point (0 or n when every
   // centroid fell on one side).
   std::optional<std::size_t> qsplit(std::span<BuildPrimitive> prims, const Bounds3& bounds,
-                                    int depth, int* axis) {
+                                    int depth) {
     if (prims.size() <= leafCapacity()) return std::nullopt;
     const int a = depth % 3;
-    *axis = a;
     const float middle = bounds.centre()[a];
     const auto it = std::partition(prims.begin(), prims.end(), [a, middle](const BuildPrimitive& p) {
       return p.bounds.centre()[a] < middle;
@@ -102,8 +160,7 @@ class BvhBuilderImpl {
 
   // Binned SAH: sahBins buckets of centroids per axis, the cheapest plane of
   // all three axes; returns nullopt when a leaf is cheaper than any split.
-  std::optional<std::size_t> sah(std::span<BuildPrimitive> prims, const Bounds3& bounds, const Bounds3& centroids,
-                  int* axis) {
+  std::optional<std::size_t> sah(std::span<BuildPrimitive> prims, const Bounds3& bounds, const Bounds3& centroids) {
     const int bins = std::clamp(settings_.sahBins, 2, kMaxBins);
     float bestCost = std::numeric_limits<float>::infinity();
     int bestAxis = -1;
@@ -149,7 +206,6 @@ class BvhBuilderImpl {
     const float splitCost = settings_.traversalCost + (area > 0.0f ? bestCost / area : 0.0f);
     const auto leafCost = static_cast<float>(prims.size());
     if (prims.size() <= leafCapacity() && leafCost <= splitCost) return std::nullopt;
-    *axis = bestAxis;
     const float lo = centroids.min[bestAxis];
     const float extent = centroids.max[bestAxis] - lo;
     const auto it = std::partition(prims.begin(), prims.end(), [&](const BuildPrimitive& p) {
@@ -167,15 +223,15 @@ class BvhBuilderImpl {
   static constexpr int kMaxLeafPrims = 255;  // BvhNode::count must hold it
 
   Bvh& bvh_;
+  std::vector<BinaryNode> binary_;
   const BvhSettings& settings_;
 };
 
 Bvh Bvh::build(std::vector<BuildPrimitive> prims, const BvhSettings& settings) {
   Bvh bvh;
   if (prims.empty()) return bvh;  // traversal of an empty tree finds nothing
-  bvh.nodes_.reserve(2 * prims.size() / std::max(1, settings.maxLeafSize) + 1);
   bvh.primIds_.reserve(prims.size());
-  BvhBuilderImpl(bvh, settings).build(prims, 0);
+  BvhBuilderImpl(bvh, settings).build(prims);
   return bvh;
 }
 

@@ -1,4 +1,5 @@
 #include "common/bounds.h"
+#include "common/wide_slab.h"
 
 #include <cmath>
 
@@ -59,7 +60,16 @@ TEST(Slab, AxisParallelRaysWithSignedZerosAndOriginsOnPlanes) {
                 const bool reaches = travel > 0.0f ? s <= 1.0f : s >= 0.0f;
                 SlabHit hit{-7.0f, -7.0f};
                 const bool got = intersectSlabs(kUnit, Ray(o, d), 0.0f, 1e30f, &hit);
-                EXPECT_EQ(intersectSlabs(kUnit, SlabRay(Ray(o, d)), 0.0f, 1e30f), got);  // the traversal's form
+                // The traversal's 4-lane form decides the same, in whichever lane the box is.
+                const int lane = cases % 4;
+                Boxes4 boxes;
+                for (int i = 0; i < 4; ++i) boxes.set(i, i == lane ? kUnit : Bounds3{});
+                Float4 entry;
+                const unsigned lanes = intersectSlabs4(boxes, SlabRay4(Ray(o, d)), 0.0f, 1e30f, &entry);
+                EXPECT_EQ(lanes, got ? 1u << lane : 0u);
+                if (got) {
+                  EXPECT_EQ(entry[lane], hit.t0);
+                }
                 EXPECT_EQ(got, insideAcross && reaches)
                     << "axis " << axis << " travel " << travel << " origin " << o.x << "," << o.y << ","
                     << o.z << " zeros " << std::signbit(z1) << std::signbit(z2);
