@@ -17,46 +17,45 @@ double msSince(Clock::time_point start) {
 }
 
 // GL's rows run bottom-up; Glint's images top-down.
-std::vector<std::uint8_t> flipRows(const std::vector<std::uint8_t>& in, int width, int height, int channels) {
-  std::vector<std::uint8_t> out(in.size());
-  const auto row = static_cast<std::size_t>(width * channels);
-  for (int y = 0; y < height; ++y) {
-    std::memcpy(&out[static_cast<std::size_t>(y) * row], &in[static_cast<std::size_t>(height - 1 - y) * row], row);
+void flipRows(std::vector<std::uint8_t>& pixels, int width, int height, int channels) {
+  const auto row = static_cast<std::size_t>(width) * static_cast<std::size_t>(channels);
+  for (int y = 0; y < height / 2; ++y) {
+    const auto top = pixels.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(y) * row);
+    const auto bottom = pixels.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(height - 1 - y) * row);
+    std::swap_ranges(top, top + static_cast<std::ptrdiff_t>(row), bottom);
   }
-  return out;
 }
 
-FrameImage readColour(const gl::Api& gl, int width, int height) {
-  std::vector<std::uint8_t> rgba(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4);
+// Reads the frame into `pixels` (resized, so that its buffer is kept from
+// one frame to the next) with rows top-down.
+void readPixels(const gl::Api& gl, int width, int height, GLenum format, int channels,
+                std::vector<std::uint8_t>& pixels) {
+  pixels.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * static_cast<std::size_t>(channels));
   gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
-  gl.ReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-  const std::vector<std::uint8_t> top = flipRows(rgba, width, height, 4);
-  FrameImage image{width, height, {}};
-  image.rgb.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3);
-  for (std::size_t i = 0, n = image.rgb.size() / 3; i < n; ++i) std::memcpy(&image.rgb[3 * i], &top[4 * i], 3);
-  return image;
+  gl.ReadPixels(0, 0, width, height, format, GL_UNSIGNED_BYTE, pixels.data());
+  flipRows(pixels, width, height, channels);
 }
 
 }  // namespace
 
-HybridResult renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& service,
-                          const FrameSettings& frame, const MaskSettings& mask, int tileSize) {
+void renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& service, const FrameSettings& frame,
+                  const MaskSettings& mask, int tileSize, HybridResult& result) {
   const Clock::time_point start = Clock::now();
   const int w = frame.width, h = frame.height;
-  HybridResult result;
+  result.maskedPixels = 0;
+  result.tiles = 0;
+  result.rays = RayStats{};
+  result.times = HybridTimes{};
 
   raster.draw(frame, mask);
   gl.Finish();
   result.times.rasterMs = msSince(start);
 
   const Clock::time_point readStart = Clock::now();
-  result.image = readColour(gl, w, h);
   if (mask.rule == MaskRule::kAll) {
     result.mask.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 1);
   } else {
-    std::vector<std::uint8_t> stencil(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
-    gl.ReadPixels(0, 0, w, h, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, stencil.data());
-    result.mask = flipRows(stencil, w, h, 1);
+    readPixels(gl, w, h, GL_STENCIL_INDEX, 1, result.mask);
   }
   result.times.readbackMs = msSince(readStart);
 
@@ -126,12 +125,12 @@ HybridResult renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileServic
     gl.WindowPos2i(r.x, h - r.y - r.height);
     gl.DrawPixels(r.width, r.height, GL_RGB, GL_UNSIGNED_BYTE, rect.data());
   }
-  gl.Finish();
-  result.image = readColour(gl, w, h);
+  result.image.width = w;
+  result.image.height = h;
+  readPixels(gl, w, h, GL_RGB, 3, result.image.rgb);
   gl.Disable(GL_STENCIL_TEST);
   result.times.composeMs = msSince(composeStart);
   result.times.totalMs = msSince(start);
-  return result;
 }
 
 }  // namespace glint

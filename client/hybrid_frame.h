@@ -13,10 +13,10 @@ namespace glint {
 // Milliseconds spent in each step of a hybrid frame.
 struct HybridTimes {
   double rasterMs = 0.0;    // OpenGL draws the scene and marks the mask
-  double readbackMs = 0.0;  // glReadPixels of colour and stencil
+  double readbackMs = 0.0;  // glReadPixels of the mask (stencil)
   double traceMs = 0.0;     // the tile service fills the masked pixels
   double networkMs = 0.0;   // of traceMs, not spent tracing: traceMs - compute / parallelism
-  double composeMs = 0.0;   // glDrawPixels of the traced tiles, final read
+  double composeMs = 0.0;   // glDrawPixels of the traced tiles, read of the frame
   double totalMs = 0.0;
 };
 
@@ -30,11 +30,14 @@ struct HybridResult {
 };
 
 // The thesis's frame: OpenGL rasterizes the scene and marks masked pixels
-// in the stencil buffer, the colour and mask are read back, tiles with masked
-// pixels go to the tile service, and the traced pixels are drawn back with
-// glDrawPixels through the stencil test. Under the mask rule "all" every
-// pixel is traced.
-HybridResult renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& service,
-                          const FrameSettings& frame, const MaskSettings& mask, int tileSize);
+// in the stencil buffer, the mask is read back, tiles with masked pixels go
+// to the tile service, the traced pixels are drawn back with glDrawPixels
+// through the stencil test, and the finished frame is read. Under the mask
+// rule "all" every pixel is traced. The frame is written into `result`:
+// passing the same object frame after frame keeps its image-sized buffers
+// (fresh megabyte buffers per frame cost more in page faults than the reads
+// themselves).
+void renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& service, const FrameSettings& frame,
+                  const MaskSettings& mask, int tileSize, HybridResult& result);
 
 }  // namespace glint

@@ -1,3 +1,7 @@
 #include "client/cli.h"
+#include "common/heap_tuning.h"
 
-int main(int argc, char** argv) { return glint::runCli(argc, argv); }
+int main(int argc, char** argv) {
+  glint::keepFreedMemoryForReuse();
+  return glint::runCli(argc, argv);
+}

@@ -124,13 +124,11 @@ void runRender(const RenderOptions& options) {
     raster.emplace(context->api(), scene);
   }
   std::vector<HybridTimes> frameTimes;
-  FrameImage image;
-  RayStats lastRays;
+  HybridResult r;  // reused: each frame overwrites it
   for (int f = 0; f < options.frames; ++f) {
     const Clock::time_point frameStart = Clock::now();
-    HybridResult r;
     if (hybridPath) {
-      r = renderHybrid(context->api(), *raster, *service, frame, scene.mask, options.tileSize);
+      renderHybrid(context->api(), *raster, *service, frame, scene.mask, options.tileSize, r);
     } else {
       FrameOptions frameOptions;
       frameOptions.tileSize = options.tileSize;
@@ -158,22 +156,20 @@ void runRender(const RenderOptions& options) {
       writeStats(options.statsPath, record, f > 0);
     }
     frameTimes.push_back(r.times);
-    lastRays = r.rays;
-    image = std::move(r.image);
   }
-  writePng(options.output, image);
+  writePng(options.output, r.image);
 
   if (!options.quiet) {
     const std::string where = options.server.empty() ? std::to_string(pool->size()) + " threads"
                                                      : "server " + options.server;
     std::fprintf(stderr, "%s: %dx%d, %d spp, %s: trace %.1f ms, frame %.1f ms, %.2f M rays -> %s\n",
                  options.scene.c_str(), frame.width, frame.height, frame.sampling.samples, where.c_str(),
-                 frameTimes.back().traceMs, frameTimes.back().totalMs, static_cast<double>(lastRays.total()) / 1e6,
+                 frameTimes.back().traceMs, frameTimes.back().totalMs, static_cast<double>(r.rays.total()) / 1e6,
                  options.output.c_str());
     if (options.frames > 1) printTimingTable(frameTimes, hybridPath);
-    if (lastRays.nonFiniteSamples > 0) {
+    if (r.rays.nonFiniteSamples > 0) {
       std::fprintf(stderr, "warning: %llu samples were not finite and were discarded\n",
-                   static_cast<unsigned long long>(lastRays.nonFiniteSamples));
+                   static_cast<unsigned long long>(r.rays.nonFiniteSamples));
     }
   }
 }

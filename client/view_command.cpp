@@ -156,7 +156,7 @@ void runView(const ViewOptions& options) {
   installCallbacks(window);
 
   int frames = 0;
-  HybridResult last;
+  HybridResult last;  // the latest frame; reused by the next
   while (!glfwWindowShouldClose(window)) {
     if (controls.changed || options.frames > 0) {
       controls.changed = false;
@@ -165,7 +165,7 @@ void runView(const ViewOptions& options) {
       frame.camera = controls.camera;
       MaskSettings mask = scene.mask;
       mask.rule = controls.rule;
-      last = renderHybrid(api, raster, *service, frame, mask, options.tileSize);
+      renderHybrid(api, raster, *service, frame, mask, options.tileSize, last);
       if (controls.overlay) drawOverlay(api, last, frame.width, frame.height);
       glfwSwapBuffers(window);
       char title[256];

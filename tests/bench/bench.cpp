@@ -15,6 +15,7 @@
 
 #include "common/bvh.h"
 #include "common/frame.h"
+#include "common/heap_tuning.h"
 #include "client/hybrid_frame.h"
 #include "client/offscreen_context.h"
 #include "client/raster_scene.h"
@@ -284,8 +285,9 @@ void hybridSection(const Options& o) {
     gl::RasterScene raster(context.api(), prepared.scene());
     for (TileService* service : {static_cast<TileService*>(&local), static_cast<TileService*>(&remote)}) {
       std::vector<HybridTimes> times;
+      HybridResult r;
       for (int f = 0; f < frames + 1; ++f) {
-        const HybridResult r = renderHybrid(context.api(), raster, *service, frame, prepared.scene().mask, 64);
+        renderHybrid(context.api(), raster, *service, frame, prepared.scene().mask, 64, r);
         if (f > 0) times.push_back(r.times);  // the first frame compiles the shaders
       }
       const auto median = [&](double HybridTimes::*field) {
@@ -315,6 +317,7 @@ void hybridSection(const Options& o) {
 
 int main(int argc, char** argv) {
   using namespace glint;
+  keepFreedMemoryForReuse();  // as glint and glintd do
   bench::Options o;
   CLI::App app{"glint-bench: timings of the ray-tracing core (medians; prints, never asserts)"};
   app.add_option("--scenes", o.scenes, "Folder with room.json and room.pov")->check(CLI::ExistingDirectory);

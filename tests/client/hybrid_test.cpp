@@ -37,7 +37,9 @@ SceneSetup load(const char* scene, int width = 160, int height = 120) {
 HybridResult hybrid(const Scene& scene, TileService& service, const FrameSettings& frame, const MaskSettings& mask) {
   gl::OffscreenContext context(frame.width, frame.height);
   gl::RasterScene raster(context.api(), scene);
-  return renderHybrid(context.api(), raster, service, frame, mask, 32);
+  HybridResult result;
+  renderHybrid(context.api(), raster, service, frame, mask, 32, result);
+  return result;
 }
 
 // A pixel is "fully covered" when rays through its centre and four points
@@ -218,6 +220,35 @@ TEST(Hybrid, MaskedPixelsEqualTheFullTrace) {
   }
   // Under "all" the hybrid frame is the full trace.
   EXPECT_EQ(hybrid(prepared.scene(), local, s.frame, {MaskRule::kAll, 0.2f, 0.0f}).image.rgb, full.rgb);
+}
+
+// A result passed back frame after frame (to keep its buffers) holds each
+// frame as a fresh one would: nothing of the previous frame shows through,
+// whatever its mask rule or size.
+TEST(Hybrid, ReusedResultEqualsAFreshOne) {
+  const SceneSetup s = load("scenes/room.json");
+  const PreparedScene prepared(s.loaded.scene, BvhSettings{});
+  ThreadPool pool(2);
+  LocalTileService local(prepared, pool);
+  const MaskSettings automatic = prepared.scene().mask;
+  const HybridResult fresh = hybrid(prepared.scene(), local, s.frame, automatic);
+
+  FrameSettings bigger = s.frame;
+  bigger.width = 200;
+  bigger.height = 150;
+  gl::OffscreenContext context(bigger.width, bigger.height);
+  gl::RasterScene raster(context.api(), prepared.scene());
+  HybridResult reused;
+  renderHybrid(context.api(), raster, local, bigger, {MaskRule::kAll, 0.2f, 0.0f}, 32, reused);
+  renderHybrid(context.api(), raster, local, s.frame, automatic, 32, reused);
+  EXPECT_EQ(reused.image.width, fresh.image.width);
+  EXPECT_EQ(reused.image.height, fresh.image.height);
+  EXPECT_EQ(reused.image.rgb, fresh.image.rgb);
+  EXPECT_EQ(reused.mask, fresh.mask);
+  EXPECT_EQ(reused.maskedPixels, fresh.maskedPixels);
+  EXPECT_EQ(reused.tiles, fresh.tiles);
+  EXPECT_EQ(reused.rays.total(), fresh.rays.total());
+  EXPECT_LT(reused.maskedPixels, static_cast<std::size_t>(s.frame.width * s.frame.height));
 }
 
 }  // namespace
