@@ -4,11 +4,13 @@
 #include <CLI/CLI.hpp>
 
 #include "common/error.h"
+#include "common/heap_tuning.h"
 #include "server/log.h"
 #include "server/server.h"
 
 int main(int argc, char** argv) {
   using namespace glint::server;
+  glint::keepFreedMemoryForReuse();
   ServerOptions o;
   double maxMessageMb = static_cast<double>(o.maxMessageBytes >> 20);
   double cacheMb = static_cast<double>(o.cacheBytes >> 20);
