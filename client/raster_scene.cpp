@@ -32,9 +32,10 @@ unsigned compile(const Api& gl, GLenum type, std::initializer_list<const char*> 
   return shader;
 }
 
-unsigned link(const Api& gl, const char* vertex, const char* fragment) {
+// traced: the variant for masked objects, which shades nothing.
+unsigned link(const Api& gl, const char* vertex, const char* fragment, bool traced) {
   const unsigned vs = compile(gl, GL_VERTEX_SHADER, {vertex});
-  const unsigned fs = compile(gl, GL_FRAGMENT_SHADER, {kFragmentShading, fragment});
+  const unsigned fs = compile(gl, GL_FRAGMENT_SHADER, {kFragmentShading, traced ? "#define TRACED\n" : "", fragment});
   const unsigned program = gl.CreateProgram();
   gl.AttachShader(program, vs);
   gl.AttachShader(program, fs);
@@ -89,8 +90,10 @@ RasterScene::RasterScene(const Api& api, const Scene& scene) : gl_(api), scene_(
     throw InputError("the OpenGL path takes at most " + std::to_string(kMaxMaterials) + " materials and " +
                      std::to_string(kMaxTextures) + " textures");
   }
-  meshProgram_ = link(gl_, kMeshVertexShader, kMeshFragmentShader);
-  sphereProgram_ = link(gl_, kSphereVertexShader, kSphereFragmentShader);
+  for (int traced = 0; traced < 2; ++traced) {
+    programs_[0][traced] = link(gl_, kMeshVertexShader, kMeshFragmentShader, traced == 1);
+    programs_[1][traced] = link(gl_, kSphereVertexShader, kSphereFragmentShader, traced == 1);
+  }
   uploadTextures();
   uploadMeshes();
   uploadSpheres();
@@ -102,8 +105,9 @@ RasterScene::~RasterScene() {
     gl_.DeleteVertexArrays(1, &b.vao);
   }
   if (atlas_) gl_.DeleteTextures(1, &atlas_);
-  gl_.DeleteProgram(meshProgram_);
-  gl_.DeleteProgram(sphereProgram_);
+  for (const auto& row : programs_) {
+    for (unsigned program : row) gl_.DeleteProgram(program);
+  }
 }
 
 void RasterScene::uploadTextures() {
@@ -278,13 +282,20 @@ void RasterScene::draw(const FrameSettings& frame, const MaskSettings& mask) {
   gl_.Enable(GL_STENCIL_TEST);
   gl_.StencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);  // the visible object's flag wins
   const glm::mat4 vp = viewProjection(frame);
-  for (unsigned program : {meshProgram_, sphereProgram_}) {
-    setUniforms(program, frame, vp);
-    for (const Batch& b : batches_) {
-      if ((program == sphereProgram_) != b.spheres) continue;
-      gl_.StencilFunc(GL_ALWAYS, materialMasked(scene_.materials[b.material], mask) ? 1 : 0, 0xff);
-      gl_.BindVertexArray(b.vao);
-      gl_.DrawArrays(GL_TRIANGLES, 0, b.vertices);
+  for (int spheres = 0; spheres < 2; ++spheres) {
+    for (int traced = 0; traced < 2; ++traced) {
+      bool uniformsSet = false;
+      for (const Batch& b : batches_) {
+        const bool masked = materialMasked(scene_.materials[b.material], mask);
+        if (b.spheres != (spheres == 1) || masked != (traced == 1)) continue;
+        if (!uniformsSet) {
+          setUniforms(programs_[spheres][traced], frame, vp);
+          uniformsSet = true;
+        }
+        gl_.StencilFunc(GL_ALWAYS, masked ? 1 : 0, 0xff);
+        gl_.BindVertexArray(b.vao);
+        gl_.DrawArrays(GL_TRIANGLES, 0, b.vertices);
+      }
     }
   }
   gl_.BindVertexArray(0);

@@ -13,7 +13,9 @@ namespace glint::gl {
 // A scene uploaded to OpenGL once: triangle batches and sphere impostors,
 // grouped by material, the shader programs, and the texture atlas. draw()
 // renders one frame and marks each pixel's stencil with 1 where the visible
-// object's material is masked, 0 elsewhere (and for the background).
+// object's material is masked, 0 elsewhere (and for the background). Masked
+// objects are drawn by programs that write depth and stencil but shade
+// nothing (black): the tracer's pixels replace theirs.
 class RasterScene {
  public:
   RasterScene(const Api& api, const Scene& scene);
@@ -41,8 +43,7 @@ class RasterScene {
 
   const Api& gl_;
   const Scene& scene_;
-  unsigned meshProgram_ = 0;
-  unsigned sphereProgram_ = 0;
+  unsigned programs_[2][2] = {};  // [spheres][traced]
   unsigned atlas_ = 0;
   std::vector<float> textureRows_;  // atlas row of each texture
   std::vector<Batch> batches_;

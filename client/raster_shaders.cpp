@@ -114,7 +114,11 @@ in vec2 vUv;
 flat in vec3 vFaceNormal;
 flat in int vMaterial;
 void main() {
+#ifdef TRACED
+  fragColor = vec4(0.0, 0.0, 0.0, 1.0);
+#else
   fragColor = vec4(clamp(shade(vPosition, vFaceNormal, vNormal, vUv, vMaterial), 0.0, 1.0), 1.0);
+#endif
 }
 )";
 
@@ -159,12 +163,16 @@ void main() {
   vec3 p = uEye + t * d;
   vec3 n = normalize(p - vSphere.xyz);
   p = vSphere.xyz + vSphere.w * n;
+  vec4 clip = uViewProjection * vec4(p, 1.0);
+  gl_FragDepth = clip.z / clip.w * 0.5 + 0.5;
+#ifdef TRACED
+  fragColor = vec4(0.0, 0.0, 0.0, 1.0);
+#else
   float u = atan(n.x, n.z) / (2.0 * 3.14159265);
   float v = acos(clamp(-n.y, -1.0, 1.0)) / 3.14159265;
   vec2 uv = vec2(u < 0.0 ? u + 1.0 : u, v);
-  vec4 clip = uViewProjection * vec4(p, 1.0);
-  gl_FragDepth = clip.z / clip.w * 0.5 + 0.5;
   fragColor = vec4(clamp(shade(p, n, n, uv, vMaterial), 0.0, 1.0), 1.0);
+#endif
 }
 )";
 
