@@ -157,10 +157,10 @@ void RasterScene::newBatch(std::uint32_t material, bool spheres, const void* ver
 void RasterScene::uploadMeshes() {
   const Geometry& g = scene_.geometry;
   std::map<std::uint32_t, std::vector<MeshVertex>> byMaterial;
-  for (const Triangle& t : g.triangles()) {
+  for (std::size_t i = 0; i < g.triangles().size(); ++i) {
+    const Triangle& t = g.triangles()[i];
     const std::uint32_t material = g.models()[t.model].material;
-    const glm::vec3& a = g.positions()[t.v[0]];
-    const glm::vec3 face = glm::normalize(glm::cross(g.positions()[t.v[1]] - a, g.positions()[t.v[2]] - a));
+    const glm::vec3& face = g.faceNormals()[i];
     auto& vertices = byMaterial[material];
     for (std::uint32_t v : t.v) {
       vertices.push_back({g.positions()[v], g.normals()[v], g.uvs()[v], face, static_cast<std::int32_t>(material)});

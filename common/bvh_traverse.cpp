@@ -1,5 +1,4 @@
 #include <array>
-#include <cmath>
 
 #include "common/bvh.h"
 #include "common/float_bits.h"
@@ -63,7 +62,7 @@ std::optional<Hit> Bvh::intersect(const Geometry& geometry, const Ray& ray, floa
     for (std::uint32_t i = offset; i < offset + count; ++i) {
       // One ulp beyond the nearest hit so far, so that a hit at exactly the
       // same distance reaches the tie-break of closerHit.
-      const float limit = nearest ? std::nextafter(tMax, kInfinity) : tMax;
+      const float limit = nearest ? nextFloatUp(tMax) : tMax;
       const std::optional<Hit> hit = geometry.intersect(primIds_[i], ray, w, limit);
       if (hit && (!nearest || closerHit(*hit, *nearest))) {
         nearest = hit;

@@ -21,4 +21,14 @@ constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
 inline std::uint32_t floatToBits(float f) { return std::bit_cast<std::uint32_t>(f); }
 inline float bitsToFloat(std::uint32_t u) { return std::bit_cast<float>(u); }
 
+// The next float above x, as std::nextafter(x, +inf) but inline (the library
+// call was a few per cent of a frame): +inf and NaN stay, -0 and +0 give the
+// smallest subnormal.
+inline float nextFloatUp(float x) {
+  if (x != x || x == std::numeric_limits<float>::infinity()) return x;
+  if (x == 0.0f) return std::numeric_limits<float>::denorm_min();
+  const std::uint32_t bits = floatToBits(x);
+  return bitsToFloat(x > 0.0f ? bits + 1 : bits - 1);
+}
+
 }  // namespace glint

@@ -44,6 +44,7 @@ void Geometry::addMesh(MeshInput mesh) {
       continue;
     }
     triangles_.push_back({{v[0] + base, v[1] + base, v[2] + base}, model});
+    faceNormals_.push_back(glm::normalize(n));
   }
 }
 
@@ -104,7 +105,7 @@ SurfaceHit Geometry::surface(const Ray& ray, const Hit& hit, bool withUv) const 
   // pbrt-v4 6.8.5: the interpolation error is at most gamma(7) sum |b_i p_i|.
   const glm::vec3 absSum = glm::abs(hit.b0 * a) + glm::abs(hit.b1 * b) + glm::abs(hit.b2 * c);
   s.error = gamma(7) * std::max({absSum.x, absSum.y, absSum.z});
-  s.ng = faceForward(glm::normalize(glm::cross(b - a, c - a)), ray.d);
+  s.ng = faceForward(faceNormals_[hit.prim], ray.d);
   const glm::vec3 n = hit.b0 * normals_[tri.v[0]] + hit.b1 * normals_[tri.v[1]] +
                       hit.b2 * normals_[tri.v[2]];
   const float len = glm::length(n);

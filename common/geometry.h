@@ -97,6 +97,9 @@ class Geometry {
   const std::vector<glm::vec3>& positions() const { return positions_; }
   const std::vector<glm::vec3>& normals() const { return normals_; }
   const std::vector<glm::vec2>& uvs() const { return uvs_; }
+  // Unit geometric normal of each triangle, normalize(cross(b - a, c - a))
+  // of its sorted vertices, computed once when the mesh is added.
+  const std::vector<glm::vec3>& faceNormals() const { return faceNormals_; }
   const std::vector<Model>& models() const { return models_; }
   // Triangles left out because they cannot be hit: zero area, collinear or
   // repeated vertices, non-finite coordinates.
@@ -107,6 +110,7 @@ class Geometry {
   std::vector<glm::vec3> normals_;
   std::vector<glm::vec2> uvs_;
   std::vector<Triangle> triangles_;
+  std::vector<glm::vec3> faceNormals_;
   std::vector<Model> models_;
   std::vector<Sphere> spheres_;
   std::size_t dropped_ = 0;

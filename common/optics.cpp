@@ -38,10 +38,6 @@ glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& n) {
   return out;
 }
 
-}  // namespace glint
-
-namespace glint {
-
 glm::vec3 offsetRayOrigin(const glm::vec3& p, float error, const glm::vec3& n) {
   const float distance = error * (std::abs(n.x) + std::abs(n.y) + std::abs(n.z));
   return offsetRayOrigin(p + distance * n, n);

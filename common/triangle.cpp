@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/gtc/type_ptr.hpp>
+
 #include "common/float_bits.h"
 
 namespace glint {
@@ -14,7 +16,11 @@ int maxAbsAxis(const glm::vec3& v) {
   return y > z ? 1 : 2;
 }
 
-glm::vec3 permute(const glm::vec3& v, int x, int y, int z) { return {v[x], v[y], v[z]}; }
+// Through a plain pointer: glm's v[i] with a run-time i is a switch.
+glm::vec3 permute(const glm::vec3& v, int x, int y, int z) {
+  const float* p = glm::value_ptr(v);
+  return {p[x], p[y], p[z]};
+}
 
 // a*b - c*d in plain float arithmetic: fl(a*b) - fl(c*d) is exactly the
 // negation of fl(c*d) - fl(a*b), which the shared-edge guarantee needs.
@@ -33,7 +39,7 @@ WatertightRay::WatertightRay(const Ray& ray) {
   const glm::vec3 d = permute(ray.d, kx, ky, kz);
   sx = -d.x / d.z;
   sy = -d.y / d.z;
-  sz = 1.0f / d.z;
+  sz = glm::value_ptr(ray.invD)[kz];  // 1 / d.z, already computed
 }
 
 std::optional<TriangleHit> intersectTriangle(const Ray& ray, const glm::vec3& p0,

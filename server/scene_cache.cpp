@@ -6,7 +6,8 @@ std::size_t memoryFootprint(const PreparedScene& p) {
   const Scene& s = p.scene();
   const Geometry& g = s.geometry;
   std::size_t bytes = g.positions().size() * (sizeof(glm::vec3) * 2 + sizeof(glm::vec2)) +
-                      g.triangles().size() * sizeof(Triangle) + g.spheres().size() * sizeof(Sphere) +
+                      g.triangles().size() * (sizeof(Triangle) + sizeof(glm::vec3)) +  // with its face normal
+                      g.spheres().size() * sizeof(Sphere) +
                       p.bvh().nodes().size() * sizeof(BvhNode) + p.bvh().primIds().size() * sizeof(std::uint32_t);
   for (const Texture& t : s.textures) {
     if (t.image) bytes += t.image->texels.size() * sizeof(glm::vec3);
