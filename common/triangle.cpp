@@ -10,12 +10,6 @@
 namespace glint {
 namespace {
 
-int maxAbsAxis(const glm::vec3& v) {
-  const float x = std::abs(v.x), y = std::abs(v.y), z = std::abs(v.z);
-  if (x > y && x > z) return 0;
-  return y > z ? 1 : 2;
-}
-
 // Through a plain pointer: glm's v[i] with a run-time i is a switch.
 glm::vec3 permute(const glm::vec3& v, int x, int y, int z) {
   const float* p = glm::value_ptr(v);
@@ -31,16 +25,6 @@ float edgeDouble(float ax, float by, float ay, float bx) {
 }
 
 }  // namespace
-
-WatertightRay::WatertightRay(const Ray& ray) {
-  kz = maxAbsAxis(ray.d);
-  kx = (kz + 1) % 3;
-  ky = (kx + 1) % 3;
-  const glm::vec3 d = permute(ray.d, kx, ky, kz);
-  sx = -d.x / d.z;
-  sy = -d.y / d.z;
-  sz = glm::value_ptr(ray.invD)[kz];  // 1 / d.z, already computed
-}
 
 std::optional<TriangleHit> intersectTriangle(const Ray& ray, const glm::vec3& p0,
                                              const glm::vec3& p1, const glm::vec3& p2, float tMax) {

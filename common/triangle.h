@@ -1,7 +1,9 @@
 #pragma once
 
+#include <cmath>
 #include <optional>
 
+#include <glm/gtc/type_ptr.hpp>
 #include <glm/vec3.hpp>
 
 #include "common/ray.h"
@@ -30,10 +32,22 @@ std::optional<TriangleHit> intersectTriangle(const Ray& ray, const glm::vec3& p0
 
 // The per-ray part of the test (axis permutation and shear), computed once
 // per ray when the ray meets many triangles.
+// Inline and without branches on the direction: it is made for every ray,
+// whose directions a branch predictor cannot guess.
 struct WatertightRay {
   int kx, ky, kz;
   float sx, sy, sz;
-  explicit WatertightRay(const Ray& ray);
+  explicit WatertightRay(const Ray& ray) {
+    const float x = std::abs(ray.d.x), y = std::abs(ray.d.y), z = std::abs(ray.d.z);
+    const int yz = y > z ? 1 : 2;
+    kz = x > y && x > z ? 0 : yz;  // the dominant axis
+    kx = kz == 2 ? 0 : kz + 1;
+    ky = kx == 2 ? 0 : kx + 1;
+    const float* d = glm::value_ptr(ray.d);
+    sx = -d[kx] / d[kz];
+    sy = -d[ky] / d[kz];
+    sz = glm::value_ptr(ray.invD)[kz];  // 1 / d.z, already computed
+  }
 };
 std::optional<TriangleHit> intersectTriangle(const Ray& ray, const WatertightRay& w, const glm::vec3& p0,
                                              const glm::vec3& p1, const glm::vec3& p2, float tMax);
