@@ -14,6 +14,11 @@ namespace {
 // tiles fits, which halves the wake-ups of a small window (docs/performance.md).
 constexpr std::size_t kWindowPerThread = 64;
 
+// The RGB bytes a tile's result carries.
+std::size_t pixelBytes(const TileJob& job) {
+  return 3 * (job.mask.empty() ? job.rect.pixelCount() : countMasked(job.rect, job.mask));
+}
+
 }  // namespace
 
 RemoteTileService::RemoteTileService(const std::string& address, const proto::SceneBundle& bundle,
@@ -88,6 +93,12 @@ void RemoteTileService::render(const FrameSettings& frame, std::span<const TileJ
   std::size_t next = 0;
   std::size_t outstanding = 0;
   std::size_t finished = 0;
+  // Pixel bytes of the requested tiles not yet received: the server sends at
+  // least these without waiting for us. Promised to the stream only after the
+  // frame's first result, so that an error about the frame itself comes back
+  // at once.
+  std::size_t owedBytes = 0;
+  bool started = false;
   while (finished < jobs.size()) {
     // Tiles without a masked pixel are never sent; the others go out in
     // batches, one write for all requests that fit the window.
@@ -101,15 +112,20 @@ void RemoteTileService::render(const FrameSettings& frame, std::span<const TileJ
       }
       const auto request = proto::encodeTileRequest(frameId, static_cast<std::uint32_t>(next), job.rect, job.mask);
       batch.insert(batch.end(), request.begin(), request.end());
+      owedBytes += pixelBytes(job);
       ++next;
       ++outstanding;
     }
     if (!batch.empty()) send(batch);
     if (outstanding == 0) continue;
+    stream_->expect(started ? owedBytes : 0);
     const auto* result = receive().body_as_TileResult();
     if (!result || result->frame_id() != frameId || result->tile_id() >= jobs.size()) {
+      stream_->expect(0);
       fail("sent an unexpected message during frame " + std::to_string(frameId));
     }
+    started = true;
+    owedBytes -= std::min(owedBytes, pixelBytes(jobs[result->tile_id()]));
     TileOutput out;
     if (result->rgb()) out.rgb.assign(result->rgb()->begin(), result->rgb()->end());
     out.rays = proto::decodeRays(result->rays());
@@ -118,6 +134,7 @@ void RemoteTileService::render(const FrameSettings& frame, std::span<const TileJ
     --outstanding;
     ++finished;
   }
+  stream_->expect(0);
 }
 
 }  // namespace glint

@@ -1,5 +1,7 @@
 #include "proto/message_stream.h"
 
+#include <algorithm>
+
 namespace glint::proto {
 
 MessageStream::MessageStream(const asio::ip::tcp::endpoint& endpoint, std::chrono::milliseconds timeout)
@@ -61,6 +63,14 @@ const wire::Message& MessageStream::receive() {
     }
     buffer_.erase(buffer_.begin(), buffer_.begin() + static_cast<std::ptrdiff_t>(consumed_));
     consumed_ = 0;
+    constexpr std::size_t kMaxWatermark = 64 * 1024;
+    const std::size_t promised = expected_ > buffer_.size() ? expected_ - buffer_.size() : 1;
+    const int watermark = static_cast<int>(std::clamp<std::size_t>(promised, 1, kMaxWatermark));
+    if (watermark != lowWatermark_) {
+      asio::error_code ignored;  // without it, reads just wake more often
+      socket_.set_option(asio::socket_base::receive_low_watermark(watermark), ignored);
+      lowWatermark_ = watermark;
+    }
     std::array<std::uint8_t, 65536> chunk;
     asio::error_code error;
     std::size_t got = 0;

