@@ -78,6 +78,48 @@ TEST_P(BvhBuilders, NearestHitAndOcclusionEqualBruteForce) {
   EXPECT_GT(hits, 5000);  // the comparison covers many hits, not only misses
 }
 
+// Trees of 1 to 12 primitives: a root that is one leaf, nodes with fewer
+// than four children and empty lanes. Every primitive sits in exactly one
+// leaf, every lane in use has a box, unused lanes are empty, and hits equal
+// the brute-force loop.
+TEST_P(BvhBuilders, SmallTreesHaveWellFormedWideNodes) {
+  for (int n = 1; n <= 12; ++n) {
+    const Geometry g = randomSoup(n - n / 3, n / 3, static_cast<unsigned>(n));
+    BvhSettings settings;
+    settings.builder = GetParam();
+    settings.maxLeafSize = 1;
+    const Bvh bvh = Bvh::build(g, settings);
+    std::vector<int> seen(g.primitiveCount(), 0);
+    for (const BvhNode& node : bvh.nodes()) {
+      ASSERT_GE(node.children, 1);
+      ASSERT_LE(node.children, 4);
+      for (int lane = 0; lane < 4; ++lane) {
+        const Bounds3 box = node.boxes.get(lane);
+        EXPECT_EQ(box.empty(), lane >= node.children) << "n " << n << " lane " << lane;
+        if (lane >= node.children) continue;
+        if (node.count[lane] == 0) {
+          EXPECT_LT(node.offset[lane], bvh.nodes().size());
+          continue;
+        }
+        for (std::uint32_t i = node.offset[lane]; i < node.offset[lane] + node.count[lane]; ++i) {
+          ++seen[bvh.primIds()[i]];
+          EXPECT_FALSE(g.primitiveBounds(bvh.primIds()[i]).empty());
+        }
+      }
+    }
+    for (int count : seen) EXPECT_EQ(count, 1) << "n " << n;
+    for (const Ray& ray : randomRays(2000, static_cast<unsigned>(100 + n))) {
+      const auto expected = bruteForce(g, ray);
+      const auto got = bvh.intersect(g, ray, 1e30f);
+      ASSERT_EQ(expected.has_value(), got.has_value()) << "n " << n;
+      if (expected) {
+        EXPECT_EQ(expected->prim, got->prim);
+      }
+      EXPECT_EQ(expected.has_value(), bvh.occluded(g, ray, 1e30f));
+    }
+  }
+}
+
 // A mesh whose vertices lie on exact binary fractions, so that many triangles
 // touch node faces exactly, shot at with axis-parallel and random rays.
 TEST_P(BvhBuilders, GridMeshOnNodeFacesEqualsBruteForce) {
