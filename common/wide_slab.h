@@ -17,8 +17,7 @@ namespace glint {
 
 // Four lanes of float arithmetic (GCC / Clang vector extensions: SSE on
 // x86-64, NEON on ARM, plain loops elsewhere). Each lane rounds exactly as
-// the scalar operation would, so the 4-box test below decides every box as
-// intersectSlabs in bounds.h does.
+// the scalar operation would.
 using Float4 = float __attribute__((vector_size(16)));
 using Mask4 = std::int32_t __attribute__((vector_size(16)));
 
@@ -67,9 +66,15 @@ struct SlabRay4 {
   }
 };
 
-// The robust slab test of bounds.h on four boxes at once. Returns a bit per
-// lane (bit i: the ray enters box i between tMin and tMax) and each lane's
-// entry distance in *entry (meaningful for the lanes hit).
+// Robust slab test (Williams et al. 2005, "An Efficient and Robust Ray-Box
+// Intersection Algorithm"; Ize 2013, "Robust BVH Ray Traversal") on four
+// boxes at once. The far distance is scaled by 1 + 2 gamma(3) so rounding
+// never culls a box the ray touches, and the comparisons are ordered so that
+// a NaN (0 * inf, an origin exactly on a slab plane of an axis the ray is
+// parallel to) never replaces the running interval: boundaries count as
+// inside. Returns a bit per lane (bit i: the ray enters box i between tMin
+// and tMax) and each lane's entry distance in *entry (for the lanes hit: at
+// least tMin, never NaN).
 inline unsigned intersectSlabs4(const Boxes4& boxes, const SlabRay4& r, float tMin, float tMax,
                                 Float4* entry) {
   constexpr float kFarScale = 1.0f + 2.0f * gamma(3);

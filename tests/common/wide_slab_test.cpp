@@ -1,0 +1,93 @@
+// The traversal's robust slab test (common/wide_slab.h), one box at a time
+// in any of the four lanes, the other lanes empty.
+#include "common/wide_slab.h"
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+namespace glint {
+namespace {
+
+const Bounds3 kUnit{{0.0f, 0.0f, 0.0f}, {1.0f, 1.0f, 1.0f}};
+
+// Whether the ray enters `box` (in lane `lane`) before tMax; *entry gets the
+// entry distance. An empty lane is never hit.
+bool hitsBox(const Bounds3& box, const Ray& ray, float tMax, float* entry = nullptr, int lane = 0) {
+  Boxes4 boxes;
+  for (int i = 0; i < 4; ++i) boxes.set(i, i == lane ? box : Bounds3{});
+  Float4 t;
+  const unsigned lanes = intersectSlabs4(boxes, SlabRay4(ray), 0.0f, tMax, &t);
+  EXPECT_EQ(lanes & ~(1u << lane), 0u) << "an empty lane was hit";
+  if (entry) *entry = t[lane];
+  return (lanes & (1u << lane)) != 0;
+}
+
+TEST(Slab, HitGivesEntry) {
+  float entry = -7.0f;
+  ASSERT_TRUE(hitsBox(kUnit, Ray({-1.0f, 0.5f, 0.5f}, {1.0f, 0.0f, 0.0f}), 100.0f, &entry));
+  EXPECT_FLOAT_EQ(entry, 1.0f);
+  EXPECT_FALSE(hitsBox(kUnit, Ray({-1.0f, 0.5f, 0.5f}, {-1.0f, 0.0f, 0.0f}), 100.0f));
+  EXPECT_FALSE(hitsBox(kUnit, Ray({-1.0f, 0.5f, 0.5f}, {1.0f, 0.0f, 0.0f}), 0.5f));
+  // The ray ends inside the box: still a hit.
+  EXPECT_TRUE(hitsBox(kUnit, Ray({-1.0f, 0.5f, 0.5f}, {1.0f, 0.0f, 0.0f}), 1.5f));
+}
+
+// Rays parallel to two axes, with +0.0 and -0.0 in those components, from
+// origins before, inside and after the box along the travel axis and inside,
+// on a face plane, on an edge or outside across it: the expected hit or miss
+// and never a NaN. Boundaries count as inside.
+TEST(Slab, AxisParallelRaysWithSignedZerosAndOriginsOnPlanes) {
+  const float across[] = {-1.0f, 0.0f, 0.5f, 1.0f, 2.0f};
+  const float along[] = {-1.0f, 0.0f, 0.5f, 1.0f, 2.0f};
+  int cases = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int a1 = (axis + 1) % 3;
+    const int a2 = (axis + 2) % 3;
+    for (float travel : {1.0f, -1.0f}) {
+      for (float z1 : {0.0f, -0.0f}) {
+        for (float z2 : {0.0f, -0.0f}) {
+          for (float c1 : across) {
+            for (float c2 : across) {
+              for (float s : along) {
+                glm::vec3 o, d;
+                o[axis] = s;
+                o[a1] = c1;
+                o[a2] = c2;
+                d[axis] = travel;
+                d[a1] = z1;
+                d[a2] = z2;
+                const bool insideAcross = c1 >= 0.0f && c1 <= 1.0f && c2 >= 0.0f && c2 <= 1.0f;
+                const bool reaches = travel > 0.0f ? s <= 1.0f : s >= 0.0f;
+                float entry = -7.0f;
+                const bool got = hitsBox(kUnit, Ray(o, d), 1e30f, &entry, cases % 4);
+                EXPECT_EQ(got, insideAcross && reaches)
+                    << "axis " << axis << " travel " << travel << " origin " << o.x << "," << o.y << ","
+                    << o.z << " zeros " << std::signbit(z1) << std::signbit(z2);
+                if (got) {
+                  EXPECT_FALSE(std::isnan(entry));
+                  EXPECT_GE(entry, 0.0f);
+                }
+                ++cases;
+              }
+            }
+          }
+        }
+      }
+    }
+  }
+  EXPECT_EQ(cases, 3 * 2 * 4 * 125);
+}
+
+TEST(Slab, RayThroughCornerAndAlongEdge) {
+  // Exactly through the corner (1, 1, 1) diagonally.
+  EXPECT_TRUE(hitsBox(kUnit, Ray({2.0f, 2.0f, 2.0f}, glm::vec3(-1.0f) / std::sqrt(3.0f)), 1e30f));
+  // Along the edge y = 0, z = 0.
+  float entry = -7.0f;
+  ASSERT_TRUE(hitsBox(kUnit, Ray({-1.0f, 0.0f, 0.0f}, {1.0f, 0.0f, -0.0f}), 1e30f, &entry, 3));
+  EXPECT_FALSE(std::isnan(entry));
+}
+
+}  // namespace
+}  // namespace glint
