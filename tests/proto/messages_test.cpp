@@ -1,5 +1,7 @@
 #include "proto/messages.h"
 
+#include <deque>
+
 #include <gtest/gtest.h>
 
 #include "common/error.h"
@@ -8,8 +10,13 @@
 namespace glint::proto {
 namespace {
 
-const wire::Message& decode(const std::vector<std::uint8_t>& frame) {
-  const Decoded d = decodeFrame({frame.data(), frame.size()}, kDefaultMaxMessageBytes);
+// The message in `frame`. The message points into the bytes, so they are
+// kept to the end of the test program (the encoders return temporaries).
+const wire::Message& decode(std::vector<std::uint8_t> frame) {
+  static std::deque<std::vector<std::uint8_t>> kept;  // growing never moves an element
+  kept.push_back(std::move(frame));
+  const std::vector<std::uint8_t>& bytes = kept.back();
+  const Decoded d = decodeFrame({bytes.data(), bytes.size()}, kDefaultMaxMessageBytes);
   EXPECT_EQ(d.status, DecodeStatus::kGood) << d.error;
   return *d.message;
 }

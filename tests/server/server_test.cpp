@@ -341,7 +341,9 @@ TEST_F(ServerTest, SigtermDuringAFrame) {
   posix_spawn_file_actions_addclose(&actions, out[0]);
   const char* argv[] = {GLINTD_BIN, "--listen", "127.0.0.1:0", "--threads", "2", "--quiet", nullptr};
   pid_t pid = 0;
-  ASSERT_EQ(posix_spawn(&pid, GLINTD_BIN, &actions, nullptr, const_cast<char**>(argv), environ), 0);
+  const int spawned = posix_spawn(&pid, GLINTD_BIN, &actions, nullptr, const_cast<char**>(argv), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ASSERT_EQ(spawned, 0);
   close(out[1]);
   FILE* stdoutOfServer = fdopen(out[0], "r");
   char line[256] = {};
