@@ -1,6 +1,8 @@
 #include "proto/message_stream.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 
 namespace glint::proto {
 
@@ -59,7 +61,15 @@ const wire::Message& MessageStream::receive() {
     if (d.status == DecodeStatus::kGood) {
       consumed_ += d.consumed;
       received_ += d.consumed;
-      return *d.message;  // points into buffer_, untouched until the next receive()
+      // FlatBuffers reads 8-byte fields (RayCounts) in place, so the message
+      // must start 8-aligned; one in the middle of buffer_ rarely does, and
+      // gets an aligned copy of its (verified) bytes.
+      const std::uint8_t* payload = unread.data() + kHeaderBytes;
+      if (reinterpret_cast<std::uintptr_t>(payload) % alignof(std::uint64_t) == 0) return *d.message;
+      const std::size_t size = d.consumed - kHeaderBytes;
+      aligned_.resize(size / sizeof(std::uint64_t) + 1);
+      std::memcpy(aligned_.data(), payload, size);
+      return *wire::GetMessage(aligned_.data());  // both stay untouched until the next receive()
     }
     buffer_.erase(buffer_.begin(), buffer_.begin() + static_cast<std::ptrdiff_t>(consumed_));
     consumed_ = 0;

@@ -53,6 +53,7 @@ class MessageStream {
   asio::ip::tcp::socket socket_;
   std::vector<std::uint8_t> buffer_;  // received bytes
   std::size_t consumed_ = 0;          // of buffer_, already returned
+  std::vector<std::uint64_t> aligned_;  // an 8-aligned copy of the last message, where needed
   std::uint64_t sent_ = 0;
   std::uint64_t received_ = 0;
   std::size_t expected_ = 0;   // see expect()

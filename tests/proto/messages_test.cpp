@@ -1,5 +1,6 @@
 #include "proto/messages.h"
 
+#include <cstring>
 #include <deque>
 
 #include <gtest/gtest.h>
@@ -11,12 +12,15 @@ namespace glint::proto {
 namespace {
 
 // The message in `frame`. The message points into the bytes, so they are
-// kept to the end of the test program (the encoders return temporaries).
-const wire::Message& decode(std::vector<std::uint8_t> frame) {
-  static std::deque<std::vector<std::uint8_t>> kept;  // growing never moves an element
-  kept.push_back(std::move(frame));
-  const std::vector<std::uint8_t>& bytes = kept.back();
-  const Decoded d = decodeFrame({bytes.data(), bytes.size()}, kDefaultMaxMessageBytes);
+// kept to the end of the test program (the encoders return temporaries), and
+// placed so that the message after the 4-byte length starts 8-aligned, as
+// FlatBuffers' 8-byte fields need.
+const wire::Message& decode(const std::vector<std::uint8_t>& frame) {
+  static std::deque<std::vector<std::uint64_t>> kept;  // growing never moves an element
+  kept.emplace_back(frame.size() / sizeof(std::uint64_t) + 2);
+  std::uint8_t* bytes = reinterpret_cast<std::uint8_t*>(kept.back().data()) + (sizeof(std::uint64_t) - kHeaderBytes);
+  std::memcpy(bytes, frame.data(), frame.size());
+  const Decoded d = decodeFrame({bytes, frame.size()}, kDefaultMaxMessageBytes);
   EXPECT_EQ(d.status, DecodeStatus::kGood) << d.error;
   return *d.message;
 }
