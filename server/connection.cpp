@@ -247,7 +247,7 @@ void Connection::onTileRequest(const wire::TileRequest& request) {
 // kFlushBytes or the client's last submitted tile is done; then one wake-up
 // of the I/O thread takes them all into one gathered write. Each wake-up
 // preempts a tracing thread where client and server share the cores, so a
-// frame's 80 results go out in about 8 writes instead of one each.
+// frame's 80 results go out in about 23 writes instead of about 65.
 void Connection::deliver(std::vector<std::uint8_t> result) {
   constexpr std::size_t kFlushBytes = 128 * 1024;  // 64 KiB: 2.1 ms overhead per frame, 128 KiB: 1.0-1.4
   bool wake = false;
