@@ -98,6 +98,7 @@ void RemoteTileService::render(const FrameSettings& frame, std::span<const TileJ
   // frame's first result, so that an error about the frame itself comes back
   // at once.
   std::size_t owedBytes = 0;
+  std::vector<std::size_t> tileBytes(jobs.size(), 0);  // of each requested tile
   bool started = false;
   while (finished < jobs.size()) {
     // Tiles without a masked pixel are never sent; the others go out in
@@ -105,14 +106,15 @@ void RemoteTileService::render(const FrameSettings& frame, std::span<const TileJ
     std::vector<std::uint8_t> batch;
     while (next < jobs.size() && outstanding < window) {
       const TileJob& job = jobs[next];
-      if (!job.mask.empty() && countMasked(job.rect, job.mask) == 0) {
+      tileBytes[next] = pixelBytes(job);
+      if (!job.mask.empty() && tileBytes[next] == 0) {
         done(next++, TileOutput{});
         ++finished;
         continue;
       }
       const auto request = proto::encodeTileRequest(frameId, static_cast<std::uint32_t>(next), job.rect, job.mask);
       batch.insert(batch.end(), request.begin(), request.end());
-      owedBytes += pixelBytes(job);
+      owedBytes += tileBytes[next];
       ++next;
       ++outstanding;
     }
@@ -125,7 +127,7 @@ void RemoteTileService::render(const FrameSettings& frame, std::span<const TileJ
       fail("sent an unexpected message during frame " + std::to_string(frameId));
     }
     started = true;
-    owedBytes -= std::min(owedBytes, pixelBytes(jobs[result->tile_id()]));
+    owedBytes -= std::min(owedBytes, tileBytes[result->tile_id()]);
     TileOutput out;
     if (result->rgb()) out.rgb.assign(result->rgb()->begin(), result->rgb()->end());
     out.rays = proto::decodeRays(result->rays());

@@ -86,9 +86,11 @@ class BvhBuilderImpl {
       float widestArea = -1.0f;
       for (int i = 0; i < n; ++i) {
         const BinaryNode& c = binary_[children[i]];
-        if (c.count == 0 && c.bounds.surfaceArea() > widestArea) {
+        if (c.count > 0) continue;
+        const float area = c.bounds.surfaceArea();
+        if (area > widestArea) {
           widest = i;
-          widestArea = c.bounds.surfaceArea();
+          widestArea = area;
         }
       }
       if (widest < 0) break;
@@ -98,7 +100,7 @@ class BvhBuilderImpl {
     }
     const auto wideIndex = static_cast<std::uint32_t>(bvh_.nodes_.size());
     bvh_.nodes_.emplace_back();
-    for (int lane = 0; lane < 4; ++lane) bvh_.nodes_[wideIndex].boxes.set(lane, Bounds3{});
+    for (int lane = n; lane < 4; ++lane) bvh_.nodes_[wideIndex].boxes.set(lane, Bounds3{});
     bvh_.nodes_[wideIndex].children = static_cast<std::uint8_t>(n);
     for (int lane = 0; lane < n; ++lane) {
       const BinaryNode& c = binary_[children[lane]];

@@ -37,8 +37,8 @@ void walk(const std::vector<BvhNode>& nodes, const Ray& ray, float& tMax, Visit 
     }
     const BvhNode& node = nodes[current.offset];
     Float4 entry;
-    unsigned hits = intersectSlabs4(node.boxes, slabRay, 0.0f, tMax, &entry);
-    hits &= (1u << node.children) - 1u;
+    // Unused lanes hold empty boxes, which no ray enters: no mask needed.
+    const unsigned hits = intersectSlabs4(node.boxes, slabRay, 0.0f, tMax, &entry);
     // Push the children hit, farthest first, so that the nearest is popped next.
     const int first = top;
     for (int lane = 0; lane < 4; ++lane) {
