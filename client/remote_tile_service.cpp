@@ -34,7 +34,8 @@ RemoteTileService::RemoteTileService(const std::string& address, const proto::Sc
   const wire::Hello* hello = receive().body_as_Hello();
   if (!hello) fail("the server did not answer Hello");
   maxMessageBytes_ = std::min<std::size_t>(maxMessageBytes_, hello->max_message_bytes());
-  serverThreads_ = static_cast<int>(hello->threads());
+  constexpr std::uint32_t kMaxThreadsBelieved = 4096;  // sizes the request window, nothing more
+  serverThreads_ = static_cast<int>(std::min(hello->threads(), kMaxThreadsBelieved));
 
   hash_ = bundle.hash();
   send(proto::encodeSceneQuery(hash_));
@@ -85,6 +86,28 @@ const wire::Message& RemoteTileService::receive() {
   }
 }
 
+// The next result of frame `frameId`, checked: a tile that was requested
+// (below `requested`), not delivered before, with one RGB triple per masked
+// pixel. Anything else is a protocol error that ends the frame.
+const wire::TileResult& RemoteTileService::receiveResult(std::uint32_t frameId, std::size_t requested,
+                                                         std::span<const std::size_t> tileBytes,
+                                                         std::vector<bool>& delivered) {
+  const auto* result = receive().body_as_TileResult();
+  if (!result || result->frame_id() != frameId || result->tile_id() >= requested || delivered[result->tile_id()]) {
+    stream_->expect(0);
+    fail("sent an unexpected message during frame " + std::to_string(frameId));
+  }
+  const std::uint32_t tile = result->tile_id();
+  const std::size_t rgbBytes = result->rgb() ? result->rgb()->size() : 0;
+  if (rgbBytes != tileBytes[tile]) {
+    stream_->expect(0);
+    fail("tile " + std::to_string(tile) + " of frame " + std::to_string(frameId) + " came with " +
+         std::to_string(rgbBytes) + " bytes of pixels, not " + std::to_string(tileBytes[tile]));
+  }
+  delivered[tile] = true;
+  return *result;
+}
+
 void RemoteTileService::render(const FrameSettings& frame, std::span<const TileJob> jobs,
                                const std::function<void(std::size_t, TileOutput&&)>& done) {
   const std::uint32_t frameId = nextFrame_++;
@@ -99,6 +122,7 @@ void RemoteTileService::render(const FrameSettings& frame, std::span<const TileJ
   // at once.
   std::size_t owedBytes = 0;
   std::vector<std::size_t> tileBytes(jobs.size(), 0);  // of each requested tile
+  std::vector<bool> delivered(jobs.size(), false);     // a second result for a tile is a protocol error
   bool started = false;
   while (finished < jobs.size()) {
     // Tiles without a masked pixel are never sent; the others go out in
@@ -108,6 +132,7 @@ void RemoteTileService::render(const FrameSettings& frame, std::span<const TileJ
       const TileJob& job = jobs[next];
       tileBytes[next] = pixelBytes(job);
       if (!job.mask.empty() && tileBytes[next] == 0) {
+        delivered[next] = true;
         done(next++, TileOutput{});
         ++finished;
         continue;
@@ -121,18 +146,15 @@ void RemoteTileService::render(const FrameSettings& frame, std::span<const TileJ
     if (!batch.empty()) send(batch);
     if (outstanding == 0) continue;
     stream_->expect(started ? owedBytes : 0);
-    const auto* result = receive().body_as_TileResult();
-    if (!result || result->frame_id() != frameId || result->tile_id() >= jobs.size()) {
-      stream_->expect(0);
-      fail("sent an unexpected message during frame " + std::to_string(frameId));
-    }
+    const wire::TileResult& result = receiveResult(frameId, next, tileBytes, delivered);
+    const std::uint32_t tile = result.tile_id();
     started = true;
-    owedBytes -= std::min(owedBytes, tileBytes[result->tile_id()]);
+    owedBytes -= std::min(owedBytes, tileBytes[tile]);
     TileOutput out;
-    if (result->rgb()) out.rgb.assign(result->rgb()->begin(), result->rgb()->end());
-    out.rays = proto::decodeRays(result->rays());
-    out.computeMs = result->compute_us() / 1000.0;
-    done(result->tile_id(), std::move(out));
+    if (result.rgb()) out.rgb.assign(result.rgb()->begin(), result.rgb()->end());
+    out.rays = proto::decodeRays(result.rays());
+    out.computeMs = result.compute_us() / 1000.0;
+    done(tile, std::move(out));
     --outstanding;
     ++finished;
   }

@@ -43,6 +43,8 @@ class RemoteTileService : public TileService {
   // The next message from the server (valid until the next receive); an
   // Error from the server is thrown.
   const wire::Message& receive();
+  const wire::TileResult& receiveResult(std::uint32_t frameId, std::size_t requested,
+                                       std::span<const std::size_t> tileBytes, std::vector<bool>& delivered);
   [[noreturn]] void fail(const std::string& what) const;
 
   std::string address_;

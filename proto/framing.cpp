@@ -43,6 +43,12 @@ const wire::Message* verifyMessage(std::span<const std::uint8_t> body, std::stri
     *error = "message has no body";
     return nullptr;
   }
+  // The verifier accepts a union whose type is set and whose table is absent
+  // (a missing table is valid FlatBuffers); no receiver can use such a message.
+  if (!message->body()) {
+    *error = std::string("message names a ") + wire::EnumNameBody(message->body_type()) + " body but carries none";
+    return nullptr;
+  }
   return message;
 }
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "proto/messages.h"
+#include "tests/proto/hostile_frames.h"
 
 namespace glint::proto {
 namespace {
@@ -43,6 +44,18 @@ TEST(Framing, NotGlintAtAll) {
   const Decoded d = decodeFrame(bytesOf(junk), kDefaultMaxMessageBytes);
   EXPECT_EQ(d.status, DecodeStatus::kBad);
   EXPECT_NE(d.error.find("GLNT"), std::string::npos);
+}
+
+// A union type without its table verifies as FlatBuffers; glintd used to
+// dereference the missing body (issue 9). The frame is rejected here, so no
+// receiver ever sees it.
+TEST(Framing, BodyTypeWithoutBodyIsRejected) {
+  for (const wire::Body type : test::allBodyTypes()) {
+    const std::vector<std::uint8_t> frame = test::bodylessFrame(type);
+    const Decoded d = decodeFrame(bytesOf(frame), kDefaultMaxMessageBytes);
+    EXPECT_EQ(d.status, DecodeStatus::kBad) << wire::EnumNameBody(type);
+    EXPECT_NE(d.error.find("carries none"), std::string::npos) << d.error;
+  }
 }
 
 // Every truncation of a message (with its length fixed up to match) and

@@ -10,31 +10,14 @@
 #include <gtest/gtest.h>
 
 #include "proto/messages.h"
+#include "tests/proto/loopback_peer.h"
 
 namespace glint::proto {
 namespace {
 
+using test::Peer;
+
 using namespace std::chrono_literals;
-
-// A peer that accepts one connection and runs `script` on its socket.
-class Peer {
- public:
-  template <typename Script>
-  explicit Peer(Script script) : acceptor_(io_, asio::ip::tcp::endpoint(asio::ip::make_address("127.0.0.1"), 0)) {
-    thread_ = std::thread([this, script] {
-      asio::ip::tcp::socket socket(io_);
-      acceptor_.accept(socket);
-      script(socket);
-    });
-  }
-  ~Peer() { thread_.join(); }
-  asio::ip::tcp::endpoint endpoint() const { return acceptor_.local_endpoint(); }
-
- private:
-  asio::io_context io_;
-  asio::ip::tcp::acceptor acceptor_;
-  std::thread thread_;
-};
 
 std::vector<std::uint8_t> result(std::uint32_t tile, std::size_t pixelBytes) {
   return encodeTileResult(7, tile, std::vector<std::uint8_t>(pixelBytes, static_cast<std::uint8_t>(tile)), {}, 1);

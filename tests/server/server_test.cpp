@@ -2,11 +2,9 @@
 // clients, and every kind of bad input followed by a good client that is
 // still served.
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 
 #include <chrono>
-#include <cstdio>
 #include <future>
 #include <random>
 #include <thread>
@@ -21,11 +19,13 @@
 #include "server/log.h"
 #include "server/background_server.h"
 #include "tests/common/test_support.h"
-
-extern char** environ;
+#include "tests/server/glintd_process.h"
+#include "tests/server/raw_client.h"
 
 namespace glint::server {
 namespace {
+
+using test::RawClient;
 
 using namespace std::chrono_literals;
 
@@ -52,7 +52,7 @@ struct RoomFrame {
 };
 
 RoomFrame smallRoom(const char* scene = "scenes/room.json") {
-  RoomFrame r{proto::loadSceneBundle(test::sourcePath(scene)), {}};
+  RoomFrame r{proto::loadSceneBundle(glint::test::sourcePath(scene)), {}};
   r.frame = r.loaded.scene.frame();
   r.frame.width = 96;
   r.frame.height = 72;
@@ -70,51 +70,6 @@ FrameImage remoteImage(const std::string& address, const RoomFrame& r) {
   RemoteTileService service(address, r.loaded.bundle);
   return renderFrame(service, r.frame, {}).image;
 }
-
-// A raw connection for sending bytes that a real client never would.
-class RawClient {
- public:
-  explicit RawClient(std::uint16_t port) : stream_({asio::ip::make_address("127.0.0.1"), port}, 3s) {}
-  void write(const std::vector<std::uint8_t>& bytes) {
-    try {
-      stream_.send(bytes);
-    } catch (const proto::StreamError&) {
-      // The server may already have closed: what it said is read next.
-    }
-  }
-  void write(const std::string& text) { write(std::vector<std::uint8_t>(text.begin(), text.end())); }
-  // The next message, or nullptr once the server closed the connection or
-  // three seconds passed.
-  const wire::Message* read() {
-    try {
-      return &stream_.receive();
-    } catch (const proto::StreamError&) {
-      return nullptr;
-    }
-  }
-  // The next message must be an Error; returns its code and text.
-  std::pair<wire::ErrorCode, std::string> readError() {
-    const wire::Message* m = read();
-    const auto* e = m ? m->body_as_Error() : nullptr;
-    if (!e) return {wire::ErrorCode::Internal, m ? "(not an error)" : "(no message)"};
-    return {e->code(), e->message() ? e->message()->str() : ""};
-  }
-  // True when the server closes the connection within three seconds.
-  bool closed() {
-    try {
-      while (true) stream_.receive();
-    } catch (const proto::StreamError& e) {
-      return e.kind() == proto::StreamError::Kind::kClosed;
-    }
-  }
-  void hello() {
-    write(proto::encodeHello(1 << 20, 0, "raw"));
-    ASSERT_TRUE(read());
-  }
-
- private:
-  proto::MessageStream stream_;
-};
 
 class ServerTest : public ::testing::Test {
  protected:
@@ -251,7 +206,7 @@ TEST_F(ServerTest, BadInputNeverStopsTheServer) {
   {  // Messages a server does not take, and references to unknown things:
      // errors, and the connection goes on.
     RawClient c(server.port());
-    c.hello();
+    ASSERT_TRUE(c.hello());
     c.write(proto::encodeTileResult(1, 1, {}, {}, 0));
     EXPECT_EQ(c.readError().first, wire::ErrorCode::UnknownMessage);
     c.write(proto::encodeTileRequest(7, 1, {0, 0, 8, 8}, {}));
@@ -311,7 +266,7 @@ TEST_F(ServerTest, ClientThatStopsReadingIsDropped) {
   const RoomFrame r = smallRoom();
   const proto::SceneHash hash = r.loaded.bundle.hash();
   RawClient c(server.port());
-  c.hello();
+  ASSERT_TRUE(c.hello());
   c.write(proto::encodeSceneQuery(hash));
   ASSERT_TRUE(c.read());
   c.write(proto::encodeSceneUpload(hash, r.loaded.bundle));
@@ -333,48 +288,25 @@ TEST_F(ServerTest, ClientThatStopsReadingIsDropped) {
 // SIGTERM during a frame: the real glintd stops accepting, cancels queued
 // tiles, closes connections and exits 0; the client gets an error, not a hang.
 TEST_F(ServerTest, SigtermDuringAFrame) {
-  int out[2];
-  ASSERT_EQ(pipe(out), 0);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, out[1], 1);
-  posix_spawn_file_actions_addclose(&actions, out[0]);
-  const char* argv[] = {GLINTD_BIN, "--listen", "127.0.0.1:0", "--threads", "2", "--quiet", nullptr};
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, GLINTD_BIN, &actions, nullptr, const_cast<char**>(argv), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  ASSERT_EQ(spawned, 0);
-  close(out[1]);
-  FILE* stdoutOfServer = fdopen(out[0], "r");
-  char line[256] = {};
-  ASSERT_TRUE(std::fgets(line, sizeof line, stdoutOfServer));
-  unsigned port = 0;
-  ASSERT_EQ(std::sscanf(line, "glintd: listening on 127.0.0.1:%u", &port), 1) << line;
-
+  test::GlintdProcess glintd({"--threads", "2"});
   RoomFrame r = smallRoom();
   r.frame.width = 640;
   r.frame.height = 480;
   r.frame.sampling.samples = 64;
   auto render = std::async(std::launch::async, [&] {
     try {
-      remoteImage("127.0.0.1:" + std::to_string(port), r);
+      remoteImage(glintd.address(), r);
       return std::string("finished");
     } catch (const InputError& e) {
       return std::string(e.what());
     }
   });
   std::this_thread::sleep_for(500ms);
-  kill(pid, SIGTERM);
-  int status = 0;
-  const auto start = std::chrono::steady_clock::now();
-  while (waitpid(pid, &status, WNOHANG) == 0 && std::chrono::steady_clock::now() - start < 10s) {
-    std::this_thread::sleep_for(20ms);
-  }
-  ASSERT_TRUE(WIFEXITED(status)) << "glintd did not exit after SIGTERM";
+  const int status = glintd.stop(SIGTERM);
+  ASSERT_TRUE(status >= 0 && WIFEXITED(status)) << "glintd did not exit after SIGTERM";
   EXPECT_EQ(WEXITSTATUS(status), 0);
   ASSERT_EQ(render.wait_for(10s), std::future_status::ready);
   EXPECT_NE(render.get().find("server 127.0.0.1:"), std::string::npos);
-  std::fclose(stdoutOfServer);
 }
 
 }  // namespace

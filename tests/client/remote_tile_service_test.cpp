@@ -1,0 +1,108 @@
+// The client's remote tile service against a peer that breaks the protocol:
+// every server message is checked before use, and a bad one ends the frame
+// with an error that names the server, never a crash or a wrong image.
+#include "client/remote_tile_service.h"
+
+#include <gtest/gtest.h>
+
+#include "common/error.h"
+#include "proto/messages.h"
+#include "tests/proto/hostile_frames.h"
+#include "tests/proto/loopback_peer.h"
+
+namespace glint {
+namespace {
+
+using proto::test::Peer;
+using proto::test::readFrame;
+
+const proto::SceneBundle kBundle{"{}", {}};
+
+FrameSettings smallFrame() {
+  FrameSettings f;
+  f.width = 16;
+  f.height = 8;
+  return f;
+}
+
+// Two 8x8 tiles, every pixel traced.
+std::vector<TileJob> twoTiles() { return {{{0, 0, 8, 8}, {}}, {{8, 0, 8, 8}, {}}}; }
+
+void send(asio::ip::tcp::socket& socket, const std::vector<std::uint8_t>& frame) {
+  asio::error_code ignored;
+  asio::write(socket, asio::buffer(frame), ignored);
+}
+
+// A server that greets, holds the scene, reads the frame's setup and its two
+// tile requests, then answers with `results` and waits for the client to go.
+Peer scriptedServer(std::vector<std::vector<std::uint8_t>> results) {
+  return Peer([results](asio::ip::tcp::socket& socket) {
+    readFrame(socket);  // Hello
+    send(socket, proto::encodeHello(1 << 20, 1, "fake"));
+    readFrame(socket);  // SceneQuery
+    send(socket, proto::encodeSceneStatus(kBundle.hash(), true));
+    for (int i = 0; i < 3; ++i) readFrame(socket);  // FrameSetup, two TileRequests
+    for (const auto& r : results) send(socket, r);
+    while (!readFrame(socket).empty()) {
+    }
+  });
+}
+
+std::string renderError(Peer& peer) {
+  RemoteTileService service(peer.endpoint().address().to_string() + ":" + std::to_string(peer.endpoint().port()),
+                            kBundle, std::chrono::seconds(3));
+  int calls = 0;
+  try {
+    service.render(smallFrame(), twoTiles(), [&](std::size_t, TileOutput&&) { ++calls; });
+  } catch (const InputError& e) {
+    EXPECT_LE(calls, 1);
+    return e.what();
+  }
+  return "(no error)";
+}
+
+std::vector<std::uint8_t> pixels(std::size_t n) { return std::vector<std::uint8_t>(n, 7); }
+
+TEST(RemoteTileService, ResultWithTheWrongNumberOfPixelsIsRefused) {
+  Peer peer = scriptedServer({proto::encodeTileResult(1, 0, pixels(5), {}, 0)});
+  const std::string error = renderError(peer);
+  EXPECT_NE(error.find("tile 0 of frame 1 came with 5 bytes of pixels, not 192"), std::string::npos) << error;
+}
+
+TEST(RemoteTileService, SecondResultForATileIsRefused) {
+  const auto first = proto::encodeTileResult(1, 0, pixels(192), {}, 0);
+  Peer peer = scriptedServer({first, first});
+  const std::string error = renderError(peer);
+  EXPECT_NE(error.find("sent an unexpected message during frame 1"), std::string::npos) << error;
+}
+
+TEST(RemoteTileService, ResultForATileNeverRequestedIsRefused) {
+  Peer peer = scriptedServer({proto::encodeTileResult(1, 9, pixels(192), {}, 0)});
+  const std::string error = renderError(peer);
+  EXPECT_NE(error.find("unexpected message"), std::string::npos) << error;
+}
+
+TEST(RemoteTileService, ResultWithoutABodyIsRefused) {
+  Peer peer = scriptedServer({proto::test::bodylessFrame(wire::Body::TileResult)});
+  const std::string error = renderError(peer);
+  EXPECT_NE(error.find("carries none"), std::string::npos) << error;
+}
+
+TEST(RemoteTileService, HelloWithoutABodyIsRefused) {
+  Peer peer([](asio::ip::tcp::socket& socket) {
+    readFrame(socket);
+    send(socket, proto::test::bodylessFrame(wire::Body::Hello));
+    while (!readFrame(socket).empty()) {
+    }
+  });
+  const std::string address = "127.0.0.1:" + std::to_string(peer.endpoint().port());
+  try {
+    RemoteTileService service(address, kBundle, std::chrono::seconds(3));
+    FAIL() << "a bodyless Hello was taken";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("server " + address), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace glint

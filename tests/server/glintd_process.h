@@ -1,0 +1,45 @@
+#pragma once
+
+#include <sys/types.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace glint::server::test {
+
+// A real glintd process listening on a free loopback port, for tests that
+// must see what a remote client can do to the server process itself (a crash,
+// its memory). Killed, if still running, when the object goes away.
+class GlintdProcess {
+ public:
+  // Starts glintd with `--listen 127.0.0.1:0 --quiet` and `args`, and waits
+  // for its "listening on" line.
+  explicit GlintdProcess(const std::vector<std::string>& args = {});
+  ~GlintdProcess();
+  GlintdProcess(const GlintdProcess&) = delete;
+  GlintdProcess& operator=(const GlintdProcess&) = delete;
+
+  pid_t pid() const { return pid_; }
+  std::uint16_t port() const { return port_; }
+  std::string address() const { return "127.0.0.1:" + std::to_string(port_); }
+  // True while the process has not exited.
+  bool running();
+  // Resident memory now and at its peak, in KiB (/proc/PID/status VmRSS, VmHWM).
+  long residentKb() const { return statusKb("VmRSS:"); }
+  long peakResidentKb() const { return statusKb("VmHWM:"); }
+  // Open file descriptors (/proc/PID/fd).
+  int openDescriptors() const;
+  // Sends `signal` and waits up to 10 s for the exit; the wait status
+  // (WIFEXITED ...), or -1 when it had to be killed.
+  int stop(int signal);
+
+ private:
+  long statusKb(const char* field) const;
+
+  pid_t pid_ = 0;
+  std::uint16_t port_ = 0;
+  int status_ = -1;  // set once reaped
+};
+
+}  // namespace glint::server::test
