@@ -11,6 +11,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr std::size_t kMaxFramesPerClient = 16;  // older frames are forgotten
+constexpr std::size_t kReadChunkBytes = 64 * 1024;  // a message buffer's first size, and what an idle one keeps
 
 double msSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -29,11 +30,6 @@ Connection::Connection(asio::ip::tcp::socket socket, ServerContext& context, std
 void Connection::start() {
   logLine(peer_ + ": connected");
   readHeader();
-}
-
-void Connection::refuse(wire::ErrorCode code, const std::string& message) {
-  logLine(peer_ + ": refused: " + message);
-  fail(code, message);
 }
 
 void Connection::armTimer(std::chrono::milliseconds timeout, const char* what) {
@@ -72,10 +68,12 @@ void Connection::readHeader() {
                        return;
                      }
                      const std::uint32_t length = proto::frameLength(self->header_);
-                     if (length > self->context_.options.maxMessageBytes) {
+                     const std::size_t limit = self->greeted_ ? self->context_.options.maxMessageBytes
+                                                              : ServerOptions::kMaxHandshakeMessageBytes;
+                     if (length > limit) {
                        self->fail(wire::ErrorCode::TooLarge,
                                   "message of " + std::to_string(length) + " bytes is over the limit of " +
-                                      std::to_string(self->context_.options.maxMessageBytes) +
+                                      std::to_string(limit) + (self->greeted_ ? "" : " before Hello") +
                                       " (is this a Glint client?)");
                        return;
                      }
@@ -86,26 +84,46 @@ void Connection::readHeader() {
 void Connection::readBody(std::uint32_t length) {
   midMessage_ = true;
   armTimer(context_.options.readTimeout, "read");
-  body_.resize(length);  // bounded by maxMessageBytes, checked above
-  asio::async_read(socket_, asio::buffer(body_), [self = shared_from_this()](const asio::error_code& error, std::size_t) {
-    if (error) {
-      self->close(error == asio::error::eof ? "disconnected mid-message" : error.message());
-      return;
-    }
-    self->midMessage_ = false;
-    std::string problem;
-    const wire::Message* message = proto::verifyMessage(self->body_, &problem);
-    if (!message) {
-      self->fail(wire::ErrorCode::Malformed, problem);
-      return;
-    }
-    try {
-      self->handle(*message);
-    } catch (const InputError& e) {
-      self->sendError(wire::ErrorCode::Malformed, e.what());
-    }
-    self->readHeader();
-  });
+  body_.clear();
+  readMore(length);
+}
+
+// Memory follows the bytes that arrive, not the length a header announces:
+// the buffer grows by at most what it already holds (kReadChunkBytes to
+// start), so a peer that announces 64 MiB and sends 4 bytes costs 64 KiB.
+void Connection::readMore(std::uint32_t length) {
+  const std::size_t have = body_.size();
+  const std::size_t step = std::min<std::size_t>(length - have, std::max(kReadChunkBytes, have));
+  body_.resize(have + step);
+  asio::async_read(socket_, asio::buffer(body_.data() + have, step),
+                   [self = shared_from_this(), length](const asio::error_code& error, std::size_t) {
+                     if (error) {
+                       self->close(error == asio::error::eof ? "disconnected mid-message" : error.message());
+                     } else if (self->body_.size() < length) {
+                       self->readMore(length);
+                     } else {
+                       self->onBody();
+                     }
+                   });
+}
+
+void Connection::onBody() {
+  midMessage_ = false;
+  std::string problem;
+  const wire::Message* message = proto::verifyMessage(body_, &problem);
+  if (!message) {
+    fail(wire::ErrorCode::Malformed, problem);
+    return;
+  }
+  try {
+    handle(*message);
+  } catch (const InputError& e) {
+    sendError(wire::ErrorCode::Malformed, e.what());
+  }
+  // What a message needs is copied out by its handler: a large buffer is not
+  // kept for an idle connection.
+  if (body_.capacity() > kReadChunkBytes) std::vector<std::uint8_t>().swap(body_);
+  readHeader();
 }
 
 void Connection::handle(const wire::Message& m) {
@@ -140,6 +158,11 @@ void Connection::onHello(const wire::Hello& hello) {
     fail(wire::ErrorCode::Version, "protocol version " + std::to_string(hello.protocol_version()) +
                                        " is not spoken here (this server speaks " +
                                        std::to_string(proto::kProtocolVersion) + ")");
+    return;
+  }
+  if (!context_.registry.admit(id_)) {
+    fail(wire::ErrorCode::Busy, "the server has its maximum of " + std::to_string(context_.registry.maxClients()) +
+                                    " clients; try later");
     return;
   }
   greeted_ = true;
@@ -325,6 +348,7 @@ void Connection::writeNext() {
 void Connection::close(const std::string& why) {
   if (closed_) return;
   closed_ = true;
+  context_.registry.remove(id_);
   const std::size_t dropped = context_.scheduler.cancel(id_);
   pending_ -= static_cast<int>(dropped);
   asio::error_code ignored;

@@ -27,8 +27,6 @@ class Connection : public std::enable_shared_from_this<Connection> {
   Connection(asio::ip::tcp::socket socket, ServerContext& context, std::uint64_t id);
 
   void start();
-  // Sends one Error and closes (no reading): a refused connection.
-  void refuse(wire::ErrorCode code, const std::string& message);
   // Cancels queued work and closes the socket; safe to call twice.
   void close(const std::string& why);
 
@@ -41,6 +39,8 @@ class Connection : public std::enable_shared_from_this<Connection> {
 
   void readHeader();
   void readBody(std::uint32_t length);
+  void readMore(std::uint32_t length);
+  void onBody();
   void armTimer(std::chrono::milliseconds timeout, const char* what);
   void onTimer(const char* what);
   void handle(const wire::Message& message);

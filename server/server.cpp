@@ -11,8 +11,10 @@ Server::Server(const ServerOptions& options)
     : options_(options),
       cache_(options.cacheBytes),
       scheduler_(resolveThreadCount(options.threads)),
-      context_{io_, scheduler_, cache_, options_},
+      registry_(static_cast<std::size_t>(options.maxClients), static_cast<std::size_t>(options.maxWaiting)),
+      context_{io_, scheduler_, cache_, registry_, options_},
       acceptor_(io_),
+      acceptRetry_(io_),
       signals_(io_) {
   const asio::ip::tcp::endpoint endpoint = proto::parseEndpoint(options_.listen, "--listen");
   asio::error_code ec;
@@ -38,22 +40,23 @@ Server::~Server() { io_.stop(); }
 
 void Server::accept() {
   acceptor_.async_accept([this](const asio::error_code& error, asio::ip::tcp::socket socket) {
-    if (error) {
-      if (error != asio::error::operation_aborted) logLine("accept failed: " + error.message());
-      if (acceptor_.is_open()) accept();
-      return;
-    }
-    std::erase_if(connections_, [](const auto& entry) { return entry.second.expired(); });
+    if (error == asio::error::operation_aborted) return;  // stopping
+    if (error) return acceptLater(error);
     const std::uint64_t id = nextId_++;
     auto connection = std::make_shared<Connection>(std::move(socket), context_, id);
-    if (static_cast<int>(connections_.size()) >= options_.maxClients) {
-      connection->refuse(wire::ErrorCode::Busy, "the server has its maximum of " +
-                                                    std::to_string(options_.maxClients) + " clients; try later");
-    } else {
-      connections_[id] = connection;
-      connection->start();
-    }
+    registry_.addWaiting(id, connection);
+    connection->start();
     accept();
+  });
+}
+
+void Server::acceptLater(const asio::error_code& error) {
+  logLine("accept failed: " + error.message());
+  if (!acceptor_.is_open()) return;
+  if (error == asio::error::no_descriptors) registry_.dropOldestWaiting("dropped: the server is out of descriptors");
+  acceptRetry_.expires_after(std::chrono::milliseconds(50));
+  acceptRetry_.async_wait([this](const asio::error_code& e) {
+    if (!e) accept();
   });
 }
 
@@ -64,10 +67,8 @@ void Server::stop() {
     asio::error_code ignored;
     acceptor_.close(ignored);
     signals_.cancel(ignored);
-    for (auto& [id, weak] : connections_) {
-      if (const auto connection = weak.lock()) connection->close("server shutting down");
-    }
-    connections_.clear();
+    acceptRetry_.cancel();
+    registry_.closeAll("server shutting down");
     io_.stop();
   });
 }

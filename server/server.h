@@ -1,11 +1,11 @@
 #pragma once
 
 #include <cstdint>
-#include <map>
 #include <memory>
 
 #include <asio.hpp>
 
+#include "server/connection_registry.h"
 #include "server/scene_cache.h"
 #include "server/server_options.h"
 #include "server/tile_scheduler.h"
@@ -19,6 +19,7 @@ struct ServerContext {
   asio::io_context& io;
   TileScheduler& scheduler;
   SceneCache& cache;
+  ConnectionRegistry& registry;
   const ServerOptions& options;
 };
 
@@ -42,17 +43,20 @@ class Server {
 
  private:
   void accept();
+  // Accepting failed for want of resources (EMFILE): make room, try again soon.
+  void acceptLater(const asio::error_code& error);
 
   ServerOptions options_;
   asio::io_context io_;
   SceneCache cache_;
   TileScheduler scheduler_;
+  ConnectionRegistry registry_;
   ServerContext context_;
   asio::ip::tcp::acceptor acceptor_;
+  asio::steady_timer acceptRetry_;
   asio::signal_set signals_;
   std::uint16_t port_ = 0;
   std::uint64_t nextId_ = 1;
-  std::map<std::uint64_t, std::weak_ptr<Connection>> connections_;
 };
 
 }  // namespace glint::server

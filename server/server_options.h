@@ -13,10 +13,17 @@ struct ServerOptions {
   std::string listen = "127.0.0.1:7878";  // loopback unless the user says otherwise
   int threads = 0;                         // tracing threads; 0 = one per hardware thread
   std::size_t maxMessageBytes = proto::kDefaultMaxMessageBytes;
+  // Before Hello a peer is a stranger: its messages (a Hello is under 100
+  // bytes) may be no larger than this.
+  static constexpr std::size_t kMaxHandshakeMessageBytes = 4096;
   std::size_t cacheBytes = std::size_t{1} << 30;
-  int maxClients = 64;
-  // A client must say Hello within this, and finish a message it started.
-  std::chrono::milliseconds handshakeTimeout{10'000};
+  int maxClients = 64;  // clients that said Hello
+  // Connections that have not said Hello yet: a pool of their own, oldest
+  // dropped first when full, so that silent connections never lock out clients.
+  int maxWaiting = 512;
+  // A connection must say Hello within this; a message started must be
+  // finished within readTimeout.
+  std::chrono::milliseconds handshakeTimeout{5'000};
   std::chrono::milliseconds readTimeout{30'000};
   // A connection with nothing to read, write or compute is closed after this.
   std::chrono::milliseconds idleTimeout{300'000};

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 
 #include <chrono>
+#include <memory>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -55,6 +56,61 @@ TEST(HostileClient, MessagesWithoutABodyDoNotCrashTheServer) {
     }
   }
   EXPECT_EQ(renderRoom(glintd.address()).width, 48);
+}
+
+// A length header is a promise, not bytes: glintd used to allocate (and zero)
+// the announced length at once, so 64 headers of 4 bytes cost it 3 GiB.
+TEST(HostileClient, AnnouncedLengthsCostOnlyTheBytesThatArrive) {
+  GlintdProcess glintd;
+  const std::vector<std::uint8_t> announce48MiB = {0, 0, 0, 3};
+  {  // Before Hello a stranger may not even announce it.
+    RawClient c(glintd.port());
+    c.write(announce48MiB);
+    const auto [code, text] = c.readError();
+    EXPECT_EQ(code, wire::ErrorCode::TooLarge);
+    EXPECT_NE(text.find("over the limit of 4096 before Hello"), std::string::npos) << text;
+  }
+  // Clients that said Hello announce 48 MiB each and send 1 KiB of it.
+  const long before = glintd.peakResidentKb();
+  std::vector<std::unique_ptr<RawClient>> clients;
+  for (int i = 0; i < 16; ++i) {
+    clients.push_back(std::make_unique<RawClient>(glintd.port()));
+    ASSERT_TRUE(clients.back()->hello());
+    std::vector<std::uint8_t> partial = announce48MiB;
+    partial.resize(4 + 1024, 0x55);
+    clients.back()->write(partial);
+  }
+  std::this_thread::sleep_for(300ms);
+  ASSERT_TRUE(glintd.running());
+  const long grownKb = glintd.peakResidentKb() - before;
+  EXPECT_LT(grownKb, 16 * 1024) << "16 announced messages of 48 MiB (1 KiB sent) grew glintd's peak by " << grownKb
+                                << " KiB";
+  clients.clear();
+  EXPECT_EQ(renderRoom(glintd.address()).width, 48);
+}
+
+// Connections that never speak used to fill --max-clients for the length of
+// the read timeout, and every real client got Busy. They now wait in a pool
+// of their own, oldest dropped first, and do not count as clients.
+TEST(HostileClient, SilentConnectionsDoNotLockOutClients) {
+  GlintdProcess glintd({"--max-clients", "2", "--max-waiting", "16"});
+  std::vector<std::unique_ptr<RawClient>> silent;
+  for (int i = 0; i < 40; ++i) silent.push_back(std::make_unique<RawClient>(glintd.port()));
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_EQ(renderRoom(glintd.address()).width, 48);
+  EXPECT_LT(std::chrono::steady_clock::now() - start, 5s);
+  EXPECT_TRUE(silent.front()->closed()) << "the oldest silent connection was not dropped";
+}
+
+TEST(HostileClient, ClientsOverTheLimitGetBusyAtHello) {
+  GlintdProcess glintd({"--max-clients", "1"});
+  RawClient first(glintd.port());
+  ASSERT_TRUE(first.hello());
+  RawClient second(glintd.port());
+  second.write(proto::encodeHello(1 << 20, 0, "second"));
+  const auto [code, text] = second.readError();
+  EXPECT_EQ(code, wire::ErrorCode::Busy);
+  EXPECT_NE(text.find("maximum of 1 clients"), std::string::npos) << text;
 }
 
 }  // namespace

@@ -1,0 +1,47 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+
+namespace glint::server {
+
+class Connection;
+
+// Who is connected, in two pools: connections that have not said Hello yet
+// (a larger pool, oldest dropped first when it is full, so that silent
+// connections can never lock real clients out) and clients that have (at
+// most maxClients; more get Busy at their Hello). Lives on the I/O thread.
+class ConnectionRegistry {
+ public:
+  ConnectionRegistry(std::size_t maxClients, std::size_t maxWaiting)
+      : maxClients_(maxClients), maxWaiting_(maxWaiting) {}
+
+  // A new connection waits for its Hello; when the waiting pool is full, the
+  // oldest waiting connection is closed to make room.
+  void addWaiting(std::uint64_t id, const std::shared_ptr<Connection>& connection);
+  // Moves a connection that said Hello to the clients; false when the server
+  // already has maxClients clients (the connection stays where it was).
+  bool admit(std::uint64_t id);
+  // Forgets a connection that closed.
+  void remove(std::uint64_t id);
+  // Closes the oldest waiting connection; false when none waits.
+  bool dropOldestWaiting(const std::string& why);
+  // Closes every connection.
+  void closeAll(const std::string& why);
+
+  std::size_t clients() const { return clients_.size(); }
+  std::size_t waiting() const { return waiting_.size(); }
+  std::size_t maxClients() const { return maxClients_; }
+
+ private:
+  using Pool = std::map<std::uint64_t, std::weak_ptr<Connection>>;  // by id: accept order
+  std::size_t maxClients_;
+  std::size_t maxWaiting_;
+  Pool waiting_;
+  Pool clients_;
+};
+
+}  // namespace glint::server
