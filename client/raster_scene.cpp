@@ -125,9 +125,11 @@ void RasterScene::uploadTextures() {
   int row = 0;
   for (const Texture& t : scene_.textures) {
     if (t.type != TextureType::kImage) continue;
-    for (int y = 0; y < t.image->height; ++y) {
-      std::copy_n(&t.image->texels[static_cast<std::size_t>(y * t.image->width)], t.image->width,
-                  &texels[static_cast<std::size_t>((row + y) * width)]);
+    for (std::size_t y = 0; y < static_cast<std::size_t>(t.image->height); ++y) {
+      const std::size_t w = static_cast<std::size_t>(t.image->width);
+      for (std::size_t x = 0; x < w; ++x) {
+        texels[(static_cast<std::size_t>(row) + y) * static_cast<std::size_t>(width) + x] = t.image->texel(y * w + x);
+      }
     }
     row += t.image->height;
   }

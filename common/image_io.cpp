@@ -36,12 +36,7 @@ Image decodeImage(std::string_view bytes, const std::string& place, std::size_t 
   Image image;
   image.width = w;
   image.height = h;
-  const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
-  image.texels.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    image.texels[i] = glm::vec3(pixels.get()[3 * i], pixels.get()[3 * i + 1], pixels.get()[3 * i + 2]) /
-                      255.0f;
-  }
+  image.rgb.assign(pixels.get(), pixels.get() + static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3);
   return image;
 }
 

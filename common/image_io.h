@@ -10,7 +10,7 @@
 
 namespace glint {
 
-// Decodes a PNG or 24-bit BMP held in memory into RGB floats (byte / 255).
+// Decodes a PNG or 24-bit BMP held in memory into 8-bit RGB texels.
 // Images wider or taller than their data, corrupt, or over maxPixels are
 // rejected with an InputError that starts with `place`.
 Image decodeImage(std::string_view bytes, const std::string& place, std::size_t maxPixels);

@@ -15,10 +15,18 @@ float wrap(float x) {
 
 int wrapIndex(int i, int n) { return ((i % n) + n) % n; }
 
-const glm::vec3& texel(const Image& image, int x, int y) {
-  return image.texels[static_cast<std::size_t>(wrapIndex(y, image.height)) *
-                          static_cast<std::size_t>(image.width) +
-                      static_cast<std::size_t>(wrapIndex(x, image.width))];
+// byte / 255 for every byte, computed once.
+struct UnitTable {
+  float value[256];
+  constexpr UnitTable() : value() {
+    for (int i = 0; i < 256; ++i) value[i] = static_cast<float>(i) / 255.0f;
+  }
+};
+constexpr UnitTable kUnit;
+
+glm::vec3 texel(const Image& image, int x, int y) {
+  return image.texel(static_cast<std::size_t>(wrapIndex(y, image.height)) * static_cast<std::size_t>(image.width) +
+                     static_cast<std::size_t>(wrapIndex(x, image.width)));
 }
 
 // u runs to the right and v up, so v = 1 is the top row (row 0).
@@ -44,6 +52,11 @@ glm::vec3 lookup(const Image& image, ImageFilter filter, const glm::vec2& uv) {
 }
 
 }  // namespace
+
+glm::vec3 Image::texel(std::size_t index) const {
+  const std::uint8_t* t = &rgb[3 * index];
+  return {kUnit.value[t[0]], kUnit.value[t[1]], kUnit.value[t[2]]};
+}
 
 int checkerIndex(const glm::vec2& uv, float scale) {
   const double u = std::floor(double(uv.x) * scale);

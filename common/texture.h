@@ -1,5 +1,7 @@
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -8,11 +10,14 @@
 
 namespace glint {
 
-// Decoded texture image: RGB texels as floats in [0, 1], row 0 at the top.
+// Decoded texture image: 8-bit RGB texels as the file held them (3 bytes a
+// texel, a quarter of floats), row 0 at the top. A texel reads as byte / 255.
 struct Image {
   int width = 0;
   int height = 0;
-  std::vector<glm::vec3> texels;
+  std::vector<std::uint8_t> rgb;  // width * height * 3
+
+  glm::vec3 texel(std::size_t index) const;
 };
 
 enum class TextureType { kSolid, kChecker, kImage };

@@ -10,7 +10,7 @@ std::size_t memoryFootprint(const PreparedScene& p) {
                       g.spheres().size() * sizeof(Sphere) +
                       p.bvh().nodes().size() * sizeof(BvhNode) + p.bvh().primIds().size() * sizeof(std::uint32_t);
   for (const Texture& t : s.textures) {
-    if (t.image) bytes += t.image->texels.size() * sizeof(glm::vec3);
+    if (t.image) bytes += t.image->rgb.size();
   }
   return bytes + 4096;
 }

@@ -21,7 +21,7 @@ TEST(Texture, ImageUvRunsRightAndUp) {
   image->width = 2;
   image->height = 2;
   // Row 0 is the top of the image.
-  image->texels = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+  image->rgb = {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255};
   Texture t;
   t.type = TextureType::kImage;
   t.image = image;
