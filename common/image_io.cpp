@@ -14,7 +14,8 @@
 
 namespace glint {
 
-Image decodeImage(std::string_view bytes, const std::string& place, std::size_t maxPixels) {
+Image decodeImage(std::string_view bytes, const std::string& place, SceneBudget& budget) {
+  const std::size_t maxPixels = budget.limits().maxTexturePixels;
   if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
     throw InputError(place + ": image file is too large");
   }
@@ -28,6 +29,7 @@ Image decodeImage(std::string_view bytes, const std::string& place, std::size_t 
     throw InputError(place + ": image of " + std::to_string(w) + "x" + std::to_string(h) +
                      " pixels is over the limit of " + std::to_string(maxPixels) + " pixels");
   }
+  budget.chargeImage(w, h, place);
   std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load_from_memory(data, size, &w, &h, &channels, 3),
                                                    stbi_image_free);
   if (!pixels) {

@@ -6,14 +6,17 @@
 #include <string_view>
 
 #include "common/frame.h"
+#include "common/scene_budget.h"
 #include "common/texture.h"
 
 namespace glint {
 
-// Decodes a PNG or 24-bit BMP held in memory into 8-bit RGB texels.
-// Images wider or taller than their data, corrupt, or over maxPixels are
-// rejected with an InputError that starts with `place`.
-Image decodeImage(std::string_view bytes, const std::string& place, std::size_t maxPixels);
+// Decodes a PNG or 24-bit BMP held in memory into 8-bit RGB texels. The size
+// its header gives is checked against the texture limit and charged to the
+// budget before anything is decoded. Images wider or taller than their data,
+// corrupt, or over a limit are rejected with an InputError that starts with
+// `place`.
+Image decodeImage(std::string_view bytes, const std::string& place, SceneBudget& budget);
 
 // Encodes the frame as PNG and writes it atomically: to a temporary file
 // beside `path`, renamed over it only once complete, so a failed or

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 #include "common/error.h"
 
@@ -23,7 +24,74 @@ std::string format(double x) {
   return s.str();
 }
 
+// Follows the parser through the document so that an error the parser finds
+// in a value can name the value's path, as JsonReader would.
+class PathTracker {
+ public:
+  bool event(nlohmann::json::parse_event_t event, const nlohmann::json& parsed) {
+    using Event = nlohmann::json::parse_event_t;
+    switch (event) {
+      case Event::object_start:
+      case Event::array_start:
+        levels_.push_back({event == Event::array_start, "", 0});
+        break;
+      case Event::key:
+        levels_.back().key = parsed.get<std::string>();
+        break;
+      case Event::object_end:
+      case Event::array_end:
+        levels_.pop_back();
+        nextElement();
+        break;
+      case Event::value:
+        nextElement();
+        break;
+    }
+    return true;
+  }
+
+  // The path of the value being parsed: "objects[0].radius".
+  std::string path() const {
+    std::string out;
+    for (const Level& l : levels_) {
+      out += l.array ? "[" + std::to_string(l.index) + "]" : (out.empty() ? "" : ".") + l.key;
+    }
+    return out.empty() ? "(top level)" : out;
+  }
+
+ private:
+  struct Level {
+    bool array;
+    std::string key;    // objects: the key being read
+    std::size_t index;  // arrays: the element being read
+  };
+  void nextElement() {
+    if (!levels_.empty() && levels_.back().array) ++levels_.back().index;
+  }
+  std::vector<Level> levels_;
+};
+
 }  // namespace
+
+nlohmann::json parseJson(std::string_view text) {
+  PathTracker tracker;
+  try {
+    return nlohmann::json::parse(text, [&tracker](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+      return tracker.event(event, parsed);
+    });
+  } catch (const nlohmann::json::parse_error& e) {
+    // e.what() reads "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
+    const std::string what = e.what();
+    const auto at = what.find("parse error");
+    throw InputError("not valid JSON: " + (at == std::string::npos ? what : what.substr(at)));
+  } catch (const nlohmann::json::exception& e) {
+    // "[json.exception.out_of_range.406] number overflow parsing '1e999'"
+    const std::string what = e.what();
+    const auto at = what.find("] ");
+    throw InputError(tracker.path() + ": " + (at == std::string::npos ? what : what.substr(at + 2)) +
+                     " (out of range)");
+  }
+}
 
 JsonReader::JsonReader(const nlohmann::json& value, std::string path)
     : value_(value), path_(std::move(path)) {}

@@ -5,12 +5,18 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
 namespace glint {
+
+// Parses JSON text. Errors are InputErrors: a syntax error gives its line
+// and column, a number out of range (1e999) the path of the value
+// ("objects[0].radius: number out of range").
+nlohmann::json parseJson(std::string_view text);
 
 // Read access to a parsed JSON value that knows its own path in the document
 // ("objects[3].radius"), so that every error names the place. Each getter

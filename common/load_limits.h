@@ -13,6 +13,8 @@ struct LoadLimits {
   std::size_t maxTexturePixels = std::size_t{1} << 26;    // one texture (8192 x 8192)
   std::size_t maxImagePixels = std::size_t{1} << 28;      // the rendered image
   int maxSamples = 4096;                                  // samples per pixel
+  // What one scene holds once built: texels, meshes, BVH (SceneBudget counts it).
+  std::size_t maxSceneBytes = std::size_t{8} << 30;
 };
 
 }  // namespace glint

@@ -56,7 +56,8 @@ struct VertexKey {
 }  // namespace
 
 ObjModel loadObj(FileSource& files, const std::string& path, const std::string& place,
-                 const LoadLimits& limits, bool withMaterials) {
+                 SceneBudget& budget, bool withMaterials) {
+  const LoadLimits& limits = budget.limits();
   const std::string text = files.read(path, place);
   std::string mtl;
   const std::string lib = mtllibName(text);
@@ -88,7 +89,7 @@ ObjModel loadObj(FileSource& files, const std::string& path, const std::string& 
         Texture tex;
         tex.type = TextureType::kImage;
         tex.image = std::make_shared<Image>(
-            decodeImage(files.read(texPath, texPlace), texPlace, limits.maxTexturePixels));
+            decodeImage(files.read(texPath, texPlace), texPlace, budget));
         mat.texture = static_cast<int>(model.textures.size());
         mat.color = glm::vec3(1.0f);
         model.textures.push_back(std::move(tex));

@@ -5,7 +5,7 @@
 
 #include "common/file_source.h"
 #include "common/geometry.h"
-#include "common/load_limits.h"
+#include "common/scene_budget.h"
 #include "common/material.h"
 #include "common/texture.h"
 
@@ -25,6 +25,6 @@ struct ObjModel {
 // withMaterials, its mtllib is read too; otherwise every face goes into one
 // mesh with material 0. Errors start with `place`.
 ObjModel loadObj(FileSource& files, const std::string& path, const std::string& place,
-                 const LoadLimits& limits, bool withMaterials);
+                 SceneBudget& budget, bool withMaterials);
 
 }  // namespace glint

@@ -31,7 +31,7 @@ Enum choice(const JsonReader& r, std::initializer_list<std::pair<const char*, En
 
 class SceneLoader {
  public:
-  SceneLoader(FileSource& files, const LoadLimits& limits) : files_(files), limits_(limits) {}
+  SceneLoader(FileSource& files, SceneBudget& budget) : files_(files), budget_(budget), limits_(budget.limits()) {}
 
   Scene load(const nlohmann::json& doc) {
     const JsonReader root(doc, "");
@@ -140,8 +140,8 @@ class SceneLoader {
         case TextureType::kImage: {
           t.allowKeys({"type", "file", "filter"});
           const JsonReader file = t["file"];
-          tex.image = std::make_shared<Image>(decodeImage(
-              files_.read(normalisePath(file.string()), file.path()), file.path(), limits_.maxTexturePixels));
+          tex.image = std::make_shared<Image>(
+              decodeImage(files_.read(normalisePath(file.string()), file.path()), file.path(), budget_));
           if (auto f = t.find("filter")) {
             tex.filter = choice<ImageFilter>(*f, {{"nearest", ImageFilter::kNearest},
                                                   {"bilinear", ImageFilter::kBilinear}});
@@ -274,6 +274,7 @@ class SceneLoader {
     if (!std::isfinite(s.radius) || !std::isfinite(s.centre.x + s.centre.y + s.centre.z)) {
       o.fail("the transform takes the sphere out of the float range");
     }
+    budget_.chargeSphere(o.path());
     scene_.geometry.addSphere(s);
   }
 
@@ -317,7 +318,7 @@ class SceneLoader {
         if (o.has(key)) o[key].fail("belongs to an inline mesh; a mesh from a file takes its own");
       }
       const bool own = !o.has("material");
-      ObjModel obj = loadObj(files_, normalisePath(f->string()), f->path(), limits_, own);
+      ObjModel obj = loadObj(files_, normalisePath(f->string()), f->path(), budget_, own);
       const std::uint32_t named = own ? 0 : material(o);
       const auto materialBase = static_cast<std::uint32_t>(scene_.materials.size());
       const auto textureBase = static_cast<int>(scene_.textures.size());
@@ -407,10 +408,12 @@ class SceneLoader {
       const float len = glm::length(v);
       n = len > 0.0f ? v / len : v;
     }
+    budget_.chargeMesh(mesh.positions.size(), mesh.indices.size() / 3, o.path());
     scene_.geometry.addMesh(std::move(mesh));
   }
 
   FileSource& files_;
+  SceneBudget& budget_;
   const LoadLimits& limits_;
   Scene scene_;
   std::map<std::string, int> textureIndex_;
@@ -422,21 +425,18 @@ class SceneLoader {
 }  // namespace
 
 Scene loadScene(std::string_view text, FileSource& files, const LoadLimits& limits) {
-  if (text.size() > limits.maxFileBytes) {
+  SceneBudget budget(limits);
+  return loadScene(text, files, budget);
+}
+
+Scene loadScene(std::string_view text, FileSource& files, SceneBudget& budget) {
+  if (text.size() > budget.limits().maxFileBytes) {
     throw InputError("scene of " + std::to_string(text.size()) + " bytes is over the limit of " +
-                     std::to_string(limits.maxFileBytes));
+                     std::to_string(budget.limits().maxFileBytes));
   }
-  nlohmann::json doc;
+  const nlohmann::json doc = parseJson(text);
   try {
-    doc = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    // e.what() reads "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
-    std::string what = e.what();
-    const auto at = what.find("parse error");
-    throw InputError("not valid JSON: " + (at == std::string::npos ? what : what.substr(at)));
-  }
-  try {
-    return SceneLoader(files, limits).load(doc);
+    return SceneLoader(files, budget).load(doc);
   } catch (const nlohmann::json::exception& e) {
     throw InputError(std::string("unexpected JSON content: ") + e.what());
   }

@@ -5,6 +5,7 @@
 
 #include "common/file_source.h"
 #include "common/load_limits.h"
+#include "common/scene_budget.h"
 #include "common/scene.h"
 
 namespace glint {
@@ -14,6 +15,9 @@ namespace glint {
 // throws InputError naming the JSON path ("objects[3].radius: must be > 0");
 // nothing of a half-read scene escapes.
 Scene loadScene(std::string_view text, FileSource& files, const LoadLimits& limits = {});
+// The same, counting what the scene will hold against `budget` (which keeps
+// the count, so that a caller can hold it through the BVH build).
+Scene loadScene(std::string_view text, FileSource& files, SceneBudget& budget);
 
 // The same for a scene file on disk: its files are read relative to its
 // folder. Errors start with the file's path.

@@ -62,10 +62,10 @@ LoadedBundle loadSceneBundle(const std::filesystem::path& path, const LoadLimits
   }
 }
 
-Scene loadBundle(const SceneBundle& bundle, const LoadLimits& limits) {
+Scene loadBundle(const SceneBundle& bundle, SceneBudget& budget) {
   MemorySource files;
   for (const auto& [path, bytes] : bundle.files) files.add(path, bytes);
-  return loadScene(bundle.text, files, limits);
+  return loadScene(bundle.text, files, budget);
 }
 
 std::string toHex(const SceneHash& hash) {

@@ -8,6 +8,7 @@
 
 #include "common/load_limits.h"
 #include "common/scene.h"
+#include "common/scene_budget.h"
 
 namespace glint::proto {
 
@@ -32,8 +33,9 @@ struct LoadedBundle {
 };
 LoadedBundle loadSceneBundle(const std::filesystem::path& path, const LoadLimits& limits = {});
 
-// Loads a scene from a bundle, from memory only.
-Scene loadBundle(const SceneBundle& bundle, const LoadLimits& limits = {});
+// Loads a scene from a bundle, from memory only, counting what it will hold
+// against `budget`.
+Scene loadBundle(const SceneBundle& bundle, SceneBudget& budget);
 
 std::string toHex(const SceneHash& hash);
 

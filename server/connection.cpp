@@ -186,7 +186,12 @@ void Connection::onSceneUpload(const wire::SceneUpload& upload) {
     std::string error;
     try {
       if (bundle->hash() != hash) throw InputError("the scene's bytes do not match its hash");
-      prepared = std::make_shared<const PreparedScene>(proto::loadBundle(*bundle), BvhSettings{});
+      LoadLimits limits;
+      limits.maxSceneBytes = self->context_.options.maxSceneBytes;
+      // Held through the BVH build: what the scene will hold counts against
+      // the server's memory until the cache takes it.
+      SceneBudget budget(limits, "glintd --max-scene-mb", &self->context_.buildMemory);
+      prepared = std::make_shared<const PreparedScene>(proto::loadBundle(*bundle, budget), BvhSettings{});
     } catch (const InputError& e) {
       error = e.what();
     } catch (const std::exception& e) {

@@ -36,6 +36,8 @@ int main(int argc, char** argv) {
   ServerOptions o;
   double maxMessageMb = static_cast<double>(o.maxMessageBytes >> 20);
   double cacheMb = static_cast<double>(o.cacheBytes >> 20);
+  double sceneMb = static_cast<double>(o.maxSceneBytes >> 20);
+  double memoryMb = static_cast<double>(o.maxMemoryBytes >> 20);
   double idleS = 300.0, readS = 30.0, handshakeS = 5.0;
   bool quiet = false;
   CLI::App app{"glintd: the Glint ray-trace server. Holds scenes (sent by clients as bytes, cached by\n"
@@ -52,6 +54,14 @@ int main(int argc, char** argv) {
   app.add_option("--cache-mb", cacheMb, "Memory for cached scenes and their BVHs, in MiB (least recently used goes)")
       ->check(CLI::Range(1.0, 1e7))
       ->default_val(cacheMb);
+  app.add_option("--max-scene-mb", sceneMb,
+                 "Most memory one scene may hold once built (texels, meshes, BVH), in MiB; at most --cache-mb")
+      ->check(CLI::Range(1.0, 1e7))
+      ->default_val(sceneMb);
+  app.add_option("--max-memory-mb", memoryMb,
+                 "Memory for all scenes, cached and being built, in MiB; at least --cache-mb + --max-scene-mb")
+      ->check(CLI::Range(2.0, 1e8))
+      ->default_val(memoryMb);
   app.add_option("--max-clients", o.maxClients, "Clients served at once; more are refused with Busy at their Hello")
       ->check(CLI::Range(1, 100000))
       ->default_val(o.maxClients);
@@ -72,6 +82,8 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   o.maxMessageBytes = static_cast<std::size_t>(maxMessageMb * 1048576.0);
   o.cacheBytes = static_cast<std::size_t>(cacheMb * 1048576.0);
+  o.maxSceneBytes = static_cast<std::size_t>(sceneMb * 1048576.0);
+  o.maxMemoryBytes = static_cast<std::size_t>(memoryMb * 1048576.0);
   o.idleTimeout = std::chrono::milliseconds(static_cast<long>(idleS * 1000));
   o.readTimeout = std::chrono::milliseconds(static_cast<long>(readS * 1000));
   o.handshakeTimeout = std::chrono::milliseconds(static_cast<long>(handshakeS * 1000));

@@ -7,12 +7,33 @@
 
 namespace glint::server {
 
+namespace {
+
+// The memory options must fit one in another: a scene the cache cannot hold
+// would be kept above --cache-mb, and the cache plus one scene being built
+// must fit the whole.
+const ServerOptions& checked(const ServerOptions& o) {
+  const auto mb = [](std::size_t bytes) { return std::to_string(bytes >> 20); };
+  if (o.maxSceneBytes > o.cacheBytes) {
+    throw InputError("--max-scene-mb " + mb(o.maxSceneBytes) + " is over --cache-mb " + mb(o.cacheBytes) +
+                     ": the cache must be able to hold the largest scene");
+  }
+  if (o.cacheBytes + o.maxSceneBytes > o.maxMemoryBytes) {
+    throw InputError("--max-memory-mb " + mb(o.maxMemoryBytes) + " is below --cache-mb + --max-scene-mb (" +
+                     mb(o.cacheBytes + o.maxSceneBytes) + ")");
+  }
+  return o;
+}
+
+}  // namespace
+
 Server::Server(const ServerOptions& options)
-    : options_(options),
+    : options_(checked(options)),
       cache_(options.cacheBytes),
       scheduler_(resolveThreadCount(options.threads)),
       registry_(static_cast<std::size_t>(options.maxClients), static_cast<std::size_t>(options.maxWaiting)),
-      context_{io_, scheduler_, cache_, registry_, options_},
+      buildMemory_(options.maxMemoryBytes - options.cacheBytes, "glintd --max-memory-mb less --cache-mb"),
+      context_{io_, scheduler_, cache_, registry_, buildMemory_, options_},
       acceptor_(io_),
       acceptRetry_(io_),
       signals_(io_) {

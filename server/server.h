@@ -5,6 +5,7 @@
 
 #include <asio.hpp>
 
+#include "common/scene_budget.h"
 #include "server/connection_registry.h"
 #include "server/scene_cache.h"
 #include "server/server_options.h"
@@ -20,6 +21,7 @@ struct ServerContext {
   TileScheduler& scheduler;
   SceneCache& cache;
   ConnectionRegistry& registry;
+  MemoryGauge& buildMemory;  // scenes being built: --max-memory-mb less --cache-mb
   const ServerOptions& options;
 };
 
@@ -28,7 +30,8 @@ struct ServerContext {
 // builds run on the scheduler's pool.
 class Server {
  public:
-  // Binds the listening socket; throws InputError when it cannot.
+  // Checks the options and binds the listening socket; throws InputError
+  // when it cannot.
   explicit Server(const ServerOptions& options);
   ~Server();
 
@@ -51,6 +54,7 @@ class Server {
   SceneCache cache_;
   TileScheduler scheduler_;
   ConnectionRegistry registry_;
+  MemoryGauge buildMemory_;
   ServerContext context_;
   asio::ip::tcp::acceptor acceptor_;
   asio::steady_timer acceptRetry_;

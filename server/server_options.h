@@ -16,7 +16,12 @@ struct ServerOptions {
   // Before Hello a peer is a stranger: its messages (a Hello is under 100
   // bytes) may be no larger than this.
   static constexpr std::size_t kMaxHandshakeMessageBytes = 4096;
-  std::size_t cacheBytes = std::size_t{1} << 30;
+  // Memory for scenes, sized for a 24 GiB host: the cache of built scenes, the
+  // most one scene may hold once built (texels, meshes, BVH; at most the
+  // cache), and the whole (the cache and the scenes being built at once).
+  std::size_t cacheBytes = std::size_t{4} << 30;
+  std::size_t maxSceneBytes = std::size_t{2} << 30;
+  std::size_t maxMemoryBytes = std::size_t{12} << 30;
   int maxClients = 64;  // clients that said Hello
   // Connections that have not said Hello yet: a pool of their own, oldest
   // dropped first when full, so that silent connections never lock out clients.

@@ -230,6 +230,99 @@ TEST(SceneLoad, LimitsRejectHugeMeshesAndImagesBeforeAllocating) {
   EXPECT_NE(loadError(t.dump(), files).find("textures.t.file: not a readable PNG or BMP"), std::string::npos);
 }
 
+// A 24-bit BMP of width x height pixels; with `pixels` false, only its header.
+std::string bmp(int width, int height, bool pixels) {
+  const std::size_t rowBytes = (static_cast<std::size_t>(width) * 3 + 3) / 4 * 4;
+  const std::size_t dataBytes = rowBytes * static_cast<std::size_t>(height);
+  std::string out(54 + (pixels ? dataBytes : 0), '\0');
+  const auto put32 = [&out](std::size_t at, std::size_t v) {
+    for (int i = 0; i < 4; ++i) out[at + static_cast<std::size_t>(i)] = static_cast<char>((v >> (8 * i)) & 0xff);
+  };
+  out[0] = 'B';
+  out[1] = 'M';
+  put32(2, 54 + dataBytes);
+  put32(10, 54);
+  put32(14, 40);
+  put32(18, static_cast<std::size_t>(width));
+  put32(22, static_cast<std::size_t>(height));
+  out[26] = 1;
+  out[28] = 24;
+  return out;
+}
+
+// What a scene will hold is counted from each image's header before decoding
+// (issue 9: four names of one 8192x8192 PNG took glintd to 4.3 GB): a header
+// alone over the budget fails on the budget, not on the missing pixels.
+TEST(SceneLoad, SceneBudgetCountsImagesBeforeDecoding) {
+  LoadLimits limits;
+  limits.maxSceneBytes = std::size_t{32} << 20;
+  MemorySource files;
+  files.add("huge.bmp", bmp(4096, 4096, false));  // 48 MiB of texels announced
+  json j = minimalScene();
+  j["textures"] = {{"t", {{"type", "image"}, {"file", "huge.bmp"}}}};
+  EXPECT_NE(loadError(j.dump(), files, limits)
+                .find("textures.t.file: the scene would hold 48.0 MiB once built, 16.0 MiB over the limit for one "
+                      "scene of 32.0 MiB"),
+            std::string::npos)
+      << loadError(j.dump(), files, limits);
+}
+
+TEST(SceneLoad, SceneBudgetCountsEveryTextureMeshAndSphere) {
+  MemorySource files;
+  files.add("one.bmp", bmp(1024, 1024, true));  // 3 MiB of texels
+  json j = minimalScene();
+  for (const char* name : {"a", "b", "c", "d"}) j["textures"][name] = {{"type", "image"}, {"file", "one.bmp"}};
+  LoadLimits limits;
+  limits.maxSceneBytes = std::size_t{10} << 20;  // three fit, the fourth does not
+  EXPECT_NE(loadError(j.dump(), files, limits).find("textures.d.file: the scene would hold 12.0 MiB once built, 2.0 MiB over"),
+            std::string::npos)
+      << loadError(j.dump(), files, limits);
+
+  // Without textures the scene holds a sphere and a triangle, each with its BVH share.
+  SceneBudget budget;
+  loadScene(minimalScene().dump(), files, budget);
+  EXPECT_EQ(budget.used(), SceneBudget::kBytesPerSphere + 3 * SceneBudget::kBytesPerVertex +
+                               SceneBudget::kBytesPerTriangle + 2 * SceneBudget::kBvhBytesPerPrimitive);
+}
+
+// A budget drawn from a shared gauge gives its bytes back when it goes, and a
+// load that does not fit beside the others fails naming the gauge.
+TEST(SceneLoad, SharedGaugeIsDrawnAndGivenBack) {
+  MemoryGauge gauge(1000, "the test gauge");
+  {
+    SceneBudget budget({}, "the limit for one scene", &gauge);
+    budget.charge(600, "a");
+    EXPECT_EQ(gauge.used(), 600u);
+    SceneBudget other({}, "the limit for one scene", &gauge);
+    try {
+      other.charge(500, "b");
+      FAIL() << "500 bytes fitted beside 600 in a gauge of 1000";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("b: the scene's"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("the test gauge"), std::string::npos) << e.what();
+    }
+    other.charge(400, "c");
+    EXPECT_EQ(gauge.used(), 1000u);
+  }
+  EXPECT_EQ(gauge.used(), 0u);
+}
+
+// A number beyond a double is an error at its path, like every other scene
+// error (it used to reach the user as "internal error: [json.exception...").
+TEST(SceneLoad, NumberOutOfRangeNamesItsPath) {
+  std::string text = minimalScene().dump();
+  const std::string radius = "\"radius\":1";
+  text.replace(text.find(radius), radius.size(), "\"radius\":1e999");
+  EXPECT_NE(loadError(text).find("objects[0].radius: number overflow parsing '1e999' (out of range)"),
+            std::string::npos)
+      << loadError(text);
+  json j = minimalScene();
+  text = j.dump();
+  const std::string positions = "[0,0,0,1,0,0,0,1,0]";
+  text.replace(text.find(positions), positions.size(), "[0,0,0,1,0,0,0,-1e400,0]");
+  EXPECT_NE(loadError(text).find("objects[1].positions[7]: number overflow"), std::string::npos) << loadError(text);
+}
+
 TEST(SceneLoad, BadObjFiles) {
   MemorySource files;
   files.add("bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 9\n");

@@ -177,7 +177,8 @@ TEST(Messages, BundleOfTheBunnySceneCarriesItsMesh) {
   const LoadedBundle loaded = loadSceneBundle(test::sourcePath("scenes/bunny.json"));
   ASSERT_EQ(loaded.bundle.files.size(), 1u);
   EXPECT_TRUE(loaded.bundle.files.count("models/bunny.obj"));
-  const Scene again = loadBundle(loaded.bundle);
+  SceneBudget budget;
+  const Scene again = loadBundle(loaded.bundle, budget);
   EXPECT_EQ(again.geometry.triangles().size(), loaded.scene.geometry.triangles().size());
 }
 

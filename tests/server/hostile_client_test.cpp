@@ -5,6 +5,8 @@
 #include <sys/wait.h>
 
 #include <chrono>
+#include <filesystem>
+#include <fstream>
 #include <memory>
 #include <thread>
 
@@ -13,6 +15,7 @@
 #include "client/remote_tile_service.h"
 #include "common/error.h"
 #include "common/frame.h"
+#include "common/image_io.h"
 #include "proto/messages.h"
 #include "server/log.h"
 #include "tests/common/test_support.h"
@@ -111,6 +114,52 @@ TEST(HostileClient, ClientsOverTheLimitGetBusyAtHello) {
   const auto [code, text] = second.readError();
   EXPECT_EQ(code, wire::ErrorCode::Busy);
   EXPECT_NE(text.find("maximum of 1 clients"), std::string::npos) << text;
+}
+
+// The bytes of a PNG of one colour: small to send, large once decoded.
+std::string flatPng(int width, int height) {
+  FrameImage image;
+  image.width = width;
+  image.height = height;
+  image.rgb.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3, 200);
+  const std::filesystem::path path = std::filesystem::temp_directory_path() / "glint-flat.png";
+  writePng(path, image);
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::filesystem::remove(path);
+  return bytes;
+}
+
+// Decoded size is not upload size: one PNG named four times used to be
+// decoded four times, to floats, with no limit. Now each image's size is
+// counted from its header against --max-scene-mb before it is decoded.
+TEST(HostileClient, SceneThatDecodesTooLargeIsRefusedNamingTheLimit) {
+  GlintdProcess glintd({"--max-scene-mb", "32", "--cache-mb", "64", "--max-memory-mb", "256"});
+  proto::SceneBundle bundle{R"({"glint": 1, "image": {"width": 4, "height": 4},
+      "camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0]},
+      "textures": {"a": {"type": "image", "file": "flat.png"}, "b": {"type": "image", "file": "flat.png"},
+                   "c": {"type": "image", "file": "flat.png"}, "d": {"type": "image", "file": "flat.png"}},
+      "materials": {"m": {"texture": "a"}},
+      "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})",
+                            {{"flat.png", flatPng(2048, 2048)}}};  // 12 MiB of texels each
+  const long before = glintd.peakResidentKb();
+  RawClient c(glintd.port());
+  ASSERT_TRUE(c.hello());
+  c.write(proto::encodeSceneUpload(bundle.hash(), bundle));
+  const auto [code, text] = c.readError();
+  EXPECT_EQ(code, wire::ErrorCode::BadScene);
+  EXPECT_NE(text.find("textures.c.file: the scene would hold 36.0 MiB once built, 4.0 MiB over glintd "
+                      "--max-scene-mb of 32.0 MiB"),
+            std::string::npos)
+      << text;
+  const long grownKb = glintd.peakResidentKb() - before;
+  EXPECT_LT(grownKb, 96 * 1024) << "a scene refused at 36 MiB grew glintd's peak by " << grownKb << " KiB";
+  EXPECT_EQ(renderRoom(glintd.address()).width, 48);
+}
+
+TEST(HostileClient, MemoryOptionsThatCannotHoldTheirScenesAreRefused) {
+  EXPECT_THROW(GlintdProcess({"--max-scene-mb", "128", "--cache-mb", "64"}), std::runtime_error);
+  EXPECT_THROW(GlintdProcess({"--max-memory-mb", "1024", "--cache-mb", "1024"}), std::runtime_error);
 }
 
 }  // namespace

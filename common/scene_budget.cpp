@@ -1,0 +1,70 @@
+#include "common/scene_budget.h"
+
+#include <cstdio>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "common/bvh.h"
+#include "common/error.h"
+#include "common/geometry.h"
+
+namespace glint {
+namespace {
+
+std::string mib(std::size_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f MiB", static_cast<double>(bytes) / 1048576.0);
+  return text;
+}
+
+}  // namespace
+
+// A vertex: position, normal, texture coordinate; a triangle: its indices and
+// face normal (Geometry::addMesh).
+const std::size_t SceneBudget::kBytesPerVertex = 2 * sizeof(glm::vec3) + sizeof(glm::vec2);
+const std::size_t SceneBudget::kBytesPerTriangle = sizeof(Triangle) + sizeof(glm::vec3);
+const std::size_t SceneBudget::kBytesPerSphere = sizeof(Sphere);
+const std::size_t SceneBudget::kBvhBytesPerPrimitive = sizeof(BvhNode) + sizeof(std::uint32_t);
+
+bool MemoryGauge::take(std::size_t bytes) {
+  std::size_t used = used_.load();
+  do {
+    if (bytes > capacity_ - used) return false;
+  } while (!used_.compare_exchange_weak(used, used + bytes));
+  return true;
+}
+
+SceneBudget::SceneBudget(const LoadLimits& limits, std::string limitName, MemoryGauge* shared)
+    : limits_(limits), limitName_(std::move(limitName)), shared_(shared) {}
+
+SceneBudget::~SceneBudget() {
+  if (shared_) shared_->give(used_);
+}
+
+void SceneBudget::charge(std::size_t bytes, const std::string& place) {
+  const std::size_t total = used_ + bytes;
+  if (bytes > limits_.maxSceneBytes || total > limits_.maxSceneBytes) {
+    throw InputError(place + ": the scene would hold " + mib(total) + " once built, " +
+                     mib(total - limits_.maxSceneBytes) + " over " + limitName_ + " of " +
+                     mib(limits_.maxSceneBytes));
+  }
+  if (shared_ && !shared_->take(bytes)) {
+    throw InputError(place + ": the scene's " + mib(total) + " do not fit beside the scenes being built now (" +
+                     mib(shared_->used()) + " of " + mib(shared_->capacity()) + ", " + shared_->name() +
+                     "); try again later");
+  }
+  used_ = total;
+}
+
+void SceneBudget::chargeImage(int width, int height, const std::string& place) {
+  charge(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * kBytesPerTexel, place);
+}
+
+void SceneBudget::chargeMesh(std::size_t vertices, std::size_t triangles, const std::string& place) {
+  charge(vertices * kBytesPerVertex + triangles * (kBytesPerTriangle + kBvhBytesPerPrimitive), place);
+}
+
+void SceneBudget::chargeSphere(const std::string& place) { charge(kBytesPerSphere + kBvhBytesPerPrimitive, place); }
+
+}  // namespace glint
