@@ -6,15 +6,10 @@
 #include <string>
 
 #include "common/error.h"
+#include "common/timing.h"
 
 namespace glint {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // GL's rows run bottom-up; Glint's images top-down.
 void flipRows(std::vector<std::uint8_t>& pixels, int width, int height, int channels) {

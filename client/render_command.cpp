@@ -19,16 +19,11 @@
 #include "common/image_io.h"
 #include "common/sampling.h"
 #include "common/scene_load.h"
+#include "common/timing.h"
 #include "proto/scene_bundle.h"
 
 namespace glint {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // The mask as the thesis's figures show it: white where the tracer fills.
 void writeMaskPng(const std::string& path, const std::vector<std::uint8_t>& mask, int width, int height) {

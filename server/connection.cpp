@@ -1,34 +1,39 @@
 #include "server/connection.h"
 
-#include <chrono>
-
-#include "common/error.h"
-#include "proto/messages.h"
+#include "common/timing.h"
 #include "server/log.h"
 
 namespace glint::server {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-constexpr std::size_t kMaxFramesPerClient = 16;  // older frames are forgotten
 constexpr std::size_t kReadChunkBytes = 64 * 1024;  // a message buffer's first size, and what an idle one keeps
 
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+std::string peerName(const asio::ip::tcp::socket& socket, std::uint64_t id) {
+  asio::error_code ec;
+  const auto remote = socket.remote_endpoint(ec);
+  return ec ? "client " + std::to_string(id) : remote.address().to_string() + ":" + std::to_string(remote.port());
+}
+
+Session::Settings sessionSettings(const ServerContext& context) {
+  return {static_cast<std::uint32_t>(context.options.maxMessageBytes),
+          static_cast<std::uint32_t>(context.scheduler.threads()),
+          static_cast<std::size_t>(context.options.maxClients)};
 }
 
 }  // namespace
 
 Connection::Connection(asio::ip::tcp::socket socket, ServerContext& context, std::uint64_t id)
-    : socket_(std::move(socket)), timer_(context.io), context_(context), id_(id) {
-  asio::error_code ec;
-  const auto remote = socket_.remote_endpoint(ec);
-  peer_ = ec ? "client " + std::to_string(id) : remote.address().to_string() + ":" + std::to_string(remote.port());
-  socket_.set_option(asio::ip::tcp::no_delay(true), ec);
+    : socket_(std::move(socket)),
+      timer_(context.io),
+      context_(context),
+      id_(id),
+      session_(*this, context.cache, sessionSettings(context), peerName(socket_, id)) {
+  asio::error_code ignored;
+  socket_.set_option(asio::ip::tcp::no_delay(true), ignored);
 }
 
 void Connection::start() {
-  logLine(peer_ + ": connected");
+  logLine(session_.peer() + ": connected");
   readHeader();
 }
 
@@ -59,8 +64,8 @@ void Connection::onTimer(const char* what) {
 
 void Connection::readHeader() {
   if (closed_ || closeAfterWrites_) return;
-  armTimer(greeted_ ? context_.options.idleTimeout : context_.options.handshakeTimeout,
-           greeted_ ? "idle" : "handshake");
+  armTimer(greeted() ? context_.options.idleTimeout : context_.options.handshakeTimeout,
+           greeted() ? "idle" : "handshake");
   asio::async_read(socket_, asio::buffer(header_),
                    [self = shared_from_this()](const asio::error_code& error, std::size_t) {
                      if (error) {
@@ -68,13 +73,15 @@ void Connection::readHeader() {
                        return;
                      }
                      const std::uint32_t length = proto::frameLength(self->header_);
-                     const std::size_t limit = self->greeted_ ? self->context_.options.maxMessageBytes
-                                                              : ServerOptions::kMaxHandshakeMessageBytes;
+                     const bool greeted = self->greeted();
+                     const std::size_t limit = greeted ? self->context_.options.maxMessageBytes
+                                                       : ServerOptions::kMaxHandshakeMessageBytes;
                      if (length > limit) {
-                       self->fail(wire::ErrorCode::TooLarge,
-                                  "message of " + std::to_string(length) + " bytes is over the limit of " +
-                                      std::to_string(limit) + (self->greeted_ ? "" : " before Hello") +
-                                      " (is this a Glint client?)");
+                       self->session_.error(wire::ErrorCode::TooLarge,
+                                            "message of " + std::to_string(length) + " bytes is over the limit of " +
+                                                std::to_string(limit) + (greeted ? "" : " before Hello") +
+                                                " (is this a Glint client?)",
+                                            true);
                        return;
                      }
                      self->readBody(length);
@@ -111,164 +118,43 @@ void Connection::onBody() {
   midMessage_ = false;
   std::string problem;
   const wire::Message* message = proto::verifyMessage(body_, &problem);
-  if (!message) {
-    fail(wire::ErrorCode::Malformed, problem);
-    return;
+  if (message) {
+    session_.handle(*message);
+  } else {
+    session_.error(wire::ErrorCode::Malformed, problem, true);
   }
-  try {
-    handle(*message);
-  } catch (const InputError& e) {
-    sendError(wire::ErrorCode::Malformed, e.what());
-  }
-  // What a message needs is copied out by its handler: a large buffer is not
+  // What a message needs is copied out by the session: a large buffer is not
   // kept for an idle connection.
   if (body_.capacity() > kReadChunkBytes) std::vector<std::uint8_t>().swap(body_);
   readHeader();
 }
 
-void Connection::handle(const wire::Message& m) {
-  if (!greeted_ && m.body_type() != wire::Body::Hello) {
-    fail(wire::ErrorCode::UnknownMessage, std::string("expected Hello first, got ") + proto::bodyName(m.body_type()));
-    return;
-  }
-  switch (m.body_type()) {
-    case wire::Body::Hello:
-      return onHello(*m.body_as_Hello());
-    case wire::Body::SceneQuery:
-      return onSceneQuery(*m.body_as_SceneQuery());
-    case wire::Body::SceneUpload:
-      return onSceneUpload(*m.body_as_SceneUpload());
-    case wire::Body::FrameSetup:
-      return onFrameSetup(*m.body_as_FrameSetup());
-    case wire::Body::TileRequest:
-      return onTileRequest(*m.body_as_TileRequest());
-    case wire::Body::Goodbye:
-      logLine(peer_ + ": goodbye");
-      closeAfterWrites_ = true;
-      if (!writing_) close("goodbye");
-      return;
-    default:
-      sendError(wire::ErrorCode::UnknownMessage,
-                std::string("a server does not take ") + proto::bodyName(m.body_type()) + " messages");
-  }
+void Connection::end(const std::string& why) {
+  logLine(session_.peer() + ": " + why);
+  closeAfterWrites_ = true;
+  if (!writing_) close(why);
 }
 
-void Connection::onHello(const wire::Hello& hello) {
-  if (hello.protocol_version() != proto::kProtocolVersion) {
-    fail(wire::ErrorCode::Version, "protocol version " + std::to_string(hello.protocol_version()) +
-                                       " is not spoken here (this server speaks " +
-                                       std::to_string(proto::kProtocolVersion) + ")");
-    return;
-  }
-  if (!context_.registry.admit(id_)) {
-    fail(wire::ErrorCode::Busy, "the server has its maximum of " + std::to_string(context_.registry.maxClients()) +
-                                    " clients; try later");
-    return;
-  }
-  greeted_ = true;
-  send(proto::encodeHello(static_cast<std::uint32_t>(context_.options.maxMessageBytes),
-                          static_cast<std::uint32_t>(context_.scheduler.threads()), "glintd 0.1"));
-}
+bool Connection::admit() { return context_.registry.admit(id_); }
 
-void Connection::onSceneQuery(const wire::SceneQuery& query) {
-  const proto::SceneHash hash = proto::decodeHash(query.hash(), "scene_query.hash");
-  send(proto::encodeSceneStatus(hash, context_.cache.find(hash) != nullptr));
-}
-
-void Connection::onSceneUpload(const wire::SceneUpload& upload) {
-  const proto::SceneHash hash = proto::decodeHash(upload.hash(), "scene_upload.hash");
-  // Copy the bytes out of the read buffer, which the next message reuses.
-  auto bundle = std::make_shared<proto::SceneBundle>(proto::decodeBundle(upload));
+void Connection::build(SceneJob job) {
   ++pending_;
-  context_.scheduler.submit(id_, [self = shared_from_this(), hash, bundle] {
-    const Clock::time_point start = Clock::now();
-    std::shared_ptr<const PreparedScene> prepared;
-    std::string error;
-    try {
-      if (bundle->hash() != hash) throw InputError("the scene's bytes do not match its hash");
-      LoadLimits limits;
-      limits.maxSceneBytes = self->context_.options.maxSceneBytes;
-      // Held through the BVH build: what the scene will hold counts against
-      // the server's memory until the cache takes it.
-      SceneBudget budget(limits, "glintd --max-scene-mb", &self->context_.buildMemory);
-      prepared = std::make_shared<const PreparedScene>(proto::loadBundle(*bundle, budget), BvhSettings{});
-    } catch (const InputError& e) {
-      error = e.what();
-    } catch (const std::exception& e) {
-      error = std::string("cannot load the scene: ") + e.what();
-    }
-    const double ms = msSince(start);
-    asio::post(self->context_.io, [self, hash, prepared, error, ms] {
+  context_.scheduler.submit(id_, [self = shared_from_this(), job = std::move(job)] {
+    BuiltScene built = buildScene(job, self->context_.options.maxSceneBytes, self->context_.buildMemory);
+    asio::post(self->context_.io, [self, built = std::move(built)] {
       --self->pending_;
-      if (self->closed_) return;
-      if (!prepared) {
-        logLine(self->peer_ + ": scene " + proto::toHex(hash).substr(0, 12) + " rejected: " + error);
-        self->sendError(wire::ErrorCode::BadScene, error);
-        return;
-      }
-      self->context_.cache.insert(hash, prepared);
-      logLine(self->peer_ + ": scene " + proto::toHex(hash).substr(0, 12) + " built in " + std::to_string(ms) +
-              " ms (" + std::to_string(prepared->scene().geometry.primitiveCount()) + " primitives)");
-      self->send(proto::encodeSceneReady(hash, static_cast<float>(ms)));
+      if (!self->closed_) self->session_.sceneBuilt(built);
     });
   });
 }
 
-void Connection::onFrameSetup(const wire::FrameSetup& setup) {
-  const std::uint32_t frameId = setup.frame_id();
-  try {
-    const proto::SceneHash hash = proto::decodeHash(setup.scene_hash(), "frame_setup.scene_hash");
-    auto scene = context_.cache.find(hash);
-    if (!scene) {
-      sendError(wire::ErrorCode::UnknownScene, "scene " + proto::toHex(hash).substr(0, 12) +
-                                                   " is not on this server; upload it first", frameId);
-      return;
-    }
-    const FrameSettings settings = proto::decodeFrameSettings(setup, LoadLimits{}.maxImagePixels);
-    auto frame = std::make_shared<Frame>();
-    frame->renderer = std::make_unique<Renderer>(*scene, settings);
-    frame->scene = std::move(scene);
-    frames_[frameId] = std::move(frame);
-    while (frames_.size() > kMaxFramesPerClient) frames_.erase(frames_.begin());
-  } catch (const InputError& e) {
-    sendError(wire::ErrorCode::BadFrame, e.what(), frameId);
-  }
-}
-
-void Connection::onTileRequest(const wire::TileRequest& request) {
-  const std::uint32_t frameId = request.frame_id();
-  const std::uint32_t tileId = request.tile_id();
-  const auto it = frames_.find(frameId);
-  if (it == frames_.end()) {
-    sendError(wire::ErrorCode::UnknownFrame, "tile " + std::to_string(tileId) + " is for frame " +
-                                                 std::to_string(frameId) + ", which was never set up",
-              frameId, tileId);
-    return;
-  }
-  TileRect rect;
-  try {
-    rect = proto::decodeTileRect(request, it->second->renderer->frame());
-  } catch (const InputError& e) {
-    sendError(wire::ErrorCode::BadTile, e.what(), frameId, tileId);
-    return;
-  }
-  std::vector<std::uint8_t> mask;
-  if (request.mask()) mask.assign(request.mask()->begin(), request.mask()->end());
+void Connection::trace(TileWork work) {
   ++pending_;
   {
     std::lock_guard lock(outboxMutex_);
     ++untraced_;
   }
-  context_.scheduler.submit(id_, [self = shared_from_this(), frame = it->second, rect, mask = std::move(mask),
-                                  frameId, tileId] {
-    const Clock::time_point start = Clock::now();
-    std::vector<std::uint8_t> rgb;
-    RayStats rays;
-    frame->renderer->renderTile(rect, mask, rgb, rays);
-    const auto micros = static_cast<std::uint32_t>(msSince(start) * 1000.0);
-    std::vector<std::uint8_t> result = proto::encodeTileResult(frameId, tileId, rgb, rays, micros);
-    self->deliver(std::move(result));
-  });
+  context_.scheduler.submit(id_, [self = shared_from_this(), work = std::move(work)] { self->deliver(traceTile(work)); });
 }
 
 // Called on pool threads. Results wait in the outbox until it holds
@@ -297,11 +183,11 @@ void Connection::deliver(std::vector<std::uint8_t> result) {
       self->wakePosted_ = false;
     }
     self->pending_ -= static_cast<int>(results.size());
-    for (auto& r : results) self->send(std::move(r));
+    for (auto& r : results) self->reply(std::move(r));
   });
 }
 
-void Connection::send(std::vector<std::uint8_t> frame) {
+void Connection::reply(std::vector<std::uint8_t> frame) {
   if (closed_) return;
   queuedBytes_ += frame.size();
   if (queuedBytes_ > context_.options.maxQueuedBytes) {
@@ -312,21 +198,10 @@ void Connection::send(std::vector<std::uint8_t> frame) {
   if (!writing_) writeNext();
 }
 
-void Connection::sendError(wire::ErrorCode code, const std::string& message, std::uint32_t frameId,
-                           std::uint32_t tileId) {
-  logLine(peer_ + ": error " + wire::EnumNameErrorCode(code) + ": " + message);
-  send(proto::encodeError(code, message, frameId, tileId));
-}
-
-void Connection::fail(wire::ErrorCode code, const std::string& message) {
-  sendError(code, message);
-  closeAfterWrites_ = true;
-}
-
 void Connection::writeNext() {
   if (writes_.empty() || closed_) {
     writing_ = false;
-    if (closeAfterWrites_) close("closed after error");
+    if (closeAfterWrites_) close("closed after its last reply");
     return;
   }
   // Everything queued goes out in one gathered write (one system call for
@@ -360,8 +235,7 @@ void Connection::close(const std::string& why) {
   timer_.cancel();
   socket_.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
   socket_.close(ignored);
-  frames_.clear();
-  logLine(peer_ + ": closed (" + why + (dropped ? ", " + std::to_string(dropped) + " queued tiles cancelled" : "") +
+  logLine(session_.peer() + ": closed (" + why + (dropped ? ", " + std::to_string(dropped) + " queued tiles cancelled" : "") +
           ")");
 }
 

@@ -1,0 +1,32 @@
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "common/prepared_scene.h"
+#include "common/scene_budget.h"
+#include "proto/scene_bundle.h"
+
+namespace glint::server {
+
+// A scene a client uploaded, to be built on the pool.
+struct SceneJob {
+  proto::SceneHash hash{};
+  std::shared_ptr<const proto::SceneBundle> bundle;  // copied out of the read buffer
+};
+
+// What came of it: the prepared scene (scene + BVH), or why not.
+struct BuiltScene {
+  proto::SceneHash hash{};
+  std::shared_ptr<const PreparedScene> prepared;  // null on error
+  std::string error;                              // names the JSON path or the limit
+  double ms = 0.0;
+};
+
+// Loads a bundle from memory and builds its BVH: checks that the bytes match
+// the hash, and counts what the scene will hold against maxSceneBytes and the
+// server's gauge of scenes being built (held until the build is done).
+// Never throws for bad input: errors come back in BuiltScene::error.
+BuiltScene buildScene(const SceneJob& job, std::size_t maxSceneBytes, MemoryGauge& buildMemory);
+
+}  // namespace glint::server

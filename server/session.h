@@ -1,0 +1,91 @@
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/renderer.h"
+#include "common/tile.h"
+#include "proto/framing.h"
+#include "server/scene_builder.h"
+#include "server/scene_cache.h"
+
+namespace glint::server {
+
+// A frame set up by a client: the scene it renders and its renderer.
+struct SessionFrame {
+  std::shared_ptr<const PreparedScene> scene;
+  std::unique_ptr<Renderer> renderer;
+};
+
+// One tile to trace on the pool; the result is an encoded TileResult.
+struct TileWork {
+  std::shared_ptr<const SessionFrame> frame;
+  TileRect rect;
+  std::vector<std::uint8_t> mask;  // empty: every pixel
+  std::uint32_t frameId = 0;
+  std::uint32_t tileId = 0;
+};
+std::vector<std::uint8_t> traceTile(const TileWork& work);
+
+// What a session needs from whatever carries it: a connection on a socket,
+// or a test or fuzzer with byte vectors.
+class SessionHost {
+ public:
+  virtual ~SessionHost() = default;
+  virtual void reply(std::vector<std::uint8_t> frame) = 0;
+  // No more messages will be taken: close once the replies are written.
+  virtual void end(const std::string& why) = 0;
+  // A Hello asks for a client's place; false when the server is full.
+  virtual bool admit() = 0;
+  // Work for the pool; the build's result comes back to sceneBuilt().
+  virtual void build(SceneJob job) = 0;
+  virtual void trace(TileWork work) = 0;
+};
+
+// The protocol state of one client, without a socket: it takes verified
+// messages in order and answers through its host. Any value a client sent is
+// checked before use; a problem is an Error to the client, and where the
+// session cannot go on (not Hello first, wrong version, server full), the end.
+class Session {
+ public:
+  enum class State { kAwaitingHello, kServing, kEnded };
+
+  struct Settings {
+    std::uint32_t maxMessageBytes = 0;  // announced in Hello
+    std::uint32_t threads = 0;          // announced in Hello
+    std::size_t maxClients = 0;         // named when a Hello finds the server full
+  };
+
+  Session(SessionHost& host, SceneCache& cache, const Settings& settings, std::string peer);
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+
+  State state() const { return state_; }
+  const std::string& peer() const { return peer_; }
+  void handle(const wire::Message& message);
+  // A build asked for through SessionHost::build is done.
+  void sceneBuilt(const BuiltScene& built);
+  // Sends an Error; with `final`, the session ends after it.
+  void error(wire::ErrorCode code, const std::string& message, bool final, std::uint32_t frameId = 0,
+             std::uint32_t tileId = 0);
+
+ private:
+  void dispatch(const wire::Message& message);
+  void onHello(const wire::Hello& hello);
+  void onSceneQuery(const wire::SceneQuery& query);
+  void onSceneUpload(const wire::SceneUpload& upload);
+  void onFrameSetup(const wire::FrameSetup& setup);
+  void onTileRequest(const wire::TileRequest& tile);
+
+  SessionHost& host_;
+  SceneCache& cache_;
+  Settings settings_;
+  std::string peer_;
+  State state_ = State::kAwaitingHello;
+  std::map<std::uint32_t, std::shared_ptr<const SessionFrame>> frames_;  // by frame id
+};
+
+}  // namespace glint::server

@@ -1,0 +1,49 @@
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "common/scene_budget.h"
+#include "server/session.h"
+
+namespace glint::server::test {
+
+// A session's host without sockets or threads: replies are collected, builds
+// and tiles run at once on the calling thread (tiles only up to a pixel x
+// sample budget, so that a fuzzer's huge tiles are counted, not traced).
+class InlineHost : public SessionHost {
+ public:
+  explicit InlineHost(std::size_t maxSceneBytes = std::size_t{64} << 20,
+                      std::size_t maxTraceWork = std::size_t{1} << 16)
+      : maxSceneBytes_(maxSceneBytes), maxTraceWork_(maxTraceWork), buildMemory_(maxSceneBytes, "the test gauge") {}
+
+  void attach(Session& session) { session_ = &session; }
+
+  void reply(std::vector<std::uint8_t> frame) override { replies.push_back(std::move(frame)); }
+  void end(const std::string& why) override { ended = why; }
+  bool admit() override { return admits; }
+  void build(SceneJob job) override {
+    ++builds;
+    session_->sceneBuilt(buildScene(job, maxSceneBytes_, buildMemory_));
+  }
+  void trace(TileWork work) override {
+    ++tiles;
+    const auto samples = static_cast<std::size_t>(work.frame->renderer->frame().sampling.samples);
+    if (work.rect.pixelCount() * samples <= maxTraceWork_) reply(traceTile(work));
+  }
+
+  std::vector<std::vector<std::uint8_t>> replies;  // framed messages, in order
+  std::string ended;                               // why the session ended, if it did
+  bool admits = true;
+  int builds = 0;
+  int tiles = 0;
+
+ private:
+  Session* session_ = nullptr;
+  std::size_t maxSceneBytes_;
+  std::size_t maxTraceWork_;
+  MemoryGauge buildMemory_;
+};
+
+}  // namespace glint::server::test
