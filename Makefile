@@ -9,10 +9,14 @@ DEPS := cmake g++ make pkg-config libglm-dev nlohmann-json3-dev libtinyobjloader
         libglfw3-dev libgl1-mesa-dri xvfb xauth
 # The benchmark also compares against POV-Ray 3.7.
 BENCH_DEPS := povray
+# The fuzzers are built with clang and its libFuzzer.
+FUZZ_DEPS := clang libclang-rt-14-dev
+FUZZ_BUILD ?= build-fuzz
+FUZZ_SECONDS ?= 60
 
 SUDO := $(shell [ "$$(id -u)" -eq 0 ] || echo sudo)
 
-.PHONY: all deps bench-deps configure build test demo bench clean
+.PHONY: all deps bench-deps fuzz-deps configure build test demo bench fuzz fuzz-seeds clean
 
 all: build
 
@@ -48,5 +52,18 @@ demo: build
 bench: bench-deps build
 	$(BUILD)/bin/glint-bench --scenes scenes
 
+fuzz-deps: deps
+	$(call install_missing,$(FUZZ_DEPS))
+
+# Every fuzz target for FUZZ_SECONDS each (make fuzz FUZZ_SECONDS=600).
+fuzz: fuzz-deps
+	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DGLINT_FUZZ=ON
+	cmake --build $(FUZZ_BUILD) -j$(JOBS)
+	tests/fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
+
+# Rewrites the seed corpora in tests/fuzz/corpus with the project's encoders.
+fuzz-seeds: build
+	$(BUILD)/bin/glint-fuzz-seeds .
+
 clean:
-	rm -rf $(BUILD) out
+	rm -rf $(BUILD) $(FUZZ_BUILD) out

@@ -1,5 +1,7 @@
 #include "proto/framing.h"
 
+#include <cstring>
+
 namespace glint::proto {
 namespace {
 
@@ -29,6 +31,10 @@ std::vector<std::uint8_t> finishFrame(flatbuffers::FlatBufferBuilder& builder,
 }
 
 const wire::Message* verifyMessage(std::span<const std::uint8_t> body, std::string* error) {
+  if (reinterpret_cast<std::uintptr_t>(body.data()) % alignof(std::uint64_t) != 0) {
+    *error = "internal error: a message was verified where it is not 8-aligned";
+    return nullptr;
+  }
   if (body.size() < 8 || !flatbuffers::BufferHasIdentifier(body.data(), wire::MessageIdentifier())) {
     *error = "not a Glint message (no GLNT identifier)";
     return nullptr;
@@ -52,7 +58,8 @@ const wire::Message* verifyMessage(std::span<const std::uint8_t> body, std::stri
   return message;
 }
 
-Decoded decodeFrame(std::span<const std::uint8_t> bytes, std::size_t maxMessageBytes) {
+Decoded decodeFrame(std::span<const std::uint8_t> bytes, std::size_t maxMessageBytes,
+                    std::vector<std::uint64_t>& aligned) {
   Decoded d;
   if (bytes.size() < kHeaderBytes) return d;
   const std::uint32_t length = frameLength(bytes.first<kHeaderBytes>());
@@ -64,7 +71,13 @@ Decoded decodeFrame(std::span<const std::uint8_t> bytes, std::size_t maxMessageB
     return d;
   }
   if (bytes.size() < kHeaderBytes + length) return d;
-  d.message = verifyMessage(bytes.subspan(kHeaderBytes, length), &d.error);
+  std::span<const std::uint8_t> body = bytes.subspan(kHeaderBytes, length);
+  if (reinterpret_cast<std::uintptr_t>(body.data()) % alignof(std::uint64_t) != 0) {
+    aligned.resize(length / sizeof(std::uint64_t) + 1);
+    std::memcpy(aligned.data(), body.data(), length);
+    body = {reinterpret_cast<const std::uint8_t*>(aligned.data()), length};
+  }
+  d.message = verifyMessage(body, &d.error);
   d.status = d.message ? DecodeStatus::kGood : DecodeStatus::kBad;
   d.consumed = kHeaderBytes + length;
   return d;

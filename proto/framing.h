@@ -40,10 +40,16 @@ struct Decoded {
 
 // Decodes the first frame of a byte stream: a pure function, no I/O. The
 // length is checked against maxMessageBytes before anything else, and the
-// message passes flatbuffers::Verifier with explicit limits.
-Decoded decodeFrame(std::span<const std::uint8_t> bytes, std::size_t maxMessageBytes);
+// message passes flatbuffers::Verifier with explicit limits. FlatBuffers reads
+// fields in place, so the message must lie 8-aligned: where it does not (a
+// frame in the middle of a stream), it is copied into `aligned` first.
+// Decoded::message points into `bytes` or `aligned`; both must stay untouched
+// while it is used.
+Decoded decodeFrame(std::span<const std::uint8_t> bytes, std::size_t maxMessageBytes,
+                    std::vector<std::uint64_t>& aligned);
 
-// Verifies a message body (no length prefix); nullptr and `error` if invalid.
+// Verifies a message body (no length prefix) held 8-aligned in memory;
+// nullptr and `error` if invalid (or not aligned: a receiver's bug).
 const wire::Message* verifyMessage(std::span<const std::uint8_t> body, std::string* error);
 
 }  // namespace glint::proto

@@ -56,20 +56,12 @@ void MessageStream::send(std::span<const std::uint8_t> bytes) {
 const wire::Message& MessageStream::receive() {
   while (true) {
     const std::span<const std::uint8_t> unread(buffer_.data() + consumed_, buffer_.size() - consumed_);
-    const Decoded d = decodeFrame(unread, kDefaultMaxMessageBytes);
+    const Decoded d = decodeFrame(unread, kDefaultMaxMessageBytes, aligned_);
     if (d.status == DecodeStatus::kBad) throw StreamError(StreamError::Kind::kBadMessage, "bad message: " + d.error);
     if (d.status == DecodeStatus::kGood) {
       consumed_ += d.consumed;
       received_ += d.consumed;
-      // FlatBuffers reads 8-byte fields (RayCounts) in place, so the message
-      // must start 8-aligned; one in the middle of buffer_ rarely does, and
-      // gets an aligned copy of its (verified) bytes.
-      const std::uint8_t* payload = unread.data() + kHeaderBytes;
-      if (reinterpret_cast<std::uintptr_t>(payload) % alignof(std::uint64_t) == 0) return *d.message;
-      const std::size_t size = d.consumed - kHeaderBytes;
-      aligned_.resize(size / sizeof(std::uint64_t) + 1);
-      std::memcpy(aligned_.data(), payload, size);
-      return *wire::GetMessage(aligned_.data());  // both stay untouched until the next receive()
+      return *d.message;  // in buffer_ or aligned_, both untouched until the next receive()
     }
     buffer_.erase(buffer_.begin(), buffer_.begin() + static_cast<std::ptrdiff_t>(consumed_));
     consumed_ = 0;

@@ -227,27 +227,15 @@ TEST(SceneLoad, LimitsRejectHugeMeshesAndImagesBeforeAllocating) {
 
   files.add("junk.png", "not an image at all");
   t["textures"]["t"]["file"] = "junk.png";
-  EXPECT_NE(loadError(t.dump(), files).find("textures.t.file: not a readable PNG or BMP"), std::string::npos);
-}
-
-// A 24-bit BMP of width x height pixels; with `pixels` false, only its header.
-std::string bmp(int width, int height, bool pixels) {
-  const std::size_t rowBytes = (static_cast<std::size_t>(width) * 3 + 3) / 4 * 4;
-  const std::size_t dataBytes = rowBytes * static_cast<std::size_t>(height);
-  std::string out(54 + (pixels ? dataBytes : 0), '\0');
-  const auto put32 = [&out](std::size_t at, std::size_t v) {
-    for (int i = 0; i < 4; ++i) out[at + static_cast<std::size_t>(i)] = static_cast<char>((v >> (8 * i)) & 0xff);
-  };
-  out[0] = 'B';
-  out[1] = 'M';
-  put32(2, 54 + dataBytes);
-  put32(10, 54);
-  put32(14, 40);
-  put32(18, static_cast<std::size_t>(width));
-  put32(22, static_cast<std::size_t>(height));
-  out[26] = 1;
-  out[28] = 24;
-  return out;
+  EXPECT_NE(loadError(t.dump(), files).find("textures.t.file: not a PNG or BMP image"), std::string::npos);
+  // Other formats stb_image knows never reach it; a PNG that is not one is unreadable.
+  files.add("anim.gif", std::string("GIF89a\x01\x00\x01\x00\x00\x00\x00;", 14));
+  t["textures"]["t"]["file"] = "anim.gif";
+  EXPECT_NE(loadError(t.dump(), files).find("textures.t.file: not a PNG or BMP image"), std::string::npos);
+  files.add("broken.png", std::string("\x89PNG\r\n\x1a\n", 8) + "garbage");
+  t["textures"]["t"]["file"] = "broken.png";
+  EXPECT_NE(loadError(t.dump(), files).find("textures.t.file: not a readable PNG or BMP"), std::string::npos)
+      << loadError(t.dump(), files);
 }
 
 // What a scene will hold is counted from each image's header before decoding
@@ -257,7 +245,7 @@ TEST(SceneLoad, SceneBudgetCountsImagesBeforeDecoding) {
   LoadLimits limits;
   limits.maxSceneBytes = std::size_t{32} << 20;
   MemorySource files;
-  files.add("huge.bmp", bmp(4096, 4096, false));  // 48 MiB of texels announced
+  files.add("huge.bmp", test::bmp(4096, 4096, false));  // 48 MiB of texels announced
   json j = minimalScene();
   j["textures"] = {{"t", {{"type", "image"}, {"file", "huge.bmp"}}}};
   EXPECT_NE(loadError(j.dump(), files, limits)
@@ -269,7 +257,7 @@ TEST(SceneLoad, SceneBudgetCountsImagesBeforeDecoding) {
 
 TEST(SceneLoad, SceneBudgetCountsEveryTextureMeshAndSphere) {
   MemorySource files;
-  files.add("one.bmp", bmp(1024, 1024, true));  // 3 MiB of texels
+  files.add("one.bmp", test::bmp(1024, 1024, true));  // 3 MiB of texels
   json j = minimalScene();
   for (const char* name : {"a", "b", "c", "d"}) j["textures"][name] = {{"type", "image"}, {"file", "one.bmp"}};
   LoadLimits limits;

@@ -75,4 +75,23 @@ MeshInput icosphere(int levels, const glm::vec3& centre, float radius) {
   return mesh;
 }
 
+std::string bmp(int width, int height, bool pixels) {
+  const std::size_t rowBytes = (static_cast<std::size_t>(width) * 3 + 3) / 4 * 4;
+  const std::size_t dataBytes = rowBytes * static_cast<std::size_t>(height);
+  std::string out(54 + (pixels ? dataBytes : 0), '\0');
+  const auto put32 = [&out](std::size_t at, std::size_t v) {
+    for (int i = 0; i < 4; ++i) out[at + static_cast<std::size_t>(i)] = static_cast<char>((v >> (8 * i)) & 0xff);
+  };
+  out[0] = 'B';
+  out[1] = 'M';
+  put32(2, 54 + dataBytes);
+  put32(10, 54);
+  put32(14, 40);
+  put32(18, static_cast<std::size_t>(width));
+  put32(22, static_cast<std::size_t>(height));
+  out[26] = 1;
+  out[28] = 24;
+  return out;
+}
+
 }  // namespace glint::test

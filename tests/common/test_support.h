@@ -19,6 +19,10 @@ FrameResult render(const Scene& scene, const EffectPlan& plan, int threads = 1, 
 // Path of a file in the source tree (scenes/room.json).
 std::string sourcePath(const std::string& relative);
 
+// A 24-bit BMP file of width x height pixels (all black); with `pixels`
+// false, only its 54-byte header.
+std::string bmp(int width, int height, bool pixels);
+
 // RGB of pixel (x, y) of an image.
 struct Rgb {
   int r, g, b;

@@ -20,22 +20,22 @@ class SessionTest : public ::testing::Test {
     host_.attach(session_);
   }
 
+  // The message of an encoded frame, valid until the next call.
+  const wire::Message& decode(const std::vector<std::uint8_t>& frame) {
+    const proto::Decoded d = proto::decodeFrame(frame, proto::kDefaultMaxMessageBytes, aligned_);
+    EXPECT_EQ(d.status, proto::DecodeStatus::kGood) << d.error;
+    return *d.message;
+  }
   // Sends one encoded frame to the session.
-  void send(const std::vector<std::uint8_t>& frame) {
-    const proto::Decoded d = proto::decodeFrame(frame, proto::kDefaultMaxMessageBytes);
-    ASSERT_EQ(d.status, proto::DecodeStatus::kGood) << d.error;
-    session_.handle(*d.message);
-  }
-  // The body type of reply i.
-  wire::Body replyType(std::size_t i) const {
-    return proto::decodeFrame(host_.replies.at(i), proto::kDefaultMaxMessageBytes).message->body_type();
-  }
-  wire::ErrorCode errorCode(std::size_t i) const {
-    const auto* m = proto::decodeFrame(host_.replies.at(i), proto::kDefaultMaxMessageBytes).message;
-    return m->body_as_Error() ? m->body_as_Error()->code() : wire::ErrorCode::Internal;
+  void send(const std::vector<std::uint8_t>& frame) { session_.handle(decode(frame)); }
+  wire::Body replyType(std::size_t i) { return decode(host_.replies.at(i)).body_type(); }
+  wire::ErrorCode errorCode(std::size_t i) {
+    const auto* e = decode(host_.replies.at(i)).body_as_Error();
+    return e ? e->code() : wire::ErrorCode::Internal;
   }
   void hello() { send(proto::encodeHello(1 << 20, 0, "test")); }
 
+  std::vector<std::uint64_t> aligned_;
   test::InlineHost host_;
   SceneCache cache_;
   Session session_;
@@ -63,9 +63,9 @@ TEST_F(SessionTest, HelloIsAnsweredOnceAndAFullServerSaysBusy) {
   full.admits = false;
   Session other(full, cache_, {1 << 20, 2, 8}, "other");
   const auto frame = proto::encodeHello(1 << 20, 0, "test");
-  other.handle(*proto::decodeFrame(frame, proto::kDefaultMaxMessageBytes).message);
+  other.handle(decode(frame));
   EXPECT_EQ(other.state(), Session::State::kEnded);
-  const auto* error = proto::decodeFrame(full.replies.at(0), proto::kDefaultMaxMessageBytes).message->body_as_Error();
+  const auto* error = decode(full.replies.at(0)).body_as_Error();
   ASSERT_TRUE(error);
   EXPECT_EQ(error->code(), wire::ErrorCode::Busy);
   EXPECT_NE(error->message()->str().find("maximum of 8 clients"), std::string::npos);

@@ -1,0 +1,90 @@
+// Image textures from memory: only PNG and BMP reach the decoder, and memory
+// follows the bytes that arrived: a file that claims more than it holds is
+// refused before the decoder allocates for the claim.
+#include "common/image_io.h"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "common/error.h"
+#include "tests/common/test_support.h"
+
+namespace glint {
+namespace {
+
+std::string decodeError(const std::string& bytes) {
+  SceneBudget budget;
+  try {
+    decodeImage(bytes, "t.png", budget);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(decoded without error)";
+}
+
+// This process's peak virtual memory, in KiB (/proc/self/status VmPeak).
+long peakVirtualKb() {
+  std::ifstream in("/proc/self/status");
+  std::string key;
+  long kb = -1;
+  while (in >> key) {
+    if (key == "VmPeak:") in >> kb;
+  }
+  return kb;
+}
+
+TEST(ImageIo, PngRoundTripKeepsEveryByte) {
+  FrameImage image{5, 3, std::vector<std::uint8_t>(45)};
+  for (std::size_t i = 0; i < image.rgb.size(); ++i) image.rgb[i] = static_cast<std::uint8_t>(i * 37);
+  const auto path = std::filesystem::temp_directory_path() / "glint-image-io-test.png";
+  writePng(path, image);
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream bytes;
+  bytes << in.rdbuf();
+  std::filesystem::remove(path);
+  SceneBudget budget;
+  const Image decoded = decodeImage(bytes.str(), "t.png", budget);
+  EXPECT_EQ(decoded.width, 5);
+  EXPECT_EQ(decoded.height, 3);
+  EXPECT_EQ(decoded.rgb, image.rgb);
+  EXPECT_EQ(budget.used(), 45u);
+}
+
+TEST(ImageIo, OnlyPngAndBmpReachTheDecoder) {
+  EXPECT_NE(decodeError("GIF89a\x01\x00\x01\x00").find("t.png: not a PNG or BMP image"), std::string::npos);
+  EXPECT_NE(decodeError("\xff\xd8\xff\xe0 JFIF").find("not a PNG or BMP image"), std::string::npos);
+}
+
+// Found by the image fuzzer (tests/fuzz/corpus/image/regression-png-idat-claim):
+// an 85-byte PNG whose second IDAT chunk claims 2 GB made stb_image reserve
+// 2 GiB before reading it. Chunks are now checked against the file first.
+TEST(ImageIo, PngChunkLongerThanTheFileIsRefusedBeforeDecoding) {
+  const std::string png(
+      "\x89\x50\x4e\x47\x0d\x0a\x1a\x0a\x00\x00\x00\x0d\x49\x48\x44\x52\x00\x00\x00\x04\x00\x00\x04\x03"
+      "\x08\x02\x00\x00\x00\x3b\x96\x38\x91\x00\x00\x00\x1a\x49\x44\x41\x54\x78\x5e\x63\x0e\x0a\x00\x00"
+      "\x00\x0d\x49\x48\x44\x52\x00\x00\x00\x04\x00\x00\x00\x03\x08\x02\x00\xff\xff\x5f\x40\x00\x01\x7b"
+      "\xb6\x00\x1a\x49\x44\x41\x54\x78\xfa\x4e\x44\xae\x42",
+      85);
+  const long before = peakVirtualKb();
+  const std::string error = decodeError(png);
+  EXPECT_NE(error.find("t.png: PNG chunk IDAT claims 2075525146 bytes, but only 2 follow"), std::string::npos)
+      << error;
+  EXPECT_LT(peakVirtualKb() - before, 256 * 1024) << "an 85-byte PNG reserved memory for what it claims";
+}
+
+// A BMP header announcing 4096 x 4096 pixels with no pixels after it: stb_image
+// would allocate (and fill) 48 MiB for it.
+TEST(ImageIo, BmpShorterThanItsRowsIsRefusedBeforeDecoding) {
+  const long before = peakVirtualKb();
+  const std::string error = decodeError(test::bmp(4096, 4096, false));
+  EXPECT_NE(error.find("BMP of 4096x4096 needs 50331702 bytes, the file has 54"), std::string::npos) << error;
+  EXPECT_LT(peakVirtualKb() - before, 16 * 1024);
+  SceneBudget budget;
+  EXPECT_EQ(decodeImage(test::bmp(4, 2, true), "t.bmp", budget).rgb.size(), 24u);
+}
+
+}  // namespace
+}  // namespace glint

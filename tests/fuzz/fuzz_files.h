@@ -1,0 +1,33 @@
+#pragma once
+
+#include <string>
+
+#include "common/file_source.h"
+
+namespace glint::fuzz {
+
+// A 1x1 24-bit BMP (green): a texture small enough for every run.
+inline std::string tinyBmp() {
+  const unsigned char bmp[] = {'B', 'M', 58, 0, 0, 0, 0, 0, 0, 0, 54, 0, 0, 0, 40, 0, 0, 0, 1, 0, 0, 0, 1, 0,
+                               0, 0, 1, 0, 24, 0, 0, 0, 0, 0, 4, 0, 0, 0, 0x13, 0x0b, 0, 0, 0x13, 0x0b, 0,
+                               0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 255, 0, 0};
+  return std::string(reinterpret_cast<const char*>(bmp), sizeof bmp);
+}
+
+inline const char* kCubeObj =
+    "mtllib cube.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+    "usemtl red\nf 1/1 2/2 3/3\nusemtl blue\nf 1/1 3/3 4/4\n";
+inline const char* kCubeMtl =
+    "newmtl red\nKd 1 0 0\nKs 0.5 0.5 0.5\nNs 40\nd 0.5\nNi 1.3\nnewmtl blue\nKd 0 0 1\nmap_Kd tex.bmp\n";
+
+// The files a fuzzed scene may name: a textured OBJ with its MTL, the
+// texture, and a small stand-in for scenes/'s bunny (the real one is 220 KB,
+// too slow to parse on every run).
+inline void addFuzzFiles(MemorySource& files) {
+  files.add("models/cube.obj", kCubeObj);
+  files.add("models/cube.mtl", kCubeMtl);
+  files.add("models/tex.bmp", tinyBmp());
+  files.add("models/bunny.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n");
+}
+
+}  // namespace glint::fuzz

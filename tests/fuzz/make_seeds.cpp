@@ -1,0 +1,137 @@
+// Writes the fuzzers' seed corpora (tests/fuzz/corpus/TARGET/NAME) with the
+// project's own encoders and from scenes/: `glint-fuzz-seeds SOURCE_DIR`.
+// The corpora are kept in the tree; run `make fuzz-seeds` after a change to
+// the protocol or the scene format.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "common/frame.h"
+#include "common/image_io.h"
+#include "proto/messages.h"
+#include "proto/scene_bundle.h"
+#include "tests/fuzz/fuzz_files.h"
+#include "tests/proto/hostile_frames.h"
+
+namespace {
+
+using namespace glint;
+namespace fs = std::filesystem;
+using Bytes = std::vector<std::uint8_t>;
+
+fs::path gRoot;
+
+void write(const std::string& target, const std::string& name, const std::string& bytes) {
+  const fs::path dir = gRoot / "tests/fuzz/corpus" / target;
+  fs::create_directories(dir);
+  std::ofstream(dir / name, std::ios::binary) << bytes;
+}
+
+void write(const std::string& target, const std::string& name, const Bytes& bytes) {
+  write(target, name, std::string(bytes.begin(), bytes.end()));
+}
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+Bytes join(const std::vector<Bytes>& frames) {
+  Bytes out;
+  for (const Bytes& f : frames) out.insert(out.end(), f.begin(), f.end());
+  return out;
+}
+
+// A whole client session: Hello, the scene, a small frame, tiles, Goodbye.
+Bytes session(const proto::SceneBundle& bundle, FrameSettings frame) {
+  frame.width = 16;
+  frame.height = 8;
+  frame.sampling.samples = 1;
+  frame.sampling.pattern = SamplePattern::kRegular;
+  const proto::SceneHash hash = bundle.hash();
+  std::vector<std::uint8_t> mask(maskByteCount({0, 0, 8, 8}), 0x5a);
+  return join({proto::encodeHello(1 << 20, 0, "seed"), proto::encodeSceneQuery(hash),
+               proto::encodeSceneUpload(hash, bundle), proto::encodeFrameSetup(1, hash, frame),
+               proto::encodeTileRequest(1, 0, {0, 0, 8, 8}, {}), proto::encodeTileRequest(1, 1, {8, 0, 8, 8}, mask),
+               proto::encodeGoodbye()});
+}
+
+void framingSeeds(const proto::SceneBundle& bundle, const FrameSettings& frame) {
+  const proto::SceneHash hash = bundle.hash();
+  write("framing", "hello", proto::encodeHello(1 << 20, 2, "seed"));
+  write("framing", "scene-query", proto::encodeSceneQuery(hash));
+  write("framing", "scene-status", proto::encodeSceneStatus(hash, true));
+  write("framing", "scene-upload", proto::encodeSceneUpload(hash, bundle));
+  write("framing", "scene-ready", proto::encodeSceneReady(hash, 1.5f));
+  write("framing", "frame-setup", proto::encodeFrameSetup(3, hash, frame));
+  write("framing", "tile-request", proto::encodeTileRequest(3, 4, {8, 8, 8, 8}, Bytes(8, 0xff)));
+  write("framing", "tile-result", proto::encodeTileResult(3, 4, Bytes(12, 7), {1, 2, 3, 4, 5, 6}, 99));
+  write("framing", "error", proto::encodeError(wire::ErrorCode::BadTile, "tile 4: outside", 3, 4));
+  write("framing", "goodbye", proto::encodeGoodbye());
+  // Regressions (issue 9): a body type without its body, for every type.
+  for (const wire::Body type : proto::test::allBodyTypes()) {
+    write("framing", std::string("bodyless-") + wire::EnumNameBody(type), proto::test::bodylessFrame(type));
+  }
+}
+
+void sessionSeeds(const proto::SceneBundle& room, const FrameSettings& frame) {
+  write("session", "room", session(room, frame));
+  proto::SceneBundle textured{readFile(gRoot / "tests/fuzz/seed-scenes/textured.json"), {}};
+  textured.files = {{"models/cube.obj", fuzz::kCubeObj}, {"models/cube.mtl", fuzz::kCubeMtl},
+                    {"models/tex.bmp", fuzz::tinyBmp()}};
+  write("session", "textured", session(textured, frame));
+  // Regressions (issue 9): bodyless messages before and after Hello.
+  write("session", "bodyless-before-hello", proto::test::bodylessFrame(wire::Body::FrameSetup));
+  write("session", "bodyless-after-hello",
+        join({proto::encodeHello(1 << 20, 0, "seed"), proto::test::bodylessFrame(wire::Body::TileRequest)}));
+}
+
+void sceneSeeds() {
+  for (const char* dir : {"scenes", "scenes/hard", "tests/fuzz/seed-scenes"}) {
+    for (const auto& entry : fs::directory_iterator(gRoot / dir)) {
+      if (entry.path().extension() == ".json") {
+        write("scene_json", entry.path().filename().string(), readFile(entry.path()));
+      }
+    }
+  }
+}
+
+void objAndImageSeeds() {
+  write("obj", "cube", std::string(fuzz::kCubeObj).replace(0, 15, "mtllib m.mtl") + "\n#MTL\n" +
+                           std::string(fuzz::kCubeMtl));
+  write("obj", "groups-normals",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvn 0 0 1\ng a\nf 1//1 2//1 3//1\ng b\nf 2//1 4//1 3//1\n");
+  write("image", "tiny.bmp", fuzz::tinyBmp());
+  FrameImage image{4, 3, Bytes(36)};
+  for (std::size_t i = 0; i < image.rgb.size(); ++i) image.rgb[i] = static_cast<std::uint8_t>(i * 7);
+  const fs::path png = fs::temp_directory_path() / "glint-seed.png";
+  writePng(png, image);
+  write("image", "small.png", readFile(png));
+  fs::remove(png);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: glint-fuzz-seeds SOURCE_DIR\n");
+    return 2;
+  }
+  gRoot = argv[1];
+  try {
+    const proto::LoadedBundle room = proto::loadSceneBundle(gRoot / "scenes/room.json");
+    framingSeeds(room.bundle, room.scene.frame());
+    sessionSeeds(room.bundle, room.scene.frame());
+    sceneSeeds();
+    objAndImageSeeds();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "glint-fuzz-seeds: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
