@@ -25,6 +25,7 @@
 #include "server/log.h"
 #include "server/background_server.h"
 #include "tests/bench/bench_scenes.h"
+#include "tests/bench/load_section.h"
 
 namespace glint::bench {
 namespace {
@@ -37,7 +38,7 @@ struct Options {
   bool povray = true;
   int runs = 7;
   int tileSize = 64;
-  std::vector<std::string> sections = {"bvh", "room", "accuracy", "protocol", "hybrid"};
+  std::vector<std::string> sections = {"bvh", "room", "accuracy", "protocol", "hybrid", "load"};
   bool wants(const std::string& s) const { return std::find(sections.begin(), sections.end(), s) != sections.end(); }
 };
 
@@ -334,9 +335,9 @@ int main(int argc, char** argv) {
   bool noPovray = false;
   app.add_flag("--no-povray", noPovray, "Skip the POV-Ray comparison");
   app.add_option("--tile-size", o.tileSize, "Tile edge for the glintd comparison")->check(CLI::Range(8, 1024));
-  app.add_option("--sections", o.sections, "Sections to run: bvh, room, accuracy, protocol, hybrid (default: all)")
+  app.add_option("--sections", o.sections, "Sections to run: bvh, room, accuracy, protocol, hybrid, load (default: all)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"bvh", "room", "accuracy", "protocol", "hybrid"}));
+      ->check(CLI::IsMember({"bvh", "room", "accuracy", "protocol", "hybrid", "load"}));
   CLI11_PARSE(app, argc, argv);
   o.povray = !noPovray;
   if (o.quick) o.runs = 1;
@@ -353,6 +354,7 @@ int main(int argc, char** argv) {
     if (o.wants("accuracy")) bench::accuracySection(o, room, pool);
     if (o.wants("protocol")) bench::protocolSection(o, room);
     if (o.wants("hybrid")) bench::hybridSection(o);
+    if (o.wants("load")) bench::loadSection(o.scenes, o.quick);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "glint-bench: %s\n", e.what());
     return 1;
