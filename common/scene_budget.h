@@ -37,8 +37,8 @@ class MemoryGauge {
 // names the place, the limit and by how much. Not thread-safe: one per load.
 class SceneBudget {
  public:
-  // Bytes each item costs once the scene is built (Geometry's arrays, the
-  // 4-wide BVH: at most one 128-byte node and one index per primitive).
+  // Bytes each item costs (Geometry's arrays; the BVH's nodes, and what its
+  // builder holds meanwhile, per primitive).
   static const std::size_t kBytesPerVertex;
   static const std::size_t kBytesPerTriangle;
   static const std::size_t kBytesPerSphere;

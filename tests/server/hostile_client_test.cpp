@@ -159,7 +159,8 @@ TEST(HostileClient, SceneThatDecodesTooLargeIsRefusedNamingTheLimit) {
 
 TEST(HostileClient, MemoryOptionsThatCannotHoldTheirScenesAreRefused) {
   EXPECT_THROW(GlintdProcess({"--max-scene-mb", "128", "--cache-mb", "64"}), std::runtime_error);
-  EXPECT_THROW(GlintdProcess({"--max-memory-mb", "1024", "--cache-mb", "1024"}), std::runtime_error);
+  EXPECT_THROW(GlintdProcess({"--max-memory-mb", "1024", "--cache-mb", "1024", "--max-scene-mb", "512"}),
+               std::runtime_error);
 }
 
 }  // namespace
