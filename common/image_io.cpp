@@ -49,6 +49,10 @@ void checkPngChunks(std::string_view bytes, const std::string& place) {
 // An uncompressed BMP must hold the rows its header announces: stb_image
 // allocates the whole image before it reads them.
 void checkBmpRows(std::string_view bytes, int width, int height, const std::string& place) {
+  constexpr std::size_t kHeaderBytes = 30;  // up to the bits per pixel
+  if (bytes.size() < kHeaderBytes) {
+    throw InputError(place + ": BMP header of " + std::to_string(bytes.size()) + " bytes (truncated)");
+  }
   const std::uint32_t offset = littleEndian(bytes, 10, 4);
   const std::uint32_t bitsPerPixel = littleEndian(bytes, 28, 2);
   const std::size_t rowBytes = (static_cast<std::size_t>(width) * bitsPerPixel + 31) / 32 * 4;

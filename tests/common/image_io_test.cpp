@@ -86,5 +86,13 @@ TEST(ImageIo, BmpShorterThanItsRowsIsRefusedBeforeDecoding) {
   EXPECT_EQ(decodeImage(test::bmp(4, 2, true), "t.bmp", budget).rgb.size(), 24u);
 }
 
+// Found by the image fuzzer (corpus/image/regression-bmp-short-header): a BMP
+// cut inside its header passed stb_image's header check, and the row check
+// read past the end of the file.
+TEST(ImageIo, BmpCutInsideItsHeaderIsRefused) {
+  const std::string cut = test::bmp(1, 1, true).substr(0, 27);
+  EXPECT_NE(decodeError(cut).find("BMP header of 27 bytes (truncated)"), std::string::npos) << decodeError(cut);
+}
+
 }  // namespace
 }  // namespace glint
