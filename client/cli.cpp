@@ -34,6 +34,17 @@ void parseSize(const std::string& text, std::optional<int>& width, std::optional
   height = h;
 }
 
+// An option that takes one of an enum's words (common/enum_words.h); the
+// words are listed in --help and in the error for any other.
+template <typename Enum>
+CLI::Option* addEnumOption(CLI::App* app, const std::string& name, std::optional<Enum>& target,
+                           const std::string& help) {
+  return app
+      ->add_option_function<std::string>(
+          name, [&target](const std::string& word) { target = enumFromWord<Enum>(word); }, help)
+      ->check(CLI::IsMember(enumWordList<Enum>()));
+}
+
 }  // namespace
 
 int runCli(int argc, char** argv) {
@@ -43,17 +54,13 @@ int runCli(int argc, char** argv) {
 
   RenderOptions options;
   std::string size;
-  std::string pattern;
-  std::string filter;
-  std::string bvh = "sah";
   CLI::App* render = app.add_subcommand("render", kRenderHelp);
   render->add_option("scene", options.scene, "Scene file (.json)")->required()->check(CLI::ExistingFile);
   render->add_option("-o,--output", options.output, "PNG file to write (written only when the render succeeds)")
       ->required();
-  render->add_option("--mask", options.mask,
-                     "Which pixels are ray traced: auto (objects whose materials need it, drawn by "
-                     "OpenGL otherwise), all (full ray trace), none (OpenGL only). Default: the scene's")
-      ->check(CLI::IsMember({"scene", "auto", "all", "none"}));
+  addEnumOption(render, "--mask", options.mask,
+                "Which pixels are ray traced (default: the scene's): auto, objects whose materials need it, "
+                "drawn by OpenGL otherwise; all, the full ray trace; none, OpenGL only");
   render->add_option("--mask-threshold", options.maskThreshold,
                      "Under --mask auto: materials with reflectivity above this are ray traced")
       ->check(CLI::Range(0.0f, 1.0f));
@@ -66,10 +73,8 @@ int runCli(int argc, char** argv) {
       ->default_val(64);
   render->add_option("--samples", options.samples, "Samples per pixel (regular: 1, 2, 4, 9, 16 ...)")
       ->check(CLI::Range(1, 4096));
-  render->add_option("--pattern", pattern, "Sample pattern: regular or jittered")
-      ->check(CLI::IsMember({"regular", "jittered"}));
-  render->add_option("--filter", filter, "Pixel filter: box, tent, gaussian or mitchell")
-      ->check(CLI::IsMember({"box", "tent", "gaussian", "mitchell"}));
+  addEnumOption(render, "--pattern", options.pattern, "Sample pattern (default: the scene's)");
+  addEnumOption(render, "--filter", options.filter, "Pixel filter (default: the scene's)");
   render->add_option("--seed", options.seed, "Seed of the jitter (same seed, same image)")
       ->check(CLI::Range(0u, 0x7fffffffu));
   render->add_option("--max-depth", options.maxDepth, "Maximum ray depth (primary ray = 1)")
@@ -78,8 +83,7 @@ int runCli(int argc, char** argv) {
                      "Rays whose path weight falls below this are not traced")
       ->check(CLI::Range(0.0f, 1.0f));
   render->add_option("--size", size, "Image size WIDTHxHEIGHT (the camera's fov_y is kept)");
-  render->add_option("--bvh", bvh, "BVH builder: sah (default) or qsplit (the thesis's)")
-      ->check(CLI::IsMember({"sah", "qsplit"}));
+  addEnumOption(render, "--bvh", options.bvh, "BVH builder in process (default: sah; qsplit is the thesis's)");
   render->add_option("--server", options.server,
                      "Render through the glintd at HOST:PORT (e.g. 127.0.0.1:7878); the image is "
                      "byte-identical to the in-process one");
@@ -99,10 +103,10 @@ int runCli(int argc, char** argv) {
               "zooms; M cycles the mask rule (auto, all, none), O shows the mask, Q or Escape closes.");
   viewCommand->add_option("scene", view.scene, "Scene file (.json)")->required()->check(CLI::ExistingFile);
   viewCommand->add_option("--server", view.server, "Trace through the glintd at HOST:PORT");
-  viewCommand->add_option("--mask", view.mask, "Initial mask rule: auto, all or none (default: the scene's)")
-      ->check(CLI::IsMember({"scene", "auto", "all", "none"}));
+  addEnumOption(viewCommand, "--mask", view.mask, "Initial mask rule (default: the scene's)");
   viewCommand->add_option("--threads", view.threads, "Tracing threads; 0 = one per hardware thread")
       ->check(CLI::Range(0, 1024));
+  addEnumOption(viewCommand, "--bvh", view.bvh, "BVH builder in process (default: sah; qsplit is the thesis's)");
   viewCommand->add_option("--tile-size", view.tileSize, "Tile edge in pixels")->check(CLI::Range(1, 4096));
   viewCommand->add_option("--size", viewSize, "Window size WIDTHxHEIGHT (default: the scene's image size)");
   viewCommand->add_option("--frames", view.frames, "Close after N frames (for scripts)")->check(CLI::Range(1, 1000000));
@@ -121,16 +125,6 @@ int runCli(int argc, char** argv) {
       runView(view);
       return 0;
     }
-    if (!pattern.empty()) {
-      options.pattern = pattern == "regular" ? SamplePattern::kRegular : SamplePattern::kJittered;
-    }
-    if (!filter.empty()) {
-      options.filter = filter == "box"        ? FilterType::kBox
-                       : filter == "tent"     ? FilterType::kTent
-                       : filter == "gaussian" ? FilterType::kGaussian
-                                              : FilterType::kMitchell;
-    }
-    options.bvh = bvh == "qsplit" ? BvhBuilder::kQSplit : BvhBuilder::kSah;
     if (render->parsed()) runRender(options);
     return 0;
   } catch (const InputError& e) {

@@ -12,8 +12,8 @@
 #include "client/offscreen_context.h"
 #include "client/progress.h"
 #include "client/raster_scene.h"
-#include "client/remote_tile_service.h"
 #include "client/stats_json.h"
+#include "client/tile_backend.h"
 #include "common/error.h"
 #include "common/frame.h"
 #include "common/image_io.h"
@@ -77,9 +77,7 @@ void applyOverrides(const RenderOptions& o, Scene& scene) {
                      ": the regular pattern takes 1, 2 or a square number (4, 9, 16, ...); "
                      "use --pattern jittered for other counts");
   }
-  if (o.mask == "all") scene.mask.rule = MaskRule::kAll;
-  if (o.mask == "auto") scene.mask.rule = MaskRule::kAuto;
-  if (o.mask == "none") scene.mask.rule = MaskRule::kNone;
+  if (o.mask) scene.mask.rule = *o.mask;
   if (o.maskThreshold) scene.mask.minReflectivity = *o.maskThreshold;
 }
 
@@ -94,19 +92,9 @@ void runRender(const RenderOptions& options) {
 
   // In process (the default) or through a glintd: the same tiles either way.
   const Clock::time_point prepareStart = Clock::now();
-  std::optional<PreparedScene> prepared;
-  std::optional<ThreadPool> pool;
-  std::unique_ptr<TileService> service;
-  if (options.server.empty()) {
-    BvhSettings bvhSettings;
-    bvhSettings.builder = options.bvh;
-    prepared.emplace(std::move(loaded.scene), bvhSettings);
-    pool.emplace(resolveThreadCount(options.threads));
-    service = std::make_unique<LocalTileService>(*prepared, *pool);
-  } else {
-    service = std::make_unique<RemoteTileService>(options.server, loaded.bundle);
-  }
-  const Scene& scene = prepared ? prepared->scene() : loaded.scene;
+  TileBackend backend({options.server, options.threads, options.bvh}, std::move(loaded));
+  TileService& service = backend.service();
+  const Scene& scene = backend.scene();
   const double prepareMs = msSince(prepareStart);
 
   // --mask all is the full ray trace: every pixel through the tile service.
@@ -123,13 +111,13 @@ void runRender(const RenderOptions& options) {
   for (int f = 0; f < options.frames; ++f) {
     const Clock::time_point frameStart = Clock::now();
     if (hybridPath) {
-      renderHybrid(context->api(), *raster, *service, frame, scene.mask, options.tileSize, r);
+      renderHybrid(context->api(), *raster, service, frame, scene.mask, options.tileSize, r);
     } else {
       FrameOptions frameOptions;
       frameOptions.tileSize = options.tileSize;
       ProgressBar progress("rendering");
       frameOptions.progress = [&progress](int done, int total) { progress.update(done, total); };
-      FrameResult full = renderFrame(*service, frame, frameOptions);
+      FrameResult full = renderFrame(service, frame, frameOptions);
       r.image = std::move(full.image);
       r.rays = full.stats;
       r.maskedPixels = static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height);
@@ -155,8 +143,7 @@ void runRender(const RenderOptions& options) {
   writePng(options.output, r.image);
 
   if (!options.quiet) {
-    const std::string where = options.server.empty() ? std::to_string(pool->size()) + " threads"
-                                                     : "server " + options.server;
+    const std::string where = backend.where();
     std::fprintf(stderr, "%s: %dx%d, %d spp, %s: trace %.1f ms, frame %.1f ms, %.2f M rays -> %s\n",
                  options.scene.c_str(), frame.width, frame.height, frame.sampling.samples, where.c_str(),
                  frameTimes.back().traceMs, frameTimes.back().totalMs, static_cast<double>(r.rays.total()) / 1e6,

@@ -12,7 +12,7 @@ namespace glint {
 struct RenderOptions {
   std::string scene;
   std::string output;
-  std::string mask = "scene";  // scene | auto | all | none
+  std::optional<MaskRule> mask;
   std::optional<float> maskThreshold;  // overrides the scene's min_reflectivity
   std::string maskOut;                 // PNG of the mask, "" none
   int threads = 0;             // 0: every hardware thread
@@ -25,7 +25,7 @@ struct RenderOptions {
   std::optional<int> width;
   std::optional<int> height;
   std::optional<std::uint32_t> seed;
-  BvhBuilder bvh = BvhBuilder::kSah;
+  std::optional<BvhBuilder> bvh;  // in process only; unset: SAH
   std::string server;     // HOST:PORT of a glintd; "" renders in process
   std::string statsPath;  // "" none, "-" stdout
   int frames = 1;          // frames rendered (the last is written); > 1 prints medians

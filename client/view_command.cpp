@@ -14,7 +14,7 @@
 #include "client/gl_api.h"
 #include "client/hybrid_frame.h"
 #include "client/raster_scene.h"
-#include "client/remote_tile_service.h"
+#include "client/tile_backend.h"
 #include "common/error.h"
 #include "common/image_io.h"
 #include "proto/scene_bundle.h"
@@ -106,18 +106,13 @@ void drawOverlay(const gl::Api& gl, const HybridResult& r, int width, int height
   gl.DrawPixels(width, height, GL_RGB, GL_UNSIGNED_BYTE, flipped.data());
 }
 
-const char* ruleName(MaskRule r) { return r == MaskRule::kAll ? "all" : r == MaskRule::kNone ? "none" : "auto"; }
-
 }  // namespace
 
 void runView(const ViewOptions& options) {
   proto::LoadedBundle loaded = proto::loadSceneBundle(options.scene);
-  Scene& scene = loaded.scene;
-  if (options.width) scene.width = *options.width;
-  if (options.height) scene.height = *options.height;
-  if (options.mask == "auto") scene.mask.rule = MaskRule::kAuto;
-  if (options.mask == "all") scene.mask.rule = MaskRule::kAll;
-  if (options.mask == "none") scene.mask.rule = MaskRule::kNone;
+  if (options.width) loaded.scene.width = *options.width;
+  if (options.height) loaded.scene.height = *options.height;
+  if (options.mask) loaded.scene.mask.rule = *options.mask;
 
   if (!glfwInit()) {
     throw InputError("glint view needs a display: cannot initialise GLFW (is DISPLAY set? glint render works headless)");
@@ -131,22 +126,15 @@ void runView(const ViewOptions& options) {
   glfwWindowHint(GLFW_STENCIL_BITS, 8);
   glfwWindowHint(GLFW_DEPTH_BITS, 24);
   glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
-  GLFWwindow* window = glfwCreateWindow(scene.width, scene.height, "glint view", nullptr, nullptr);
+  GLFWwindow* window = glfwCreateWindow(loaded.scene.width, loaded.scene.height, "glint view", nullptr, nullptr);
   if (!window) throw InputError("glint view: cannot open an OpenGL 3.3 compatibility window");
   glfwMakeContextCurrent(window);
   glfwSwapInterval(0);
   const gl::Api api = gl::loadApi([](const char* name) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); });
 
-  std::optional<PreparedScene> prepared;
-  std::optional<ThreadPool> pool;
-  std::unique_ptr<TileService> service;
-  if (options.server.empty()) {
-    prepared.emplace(scene, BvhSettings{});
-    pool.emplace(resolveThreadCount(options.threads));
-    service = std::make_unique<LocalTileService>(*prepared, *pool);
-  } else {
-    service = std::make_unique<RemoteTileService>(options.server, loaded.bundle);
-  }
+  TileBackend backend({options.server, options.threads, options.bvh}, std::move(loaded));
+  TileService& service = backend.service();
+  const Scene& scene = backend.scene();
   gl::RasterScene raster(api, scene);
 
   Controls controls;
@@ -165,13 +153,13 @@ void runView(const ViewOptions& options) {
       frame.camera = controls.camera;
       MaskSettings mask = scene.mask;
       mask.rule = controls.rule;
-      renderHybrid(api, raster, *service, frame, mask, options.tileSize, last);
+      renderHybrid(api, raster, service, frame, mask, options.tileSize, last);
       if (controls.overlay) drawOverlay(api, last, frame.width, frame.height);
       glfwSwapBuffers(window);
       char title[256];
       std::snprintf(title, sizeof title,
                     "glint view  |  mask %s%s  |  frame %.0f ms: raster %.0f, read %.0f, RT %.0f, compose %.0f  |  %s",
-                    ruleName(controls.rule), controls.overlay ? " (shown)" : "", last.times.totalMs,
+                    std::string(enumWord(controls.rule)).c_str(), controls.overlay ? " (shown)" : "", last.times.totalMs,
                     last.times.rasterMs, last.times.readbackMs, last.times.traceMs, last.times.composeMs,
                     options.server.empty() ? "in process" : options.server.c_str());
       glfwSetWindowTitle(window, title);

@@ -3,14 +3,18 @@
 #include <optional>
 #include <string>
 
+#include "common/bvh.h"
+#include "common/scene.h"
+
 namespace glint {
 
 // Options of `glint view`.
 struct ViewOptions {
   std::string scene;
   std::string server;          // HOST:PORT of a glintd; "" traces in process
-  std::string mask = "scene";  // scene | auto | all | none
+  std::optional<MaskRule> mask;  // unset: the scene's
   int threads = 0;
+  std::optional<BvhBuilder> bvh;  // in process only; unset: SAH
   int tileSize = 64;
   std::optional<int> width;
   std::optional<int> height;

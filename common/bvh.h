@@ -7,6 +7,7 @@
 
 #include "common/bounds.h"
 #include "common/geometry.h"
+#include "common/enum_words.h"
 #include "common/ray.h"
 #include "common/wide_slab.h"
 
@@ -15,6 +16,12 @@ namespace glint {
 enum class BvhBuilder {
   kQSplit,  // the thesis's: midpoint of the node's box, axis cycling x, y, z per level
   kSah,     // binned surface area heuristic (Wald 2007)
+};
+
+template <>
+struct EnumWords<BvhBuilder> {
+  static constexpr std::array<std::pair<BvhBuilder, std::string_view>, 2> kWords{
+      {{BvhBuilder::kSah, "sah"}, {BvhBuilder::kQSplit, "qsplit"}}};
 };
 
 // Every tuning knob of the BVH build, with its default.

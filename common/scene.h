@@ -6,6 +6,7 @@
 #include <glm/vec3.hpp>
 
 #include "common/camera.h"
+#include "common/enum_words.h"
 #include "common/geometry.h"
 #include "common/material.h"
 #include "common/texture.h"
@@ -15,6 +16,24 @@ namespace glint {
 enum class SamplePattern { kRegular, kJittered };
 enum class FilterType { kBox, kTent, kGaussian, kMitchell };
 enum class MaskRule { kAuto, kAll, kNone };
+
+template <>
+struct EnumWords<SamplePattern> {
+  static constexpr std::array<std::pair<SamplePattern, std::string_view>, 2> kWords{
+      {{SamplePattern::kRegular, "regular"}, {SamplePattern::kJittered, "jittered"}}};
+};
+template <>
+struct EnumWords<FilterType> {
+  static constexpr std::array<std::pair<FilterType, std::string_view>, 4> kWords{{{FilterType::kBox, "box"},
+                                                                                  {FilterType::kTent, "tent"},
+                                                                                  {FilterType::kGaussian, "gaussian"},
+                                                                                  {FilterType::kMitchell, "mitchell"}}};
+};
+template <>
+struct EnumWords<MaskRule> {
+  static constexpr std::array<std::pair<MaskRule, std::string_view>, 3> kWords{
+      {{MaskRule::kAuto, "auto"}, {MaskRule::kAll, "all"}, {MaskRule::kNone, "none"}}};
+};
 
 struct SamplingSettings {
   SamplePattern pattern = SamplePattern::kRegular;

@@ -15,18 +15,34 @@
 namespace glint {
 namespace {
 
+// The scene format's kinds of object and light (docs/scene-format.md).
+enum class ObjectKind { kSphere, kTriangle, kQuad, kMesh };
+enum class LightKind { kPoint };
+
+}  // namespace
+
+template <>
+struct EnumWords<ObjectKind> {
+  static constexpr std::array<std::pair<ObjectKind, std::string_view>, 4> kWords{{{ObjectKind::kSphere, "sphere"},
+                                                                                  {ObjectKind::kTriangle, "triangle"},
+                                                                                  {ObjectKind::kQuad, "quad"},
+                                                                                  {ObjectKind::kMesh, "mesh"}}};
+};
+template <>
+struct EnumWords<LightKind> {
+  static constexpr std::array<std::pair<LightKind, std::string_view>, 1> kWords{{{LightKind::kPoint, "point"}}};
+};
+
+namespace {
+
 constexpr float kMax = std::numeric_limits<float>::max();
 
-// Reads one value from a fixed list of words.
+// Reads one of an enum's words (common/enum_words.h).
 template <typename Enum>
-Enum choice(const JsonReader& r, std::initializer_list<std::pair<const char*, Enum>> options) {
+Enum choice(const JsonReader& r) {
   const std::string s = r.string();
-  std::string list;
-  for (const auto& [word, value] : options) {
-    if (s == word) return value;
-    list += std::string(list.empty() ? "" : ", ") + word;
-  }
-  r.fail("'" + s + "' is not one of: " + list);
+  if (const std::optional<Enum> value = enumFromWord<Enum>(s)) return *value;
+  r.fail("'" + s + "' is not one of: " + enumWordsJoined<Enum>());
 }
 
 class SceneLoader {
@@ -81,15 +97,11 @@ class SceneLoader {
     r.allowKeys({"pattern", "samples", "filter", "seed"});
     SamplingSettings& s = scene_.sampling;
     if (auto p = r.find("pattern")) {
-      s.pattern = choice<SamplePattern>(*p, {{"regular", SamplePattern::kRegular},
-                                             {"jittered", SamplePattern::kJittered}});
+      s.pattern = choice<SamplePattern>(*p);
     }
     if (auto n = r.find("samples")) s.samples = n->integer(1, limits_.maxSamples);
     if (auto f = r.find("filter")) {
-      s.filter = choice<FilterType>(*f, {{"box", FilterType::kBox},
-                                         {"tent", FilterType::kTent},
-                                         {"gaussian", FilterType::kGaussian},
-                                         {"mitchell", FilterType::kMitchell}});
+      s.filter = choice<FilterType>(*f);
     }
     if (auto seed = r.find("seed")) s.seed = static_cast<std::uint32_t>(seed->integer(0, 0x7fffffff));
     if (!validSampleCount(s.pattern, s.samples)) {
@@ -106,9 +118,7 @@ class SceneLoader {
   void readMask(const JsonReader& r) {
     r.allowKeys({"rule", "min_reflectivity", "min_transparency"});
     if (auto rule = r.find("rule")) {
-      scene_.mask.rule = choice<MaskRule>(*rule, {{"auto", MaskRule::kAuto},
-                                                  {"all", MaskRule::kAll},
-                                                  {"none", MaskRule::kNone}});
+      scene_.mask.rule = choice<MaskRule>(*rule);
     }
     scene_.mask.minReflectivity = r.number("min_reflectivity", 0.2f, 0.0f, 1.0f);
     scene_.mask.minTransparency = r.number("min_transparency", 0.0f, 0.0f, 1.0f);
@@ -120,9 +130,7 @@ class SceneLoader {
       const JsonReader t(value, r.path() + "." + name);
       Texture tex;
       const JsonReader type = t["type"];
-      tex.type = choice<TextureType>(type, {{"solid", TextureType::kSolid},
-                                            {"checker", TextureType::kChecker},
-                                            {"image", TextureType::kImage}});
+      tex.type = choice<TextureType>(type);
       switch (tex.type) {
         case TextureType::kSolid:
           t.allowKeys({"type", "color"});
@@ -143,8 +151,7 @@ class SceneLoader {
           tex.image = std::make_shared<Image>(
               decodeImage(files_.read(normalisePath(file.string()), file.path()), file.path(), budget_));
           if (auto f = t.find("filter")) {
-            tex.filter = choice<ImageFilter>(*f, {{"nearest", ImageFilter::kNearest},
-                                                  {"bilinear", ImageFilter::kBilinear}});
+            tex.filter = choice<ImageFilter>(*f);
           }
           break;
         }
@@ -199,7 +206,7 @@ class SceneLoader {
     for (std::size_t i = 0; i < r.arraySize(); ++i) {
       const JsonReader l = r.at(i);
       l.allowKeys({"type", "position", "color", "attenuation"});
-      choice<int>(l["type"], {{"point", 0}});
+      choice<LightKind>(l["type"]);  // the only kind
       PointLight light;
       light.position = l["position"].vec3();
       light.color = l.vec3("color", glm::vec3(1.0f));
@@ -243,20 +250,14 @@ class SceneLoader {
 
   void readObject(const JsonReader& o) {
     o.requireObject();
-    const JsonReader type = o["type"];
-    enum class Kind { kSphere, kTriangle, kQuad, kMesh };
-    const Kind kind = choice<Kind>(type, {{"sphere", Kind::kSphere},
-                                          {"triangle", Kind::kTriangle},
-                                          {"quad", Kind::kQuad},
-                                          {"mesh", Kind::kMesh}});
-    switch (kind) {
-      case Kind::kSphere:
+    switch (choice<ObjectKind>(o["type"])) {
+      case ObjectKind::kSphere:
         return readSphere(o);
-      case Kind::kTriangle:
+      case ObjectKind::kTriangle:
         return readTriangle(o);
-      case Kind::kQuad:
+      case ObjectKind::kQuad:
         return readQuad(o);
-      case Kind::kMesh:
+      case ObjectKind::kMesh:
         return readMesh(o);
     }
   }

@@ -8,6 +8,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "common/enum_words.h"
+
 namespace glint {
 
 // Decoded texture image: 8-bit RGB texels as the file held them (3 bytes a
@@ -22,6 +24,17 @@ struct Image {
 
 enum class TextureType { kSolid, kChecker, kImage };
 enum class ImageFilter { kNearest, kBilinear };
+
+template <>
+struct EnumWords<TextureType> {
+  static constexpr std::array<std::pair<TextureType, std::string_view>, 3> kWords{
+      {{TextureType::kSolid, "solid"}, {TextureType::kChecker, "checker"}, {TextureType::kImage, "image"}}};
+};
+template <>
+struct EnumWords<ImageFilter> {
+  static constexpr std::array<std::pair<ImageFilter, std::string_view>, 2> kWords{
+      {{ImageFilter::kNearest, "nearest"}, {ImageFilter::kBilinear, "bilinear"}}};
+};
 
 // The thesis's abstract texture: a colour at (u, v).
 struct Texture {

@@ -96,7 +96,7 @@ void bvhSection(const Options& o, const Scene& room) {
     const BvhBuilder builders[2] = {BvhBuilder::kQSplit, BvhBuilder::kSah};
     for (int b = 0; b < 2; ++b) {
       r[b] = measureBvh(*c.g, c.rays, builders[b], o.runs);
-      std::printf("| %s | %s | %u | %.2f | %.2f | %.2f |\n", c.name, b == 0 ? "qsplit" : "sah",
+      std::printf("| %s | %s | %u | %.2f | %.2f | %.2f |\n", c.name, std::string(enumWord(builders[b])).c_str(),
                   c.g->primitiveCount(), r[b].buildMs, r[b].closestMrays, r[b].anyMrays);
     }
     std::printf("| %s | sah / qsplit | | | **%.2fx** | %.2fx |\n", c.name, r[1].closestMrays / r[0].closestMrays,
@@ -170,9 +170,8 @@ void accuracySection(const Options& o, const Scene& room, ThreadPool& pool) {
     row(std::to_string(n) + " samples, jittered, tent" + (n == 4 ? " (the thesis's)" : ""),
         [n](Scene& s) { s.sampling.samples = n; });
   }
-  for (auto [name, f] : {std::pair{"box", FilterType::kBox}, std::pair{"gaussian", FilterType::kGaussian},
-                         std::pair{"mitchell", FilterType::kMitchell}}) {
-    row(std::string("4 samples, jittered, ") + name, [f](Scene& s) { s.sampling.filter = f; });
+  for (FilterType f : {FilterType::kBox, FilterType::kGaussian, FilterType::kMitchell}) {
+    row("4 samples, jittered, " + std::string(enumWord(f)), [f](Scene& s) { s.sampling.filter = f; });
   }
   for (int depth : {1, 2, 3, 8}) {
     row("max_depth " + std::to_string(depth), [depth](Scene& s) { s.tracing.maxDepth = depth; });

@@ -1,6 +1,7 @@
 #include "tests/common/test_support.h"
 
 #include <cmath>
+#include <filesystem>
 #include <map>
 
 #include <glm/geometric.hpp>
@@ -30,7 +31,9 @@ FrameResult render(const Scene& scene, const EffectPlan& plan, int threads, int 
   return renderFrame(renderer, pool, options);
 }
 
-std::string sourcePath(const std::string& relative) { return std::string(GLINT_SOURCE_DIR) + "/" + relative; }
+std::string sourcePath(const std::string& relative) {
+  return (std::filesystem::path(GLINT_SOURCE_DIR) / relative).string();
+}
 
 Rgb pixelAt(const FrameImage& image, int x, int y) {
   const std::size_t i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
