@@ -64,16 +64,16 @@ void writeStats(const std::string& path, const nlohmann::json& record, bool appe
 }  // namespace
 
 void applyOverrides(const RenderOptions& o, Scene& scene) {
-  if (o.width) scene.width = *o.width;
-  if (o.height) scene.height = *o.height;
-  if (o.pattern) scene.sampling.pattern = *o.pattern;
-  if (o.samples) scene.sampling.samples = *o.samples;
-  if (o.filter) scene.sampling.filter = *o.filter;
-  if (o.seed) scene.sampling.seed = *o.seed;
-  if (o.maxDepth) scene.tracing.maxDepth = *o.maxDepth;
-  if (o.minWeight) scene.tracing.minWeight = *o.minWeight;
-  if (!validSampleCount(scene.sampling.pattern, scene.sampling.samples)) {
-    throw InputError("--samples " + std::to_string(scene.sampling.samples) +
+  if (o.width) scene.frame.width = *o.width;
+  if (o.height) scene.frame.height = *o.height;
+  if (o.pattern) scene.frame.sampling.pattern = *o.pattern;
+  if (o.samples) scene.frame.sampling.samples = *o.samples;
+  if (o.filter) scene.frame.sampling.filter = *o.filter;
+  if (o.seed) scene.frame.sampling.seed = *o.seed;
+  if (o.maxDepth) scene.frame.tracing.maxDepth = *o.maxDepth;
+  if (o.minWeight) scene.frame.tracing.minWeight = *o.minWeight;
+  if (!validSampleCount(scene.frame.sampling.pattern, scene.frame.sampling.samples)) {
+    throw InputError("--samples " + std::to_string(scene.frame.sampling.samples) +
                      ": the regular pattern takes 1, 2 or a square number (4, 9, 16, ...); "
                      "use --pattern jittered for other counts");
   }
@@ -85,7 +85,7 @@ void runRender(const RenderOptions& options) {
   const Clock::time_point start = Clock::now();
   proto::LoadedBundle loaded = proto::loadSceneBundle(options.scene);
   applyOverrides(options, loaded.scene);
-  const FrameSettings frame = loaded.scene.frame();
+  const FrameSettings frame = loaded.scene.frame;
   const EffectPlan plan = EffectPlan::derive(loaded.scene, frame);
   const std::size_t dropped = loaded.scene.geometry.droppedTriangles();
   const double loadMs = msSince(start);

@@ -110,8 +110,8 @@ void drawOverlay(const gl::Api& gl, const HybridResult& r, int width, int height
 
 void runView(const ViewOptions& options) {
   proto::LoadedBundle loaded = proto::loadSceneBundle(options.scene);
-  if (options.width) loaded.scene.width = *options.width;
-  if (options.height) loaded.scene.height = *options.height;
+  if (options.width) loaded.scene.frame.width = *options.width;
+  if (options.height) loaded.scene.frame.height = *options.height;
   if (options.mask) loaded.scene.mask.rule = *options.mask;
 
   if (!glfwInit()) {
@@ -126,7 +126,7 @@ void runView(const ViewOptions& options) {
   glfwWindowHint(GLFW_STENCIL_BITS, 8);
   glfwWindowHint(GLFW_DEPTH_BITS, 24);
   glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
-  GLFWwindow* window = glfwCreateWindow(loaded.scene.width, loaded.scene.height, "glint view", nullptr, nullptr);
+  GLFWwindow* window = glfwCreateWindow(loaded.scene.frame.width, loaded.scene.frame.height, "glint view", nullptr, nullptr);
   if (!window) throw InputError("glint view: cannot open an OpenGL 3.3 compatibility window");
   glfwMakeContextCurrent(window);
   glfwSwapInterval(0);
@@ -138,7 +138,7 @@ void runView(const ViewOptions& options) {
   gl::RasterScene raster(api, scene);
 
   Controls controls;
-  controls.camera = scene.camera;
+  controls.camera = scene.frame.camera;
   controls.rule = scene.mask.rule;
   glfwSetWindowUserPointer(window, &controls);
   installCallbacks(window);
@@ -148,7 +148,7 @@ void runView(const ViewOptions& options) {
   while (!glfwWindowShouldClose(window)) {
     if (controls.changed || options.frames > 0) {
       controls.changed = false;
-      FrameSettings frame = scene.frame();
+      FrameSettings frame = scene.frame;
       glfwGetFramebufferSize(window, &frame.width, &frame.height);
       frame.camera = controls.camera;
       MaskSettings mask = scene.mask;

@@ -32,7 +32,7 @@ struct EffectPlan {
   std::vector<bool> lights;   // false: the light adds nothing (black) and is skipped
 
   static EffectPlan derive(const Scene& scene, const FrameSettings& frame);
-  static EffectPlan derive(const Scene& scene) { return derive(scene, scene.frame()); }
+  static EffectPlan derive(const Scene& scene) { return derive(scene, scene.frame); }
   // Every effect switched on for every material and light: the reference the
   // tests compare derive() against.
   static EffectPlan everything(const Scene& scene);

@@ -66,19 +66,13 @@ struct FrameSettings {
 // A loaded scene: everything the scene file says, with names resolved to
 // indices and every object turned into primitives.
 struct Scene {
-  int width = 640;
-  int height = 480;
-  CameraSpec camera;
-  SamplingSettings sampling;
-  TracingSettings tracing;
+  FrameSettings frame;  // the first frame's view and accuracy settings
   MaskSettings mask;
   glm::vec3 background{0.0f};
   std::vector<Texture> textures;
   std::vector<Material> materials;
   std::vector<PointLight> lights;
   Geometry geometry;
-
-  FrameSettings frame() const { return {width, height, camera, sampling, tracing}; }
 };
 
 }  // namespace glint

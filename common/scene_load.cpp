@@ -72,18 +72,18 @@ class SceneLoader {
  private:
   void readImage(const JsonReader& r) {
     r.allowKeys({"width", "height"});
-    scene_.width = r["width"].integer(1, 65536);
-    scene_.height = r["height"].integer(1, 65536);
-    if (static_cast<std::size_t>(scene_.width) * static_cast<std::size_t>(scene_.height) >
+    scene_.frame.width = r["width"].integer(1, 65536);
+    scene_.frame.height = r["height"].integer(1, 65536);
+    if (static_cast<std::size_t>(scene_.frame.width) * static_cast<std::size_t>(scene_.frame.height) >
         limits_.maxImagePixels) {
-      r.fail("image of " + std::to_string(scene_.width) + "x" + std::to_string(scene_.height) +
+      r.fail("image of " + std::to_string(scene_.frame.width) + "x" + std::to_string(scene_.frame.height) +
              " pixels is over the limit of " + std::to_string(limits_.maxImagePixels));
     }
   }
 
   void readCamera(const JsonReader& r) {
     r.allowKeys({"eye", "look_at", "up", "fov_y"});
-    CameraSpec& c = scene_.camera;
+    CameraSpec& c = scene_.frame.camera;
     c.eye = r["eye"].vec3();
     c.lookAt = r["look_at"].vec3();
     c.up = r.vec3("up", {0.0f, 1.0f, 0.0f});
@@ -95,7 +95,7 @@ class SceneLoader {
 
   void readSampling(const JsonReader& r) {
     r.allowKeys({"pattern", "samples", "filter", "seed"});
-    SamplingSettings& s = scene_.sampling;
+    SamplingSettings& s = scene_.frame.sampling;
     if (auto p = r.find("pattern")) {
       s.pattern = choice<SamplePattern>(*p);
     }
@@ -111,8 +111,8 @@ class SceneLoader {
 
   void readTracing(const JsonReader& r) {
     r.allowKeys({"max_depth", "min_weight"});
-    if (auto d = r.find("max_depth")) scene_.tracing.maxDepth = d->integer(1, 64);
-    scene_.tracing.minWeight = r.number("min_weight", 0.01f, 0.0f, 1.0f);
+    if (auto d = r.find("max_depth")) scene_.frame.tracing.maxDepth = d->integer(1, 64);
+    scene_.frame.tracing.minWeight = r.number("min_weight", 0.01f, 0.0f, 1.0f);
   }
 
   void readMask(const JsonReader& r) {

@@ -106,7 +106,7 @@ void bvhSection(const Options& o, const Scene& room) {
 
 double renderMs(const Scene& scene, ThreadPool& pool, int runs, RayStats* stats = nullptr) {
   const PreparedScene prepared(scene, BvhSettings{});
-  const Renderer renderer(prepared, scene.frame());
+  const Renderer renderer(prepared, scene.frame);
   FrameResult result;
   const double ms = medianMs(runs, [&] { result = renderFrame(renderer, pool, {}); });
   if (stats) *stats = result.stats;
@@ -131,13 +131,13 @@ double povrayMs(const Options& o, int width, int height, int runs) {
 }
 
 void roomSection(const Options& o, const Scene& room, ThreadPool& pool) {
-  std::printf("\n## The room, %dx%d, 4 jittered samples, tent filter, full trace, %d threads\n\n", room.width,
-              room.height, pool.size());
+  std::printf("\n## The room, %dx%d, 4 jittered samples, tent filter, full trace, %d threads\n\n", room.frame.width,
+              room.frame.height, pool.size());
   RayStats stats;
   const double glint = renderMs(room, pool, o.runs, &stats);
   std::printf("| renderer | median ms | rays |\n|---|---|---|\n");
   std::printf("| glint | %.1f | %.2f M |\n", glint, static_cast<double>(stats.total()) / 1e6);
-  const double pov = o.povray ? povrayMs(o, room.width, room.height, o.quick ? 1 : 5) : -1.0;
+  const double pov = o.povray ? povrayMs(o, room.frame.width, room.frame.height, o.quick ? 1 : 5) : -1.0;
   if (pov > 0.0) {
     std::printf("| povray 3.7 (same room, scenes/room.pov) | %.1f | |\n", pov);
     std::printf("\nPOV-Ray / Glint: **%.2fx**\n", pov / glint);
@@ -148,8 +148,8 @@ void roomSection(const Options& o, const Scene& room, ThreadPool& pool) {
 
 // What accuracy costs: each setting of the room varied on its own.
 void accuracySection(const Options& o, const Scene& room, ThreadPool& pool) {
-  std::printf("\n## What accuracy costs (the room, %dx%d, %d threads, median of %d)\n\n", room.width,
-              room.height, pool.size(), o.runs);
+  std::printf("\n## What accuracy costs (the room, %dx%d, %d threads, median of %d)\n\n", room.frame.width,
+              room.frame.height, pool.size(), o.runs);
   struct Row {
     std::string name;
     double ms;
@@ -164,22 +164,22 @@ void accuracySection(const Options& o, const Scene& room, ThreadPool& pool) {
     rows.push_back(r);
   };
   row("1 sample, regular, box", [](Scene& s) {
-    s.sampling = {SamplePattern::kRegular, 1, FilterType::kBox, 0};
+    s.frame.sampling = {SamplePattern::kRegular, 1, FilterType::kBox, 0};
   });
   for (int n : {4, 9, 16}) {
     row(std::to_string(n) + " samples, jittered, tent" + (n == 4 ? " (the thesis's)" : ""),
-        [n](Scene& s) { s.sampling.samples = n; });
+        [n](Scene& s) { s.frame.sampling.samples = n; });
   }
   for (FilterType f : {FilterType::kBox, FilterType::kGaussian, FilterType::kMitchell}) {
-    row("4 samples, jittered, " + std::string(enumWord(f)), [f](Scene& s) { s.sampling.filter = f; });
+    row("4 samples, jittered, " + std::string(enumWord(f)), [f](Scene& s) { s.frame.sampling.filter = f; });
   }
   for (int depth : {1, 2, 3, 8}) {
-    row("max_depth " + std::to_string(depth), [depth](Scene& s) { s.tracing.maxDepth = depth; });
+    row("max_depth " + std::to_string(depth), [depth](Scene& s) { s.frame.tracing.maxDepth = depth; });
   }
   for (float w : {0.5f, 0.1f, 0.001f, 0.0f}) {
     char name[64];
     std::snprintf(name, sizeof name, "min_weight %g", static_cast<double>(w));
-    row(name, [w](Scene& s) { s.tracing.minWeight = w; });
+    row(name, [w](Scene& s) { s.frame.tracing.minWeight = w; });
   }
   const double base = rows[1].ms;  // 4 jittered samples, tent: the thesis's setting
   std::printf("| setting | trace ms | rays | vs. the thesis's setting |\n|---|---|---|---|\n");
@@ -232,7 +232,7 @@ void protocolSection(const Options& o, const Scene& room) {
     const PreparedScene prepared(*c.scene, BvhSettings{});
     LocalTileService local(prepared, pool);
     RemoteTileService remote(address, *c.bundle);
-    const FrameSettings frame = c.scene->frame();
+    const FrameSettings frame = c.scene->frame;
     // Frames alternate between the two paths and the overhead is the median
     // of the pairs' differences: slow drifts of the machine cancel out.
     std::vector<double> localTimes, remoteTimes, differences;
@@ -275,7 +275,7 @@ void hybridSection(const Options& o) {
   int index = 0;
   for (const char* name : {"room.json", "room-gl-floor.json"}) {
     proto::LoadedBundle loaded = proto::loadSceneBundle(std::filesystem::path(o.scenes) / name);
-    FrameSettings frame = loaded.scene.frame();
+    FrameSettings frame = loaded.scene.frame;
     if (o.quick) {
       frame.width = 160;
       frame.height = 120;
@@ -343,8 +343,8 @@ int main(int argc, char** argv) {
   try {
     Scene room = loadSceneFile(std::filesystem::path(o.scenes) / "room.json");
     if (o.quick) {
-      room.width = 160;
-      room.height = 120;
+      room.frame.width = 160;
+      room.frame.height = 120;
     }
     ThreadPool pool(2);
     std::printf("# glint-bench%s\n", o.quick ? " (quick: not a measurement)" : "");

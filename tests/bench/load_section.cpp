@@ -59,7 +59,7 @@ void loadSection(const std::string& scenes, bool quick) {
   const int clients = quick ? 4 : 16;
   const int seconds = quick ? 2 : 60;
   const proto::LoadedBundle room = proto::loadSceneBundle(std::filesystem::path(scenes) / "room.json");
-  FrameSettings frame = room.scene.frame();
+  FrameSettings frame = room.scene.frame;
   frame.width = 160;
   frame.height = 120;
   FrameImage expected;

@@ -28,7 +28,7 @@ struct SceneSetup {
 
 SceneSetup load(const char* scene, int width = 160, int height = 120) {
   SceneSetup s{proto::loadSceneBundle(test::sourcePath(scene)), {}};
-  s.frame = s.loaded.scene.frame();
+  s.frame = s.loaded.scene.frame;
   s.frame.width = width;
   s.frame.height = height;
   return s;
@@ -118,7 +118,7 @@ TEST(Hybrid, RasterOfAnAnalyticSphere) {
   const PreparedScene prepared(scene, BvhSettings{});
   ThreadPool pool(1);
   LocalTileService service(prepared, pool);
-  const HybridResult gl = hybrid(scene, service, scene.frame(), {MaskRule::kNone, 0.2f, 0.0f});
+  const HybridResult gl = hybrid(scene, service, scene.frame, {MaskRule::kNone, 0.2f, 0.0f});
   const double tanHalf = std::tan(15.0 * M_PI / 180.0);
   const glm::dvec3 eye(0, 0, 6), light(3, 4, 5), c(1.0, 0.5, 0.25);
   int compared = 0;

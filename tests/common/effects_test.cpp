@@ -75,15 +75,15 @@ TEST(Effects, BlackLightsAndUnlitMaterialsCastNoShadowRays) {
 
 TEST(Effects, NoSecondaryRaysAtDepthOneOrBelowMinWeight) {
   Scene s = loadSceneFile(test::sourcePath("scenes/room.json"));
-  s.width = 64;
-  s.height = 48;
-  s.tracing.maxDepth = 1;
+  s.frame.width = 64;
+  s.frame.height = 48;
+  s.frame.tracing.maxDepth = 1;
   EXPECT_FALSE(EffectPlan::derive(s).reflection);
   const auto [derived, full] = derivedAndFull(s);
   EXPECT_EQ(derived.stats.reflection, 0u);
 
-  s.tracing.maxDepth = 5;
-  s.tracing.minWeight = 0.9f;  // above every reflectivity in the room
+  s.frame.tracing.maxDepth = 5;
+  s.frame.tracing.minWeight = 0.9f;  // above every reflectivity in the room
   EXPECT_FALSE(EffectPlan::derive(s).reflection);
   const auto [d2, f2] = derivedAndFull(s);
   EXPECT_EQ(d2.stats.reflection, 0u);
@@ -91,8 +91,8 @@ TEST(Effects, NoSecondaryRaysAtDepthOneOrBelowMinWeight) {
 
 TEST(Effects, NoRefractionWithoutTransparency) {
   Scene s = loadSceneFile(test::sourcePath("scenes/room.json"));
-  s.width = 64;
-  s.height = 48;
+  s.frame.width = 64;
+  s.frame.height = 48;
   EXPECT_FALSE(EffectPlan::derive(s).refraction);
   const auto [derived, full] = derivedAndFull(s);
   EXPECT_EQ(derived.stats.refraction, 0u);
@@ -101,8 +101,8 @@ TEST(Effects, NoRefractionWithoutTransparency) {
 
 TEST(Effects, GlassSceneRefracts) {
   Scene s = loadSceneFile(test::sourcePath("scenes/glass.json"));
-  s.width = 64;
-  s.height = 48;
+  s.frame.width = 64;
+  s.frame.height = 48;
   EXPECT_TRUE(EffectPlan::derive(s).refraction);
   const auto [derived, full] = derivedAndFull(s);
   EXPECT_GT(derived.stats.refraction, 0u);

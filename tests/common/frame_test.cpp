@@ -10,8 +10,8 @@ namespace {
 
 Scene smallRoom() {
   Scene s = loadSceneFile(test::sourcePath("scenes/room.json"));
-  s.width = 160;
-  s.height = 120;
+  s.frame.width = 160;
+  s.frame.height = 120;
   return s;
 }
 
@@ -31,7 +31,7 @@ TEST(Frame, ImageIndependentOfThreadsAndTiles) {
 TEST(Frame, SeedChangesTheJitterOnly) {
   Scene s = smallRoom();
   const FrameResult a = test::render(s, 2);
-  s.sampling.seed = 99;
+  s.frame.sampling.seed = 99;
   const FrameResult b = test::render(s, 2);
   EXPECT_NE(a.image.rgb, b.image.rgb);
   std::size_t close = 0;
@@ -44,7 +44,7 @@ TEST(Frame, MaskedTileEqualsFullFramePixels) {
   const Scene s = smallRoom();
   const FrameResult full = test::render(s, 2);
   const PreparedScene prepared(s, BvhSettings{});
-  const Renderer renderer(prepared, s.frame());
+  const Renderer renderer(prepared, s.frame);
   const TileRect rect{37, 21, 19, 13};
   std::vector<std::uint8_t> mask(maskByteCount(rect), 0);
   for (std::size_t i = 0; i < rect.pixelCount(); i += 3) setMaskBit(mask, i);

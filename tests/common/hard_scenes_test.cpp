@@ -22,13 +22,13 @@ struct DRay {
   glm::dvec3 o, d;
 };
 DRay pixelRay(const Scene& s, int x, int y) {
-  const glm::dvec3 eye(s.camera.eye), target(s.camera.lookAt), up(s.camera.up);
+  const glm::dvec3 eye(s.frame.camera.eye), target(s.frame.camera.lookAt), up(s.frame.camera.up);
   const glm::dmat4 view = glm::lookAt(eye, target, up);
   const double distance = glm::length(target - eye);
-  const glm::dmat4 proj = glm::perspective(glm::radians(double(s.camera.fovY)), double(s.width) / s.height,
+  const glm::dmat4 proj = glm::perspective(glm::radians(double(s.frame.camera.fovY)), double(s.frame.width) / s.frame.height,
                                            distance * 1e-3, distance * 10.0);
-  const glm::dvec4 viewport(0, 0, s.width, s.height);
-  const glm::dvec3 window(x + 0.5, s.height - (y + 0.5), 0.5);
+  const glm::dvec4 viewport(0, 0, s.frame.width, s.frame.height);
+  const glm::dvec3 window(x + 0.5, s.frame.height - (y + 0.5), 0.5);
   const glm::dvec3 p = glm::unProject(window, view, proj, viewport);
   return {eye, glm::normalize(p - eye)};
 }
@@ -38,8 +38,8 @@ using Expect = std::function<std::optional<glm::dvec3>(const DRay&)>;
 // Compares every pixel whose expectation is decided (not nullopt) to +-1/255.
 int expectPixels(const Scene& s, const FrameImage& image, const Expect& expected) {
   int compared = 0;
-  for (int y = 0; y < s.height; ++y) {
-    for (int x = 0; x < s.width; ++x) {
+  for (int y = 0; y < s.frame.height; ++y) {
+    for (int x = 0; x < s.frame.width; ++x) {
       const auto e = expected(pixelRay(s, x, y));
       if (!e) continue;
       const glm::dvec3 want = glm::clamp(*e, 0.0, 1.0) * 255.0;
@@ -66,7 +66,7 @@ TEST(HardScenes, TotalInternalReflectionPrism) {
     if (std::abs(p.x) > 0.8 || p.y < 0.1 || p.y > 0.9) return std::nullopt;
     return 0.9 * 0.9 * 0.9 * ceiling;  // in, totally reflected, out
   });
-  EXPECT_GT(n, s.width * s.height * 2 / 3);
+  EXPECT_GT(n, s.frame.width * s.frame.height * 2 / 3);
   EXPECT_EQ(r.stats.nonFiniteSamples, 0u);
 }
 
@@ -93,7 +93,7 @@ TEST(HardScenes, ClosedMeshSeenThroughEdgesAndVertices) {
     if (inner != outer) return std::nullopt;  // within 1 % of the silhouette
     return inner ? glm::dvec3(1.0, 0.5, 0.25) : glm::dvec3(0.0, 0.0, 0.2);
   });
-  EXPECT_GT(n, s.width * s.height * 9 / 10);
+  EXPECT_GT(n, s.frame.width * s.frame.height * 9 / 10);
 }
 
 TEST(HardScenes, LitPlaneFarFromOrigin) {
@@ -106,7 +106,7 @@ TEST(HardScenes, LitPlaneFarFromOrigin) {
     const double nl = std::max(0.0, glm::normalize(light - p).y);
     return glm::dvec3(0.9 * 0.1 + 0.9 * 0.8 * nl);
   });
-  EXPECT_EQ(n, s.width * s.height);
+  EXPECT_EQ(n, s.frame.width * s.frame.height);
   EXPECT_EQ(r.stats.shadowBlocked, 0u);
 }
 
@@ -123,7 +123,7 @@ TEST(HardScenes, TinySphereFarAway) {
     hits += miss < radius ? 1 : 0;
     return miss < radius ? glm::dvec3(1.0, 0.5, 0.25) : glm::dvec3(0.0, 0.0, 0.2);
   });
-  EXPECT_GT(n, s.width * s.height * 3 / 4);
+  EXPECT_GT(n, s.frame.width * s.frame.height * 3 / 4);
   EXPECT_GT(hits, 500);
 }
 
@@ -142,7 +142,7 @@ TEST(HardScenes, NoNonFiniteSamples) {
   // Total internal reflection right at the depth limit.
   for (int depth : {2, 3, 4}) {
     Scene prism = hardScene("tir-prism.json");
-    prism.tracing.maxDepth = depth;
+    prism.frame.tracing.maxDepth = depth;
     EXPECT_EQ(test::render(prism, 2).stats.nonFiniteSamples, 0u) << depth;
   }
 

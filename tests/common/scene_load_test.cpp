@@ -37,24 +37,24 @@ std::string loadError(const std::string& text, MemorySource files = {}, const Lo
 
 TEST(SceneLoad, RoomMatchesTheThesis) {
   const Scene s = loadSceneFile(test::sourcePath("scenes/room.json"));
-  EXPECT_EQ(s.width, 640);
-  EXPECT_EQ(s.height, 480);
+  EXPECT_EQ(s.frame.width, 640);
+  EXPECT_EQ(s.frame.height, 480);
   EXPECT_EQ(s.geometry.triangles().size(), 10u);  // floor, 2 walls, ceiling, mirror
   EXPECT_EQ(s.geometry.spheres().size(), 1u);
   EXPECT_EQ(s.lights.size(), 1u);
-  EXPECT_EQ(s.sampling.pattern, SamplePattern::kJittered);
-  EXPECT_EQ(s.sampling.samples, 4);
-  EXPECT_EQ(s.sampling.filter, FilterType::kTent);
+  EXPECT_EQ(s.frame.sampling.pattern, SamplePattern::kJittered);
+  EXPECT_EQ(s.frame.sampling.samples, 4);
+  EXPECT_EQ(s.frame.sampling.filter, FilterType::kTent);
 }
 
 TEST(SceneLoad, DefaultsAreTheFormats) {
   MemorySource files;
   const Scene s = loadScene(minimalScene().dump(), files);
-  EXPECT_EQ(s.sampling.pattern, SamplePattern::kRegular);
-  EXPECT_EQ(s.sampling.samples, 1);
-  EXPECT_EQ(s.sampling.filter, FilterType::kBox);
-  EXPECT_EQ(s.tracing.maxDepth, 5);
-  EXPECT_FLOAT_EQ(s.tracing.minWeight, 0.01f);
+  EXPECT_EQ(s.frame.sampling.pattern, SamplePattern::kRegular);
+  EXPECT_EQ(s.frame.sampling.samples, 1);
+  EXPECT_EQ(s.frame.sampling.filter, FilterType::kBox);
+  EXPECT_EQ(s.frame.tracing.maxDepth, 5);
+  EXPECT_FLOAT_EQ(s.frame.tracing.minWeight, 0.01f);
   EXPECT_EQ(s.mask.rule, MaskRule::kAuto);
   EXPECT_FLOAT_EQ(s.mask.minReflectivity, 0.2f);
   EXPECT_EQ(s.lights[0].attenuation, glm::vec3(1, 0, 0));
@@ -63,7 +63,7 @@ TEST(SceneLoad, DefaultsAreTheFormats) {
   EXPECT_EQ(m.shininess, 1.0f);
   EXPECT_EQ(m.ior, 1.0f);
   EXPECT_EQ(m.ambient, 0.0f);
-  EXPECT_EQ(s.camera.up, glm::vec3(0, 1, 0));
+  EXPECT_EQ(s.frame.camera.up, glm::vec3(0, 1, 0));
 }
 
 TEST(SceneLoad, TransformsScaleRotateTranslateInThatOrder) {

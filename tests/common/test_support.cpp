@@ -24,7 +24,7 @@ FrameResult render(const Scene& scene, int threads, int tileSize) {
 
 FrameResult render(const Scene& scene, const EffectPlan& plan, int threads, int tileSize) {
   const PreparedScene prepared(scene, BvhSettings{});
-  const Renderer renderer(prepared, scene.frame(), plan);
+  const Renderer renderer(prepared, scene.frame, plan);
   ThreadPool pool(threads);
   FrameOptions options;
   options.tileSize = tileSize;

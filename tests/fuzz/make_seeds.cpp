@@ -125,8 +125,8 @@ int main(int argc, char** argv) {
   gRoot = argv[1];
   try {
     const proto::LoadedBundle room = proto::loadSceneBundle(gRoot / "scenes/room.json");
-    framingSeeds(room.bundle, room.scene.frame());
-    sessionSeeds(room.bundle, room.scene.frame());
+    framingSeeds(room.bundle, room.scene.frame);
+    sessionSeeds(room.bundle, room.scene.frame);
     sceneSeeds();
     objAndImageSeeds();
   } catch (const std::exception& e) {

@@ -33,7 +33,7 @@ using test::RawClient;
 // A small frame of the thesis room through `address`; throws InputError.
 FrameImage renderRoom(const std::string& address) {
   const proto::LoadedBundle loaded = proto::loadSceneBundle(glint::test::sourcePath("scenes/room.json"));
-  FrameSettings frame = loaded.scene.frame();
+  FrameSettings frame = loaded.scene.frame;
   frame.width = 48;
   frame.height = 36;
   RemoteTileService service(address, loaded.bundle, 10s);

@@ -42,7 +42,7 @@ TEST(SceneCache, EvictsTheLeastRecentlyUsed) {
   EXPECT_NE(cache.find(hashOf(1)), nullptr);
   EXPECT_EQ(cache.find(hashOf(2)), nullptr);
   EXPECT_NE(cache.find(hashOf(3)), nullptr);
-  EXPECT_EQ(b->scene().width, 640);  // evicted, still usable by whoever holds it
+  EXPECT_EQ(b->scene().frame.width, 640);  // evicted, still usable by whoever holds it
 
   SceneCache tiny(1);  // smaller than any scene: keeps just the newest
   tiny.insert(hashOf(1), a);

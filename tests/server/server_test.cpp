@@ -53,7 +53,7 @@ struct RoomFrame {
 
 RoomFrame smallRoom(const char* scene = "scenes/room.json") {
   RoomFrame r{proto::loadSceneBundle(glint::test::sourcePath(scene)), {}};
-  r.frame = r.loaded.scene.frame();
+  r.frame = r.loaded.scene.frame;
   r.frame.width = 96;
   r.frame.height = 72;
   return r;

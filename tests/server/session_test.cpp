@@ -82,7 +82,7 @@ TEST_F(SessionTest, UploadBuildsTheSceneAndTilesAreTraced) {
   EXPECT_EQ(replyType(2), wire::Body::SceneReady);
   EXPECT_TRUE(cache_.find(hash));
 
-  FrameSettings frame = room.scene.frame();
+  FrameSettings frame = room.scene.frame;
   frame.width = 32;
   frame.height = 16;
   frame.sampling.samples = 1;
