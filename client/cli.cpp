@@ -10,6 +10,7 @@
 #include "client/render_command.h"
 #include "client/view_command.h"
 #include "common/error.h"
+#include "common/frame_limits.h"
 
 namespace glint {
 namespace {
@@ -27,8 +28,9 @@ void parseSize(const std::string& text, std::optional<int>& width, std::optional
   }
   const int w = std::stoi(m[1]);
   const int h = std::stoi(m[2]);
-  if (w < 1 || h < 1 || w > 65536 || h > 65536) {
-    throw InputError("--size " + text + ": width and height must be in [1, 65536]");
+  if (w < 1 || h < 1 || w > FrameLimits::kMaxEdge || h > FrameLimits::kMaxEdge) {
+    throw InputError("--size " + text + ": width and height must be in [1, " + std::to_string(FrameLimits::kMaxEdge) +
+                     "]");
   }
   width = w;
   height = h;
@@ -72,13 +74,13 @@ int runCli(int argc, char** argv) {
       ->check(CLI::Range(1, 4096))
       ->default_val(64);
   render->add_option("--samples", options.samples, "Samples per pixel (regular: 1, 2, 4, 9, 16 ...)")
-      ->check(CLI::Range(1, 4096));
+      ->check(CLI::Range(1, FrameLimits::kMaxSamples));
   addEnumOption(render, "--pattern", options.pattern, "Sample pattern (default: the scene's)");
   addEnumOption(render, "--filter", options.filter, "Pixel filter (default: the scene's)");
   render->add_option("--seed", options.seed, "Seed of the jitter (same seed, same image)")
-      ->check(CLI::Range(0u, 0x7fffffffu));
+      ->check(CLI::Range(0u, FrameLimits::kMaxSeed));
   render->add_option("--max-depth", options.maxDepth, "Maximum ray depth (primary ray = 1)")
-      ->check(CLI::Range(1, 64));
+      ->check(CLI::Range(1, FrameLimits::kMaxDepth));
   render->add_option("--min-weight", options.minWeight,
                      "Rays whose path weight falls below this are not traced")
       ->check(CLI::Range(0.0f, 1.0f));

@@ -17,7 +17,8 @@
 #include "common/error.h"
 #include "common/frame.h"
 #include "common/image_io.h"
-#include "common/sampling.h"
+#include "common/frame_limits.h"
+#include "common/load_limits.h"
 #include "common/scene_load.h"
 #include "common/timing.h"
 #include "proto/scene_bundle.h"
@@ -72,11 +73,14 @@ void applyOverrides(const RenderOptions& o, Scene& scene) {
   if (o.seed) scene.frame.sampling.seed = *o.seed;
   if (o.maxDepth) scene.frame.tracing.maxDepth = *o.maxDepth;
   if (o.minWeight) scene.frame.tracing.minWeight = *o.minWeight;
-  if (!validSampleCount(scene.frame.sampling.pattern, scene.frame.sampling.samples)) {
-    throw InputError("--samples " + std::to_string(scene.frame.sampling.samples) +
-                     ": the regular pattern takes 1, 2 or a square number (4, 9, 16, ...); "
-                     "use --pattern jittered for other counts");
-  }
+  const std::string samples = "--samples " + std::to_string(scene.frame.sampling.samples);
+  checkFrame(scene.frame, LoadLimits{}.maxImagePixels,
+             {.size = "--size",
+              .camera = "camera.",
+              .samples = samples.c_str(),
+              .seed = "--seed",
+              .maxDepth = "--max-depth",
+              .minWeight = "--min-weight"});
   if (o.mask) scene.mask.rule = *o.mask;
   if (o.maskThreshold) scene.mask.minReflectivity = *o.maskThreshold;
 }

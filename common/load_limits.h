@@ -2,6 +2,8 @@
 
 #include <cstddef>
 
+#include "common/frame_limits.h"
+
 namespace glint {
 
 // Upper bounds on what a scene may make the loader allocate; a file over one
@@ -11,8 +13,7 @@ struct LoadLimits {
   std::size_t maxTriangles = 30'000'000;                  // all meshes together
   std::size_t maxVertices = 30'000'000;                   // all meshes together
   std::size_t maxTexturePixels = std::size_t{1} << 26;    // one texture (8192 x 8192)
-  std::size_t maxImagePixels = std::size_t{1} << 28;      // the rendered image
-  int maxSamples = 4096;                                  // samples per pixel
+  std::size_t maxImagePixels = FrameLimits::kMaxPixels;   // the rendered image
   // What one scene holds once built: texels, meshes, BVH (SceneBudget counts it).
   std::size_t maxSceneBytes = std::size_t{8} << 30;
 };

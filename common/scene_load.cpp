@@ -6,10 +6,10 @@
 #include <glm/geometric.hpp>
 
 #include "common/error.h"
+#include "common/frame_limits.h"
 #include "common/image_io.h"
 #include "common/json_reader.h"
 #include "common/obj_load.h"
-#include "common/sampling.h"
 #include "common/transform.h"
 
 namespace glint {
@@ -59,6 +59,7 @@ class SceneLoader {
     readCamera(root["camera"]);
     if (auto s = root.find("sampling")) readSampling(*s);
     if (auto t = root.find("tracing")) readTracing(*t);
+    checkFrame();
     if (auto m = root.find("mask")) readMask(*m);
     scene_.background = root.vec3("background", glm::vec3(0.0f));
     if (auto t = root.find("textures")) readTextures(*t);
@@ -72,13 +73,8 @@ class SceneLoader {
  private:
   void readImage(const JsonReader& r) {
     r.allowKeys({"width", "height"});
-    scene_.frame.width = r["width"].integer(1, 65536);
-    scene_.frame.height = r["height"].integer(1, 65536);
-    if (static_cast<std::size_t>(scene_.frame.width) * static_cast<std::size_t>(scene_.frame.height) >
-        limits_.maxImagePixels) {
-      r.fail("image of " + std::to_string(scene_.frame.width) + "x" + std::to_string(scene_.frame.height) +
-             " pixels is over the limit of " + std::to_string(limits_.maxImagePixels));
-    }
+    scene_.frame.width = r["width"].integer(1, FrameLimits::kMaxEdge);
+    scene_.frame.height = r["height"].integer(1, FrameLimits::kMaxEdge);
   }
 
   void readCamera(const JsonReader& r) {
@@ -88,9 +84,6 @@ class SceneLoader {
     c.lookAt = r["look_at"].vec3();
     c.up = r.vec3("up", {0.0f, 1.0f, 0.0f});
     c.fovY = r.number("fov_y", 45.0f, 0.0f, 179.0f, true);
-    if (const std::string problem = cameraProblem(c); !problem.empty()) {
-      throw InputError(r.path() + "." + problem);
-    }
   }
 
   void readSampling(const JsonReader& r) {
@@ -99,19 +92,29 @@ class SceneLoader {
     if (auto p = r.find("pattern")) {
       s.pattern = choice<SamplePattern>(*p);
     }
-    if (auto n = r.find("samples")) s.samples = n->integer(1, limits_.maxSamples);
+    if (auto n = r.find("samples")) s.samples = n->integer(1, FrameLimits::kMaxSamples);
     if (auto f = r.find("filter")) {
       s.filter = choice<FilterType>(*f);
     }
-    if (auto seed = r.find("seed")) s.seed = static_cast<std::uint32_t>(seed->integer(0, 0x7fffffff));
-    if (!validSampleCount(s.pattern, s.samples)) {
-      r["samples"].fail("the regular pattern takes 1, 2 or a square number (4, 9, 16, ...) of samples");
-    }
+    if (auto seed = r.find("seed")) s.seed = static_cast<std::uint32_t>(seed->integer(0, FrameLimits::kMaxSeed));
+  }
+
+  // The frame's settings together (the size against the pixel limit, the
+  // camera, the sample count for its pattern), as the decoder and the command
+  // line check them.
+  void checkFrame() const {
+    glint::checkFrame(scene_.frame, limits_.maxImagePixels,
+                      {.size = "image",
+                       .camera = "camera.",
+                       .samples = "sampling.samples",
+                       .seed = "sampling.seed",
+                       .maxDepth = "tracing.max_depth",
+                       .minWeight = "tracing.min_weight"});
   }
 
   void readTracing(const JsonReader& r) {
     r.allowKeys({"max_depth", "min_weight"});
-    if (auto d = r.find("max_depth")) scene_.frame.tracing.maxDepth = d->integer(1, 64);
+    if (auto d = r.find("max_depth")) scene_.frame.tracing.maxDepth = d->integer(1, FrameLimits::kMaxDepth);
     scene_.frame.tracing.minWeight = r.number("min_weight", 0.01f, 0.0f, 1.0f);
   }
 

@@ -1,9 +1,11 @@
 #include "proto/messages.h"
 
+#include <algorithm>
+#include <climits>
 #include <cmath>
 
 #include "common/error.h"
-#include "common/sampling.h"
+#include "common/frame_limits.h"
 
 namespace glint::proto {
 namespace {
@@ -127,36 +129,29 @@ SceneHash decodeHash(const flatbuffers::Vector<std::uint8_t>* bytes, const char*
 }
 
 FrameSettings decodeFrameSettings(const wire::FrameSetup& s, std::size_t maxPixels) {
+  // Values beyond an int become INT_MAX, which the frame check refuses.
+  const auto toInt = [](std::uint32_t v) { return static_cast<int>(std::min<std::uint32_t>(v, INT_MAX)); };
   FrameSettings f;
-  if (s.width() < 1 || s.height() < 1 || s.width() > 65536 || s.height() > 65536 ||
-      std::size_t{s.width()} * s.height() > maxPixels) {
-    throw InputError("frame_setup.width, height: " + std::to_string(s.width()) + "x" + std::to_string(s.height()) +
-                     " is not a valid image size");
-  }
-  f.width = static_cast<int>(s.width());
-  f.height = static_cast<int>(s.height());
+  f.width = toInt(s.width());
+  f.height = toInt(s.height());
   f.camera.eye = fromWire(s.eye(), "eye");
   f.camera.lookAt = fromWire(s.look_at(), "look_at");
   f.camera.up = fromWire(s.up(), "up");
   f.camera.fovY = s.fov_y();
-  if (const std::string problem = cameraProblem(f.camera); !problem.empty()) {
-    throw InputError("frame_setup." + problem);
-  }
   f.sampling.pattern = s.jittered() ? SamplePattern::kJittered : SamplePattern::kRegular;
-  if (s.samples() < 1 || s.samples() > 4096) throw InputError("frame_setup.samples: must be in [1, 4096]");
-  f.sampling.samples = static_cast<int>(s.samples());
-  if (!validSampleCount(f.sampling.pattern, f.sampling.samples)) {
-    throw InputError("frame_setup.samples: the regular pattern takes 1, 2 or a square number");
-  }
+  f.sampling.samples = toInt(s.samples());
   if (s.filter() > static_cast<std::uint8_t>(FilterType::kMitchell)) throw InputError("frame_setup.filter: unknown");
   f.sampling.filter = static_cast<FilterType>(s.filter());
   f.sampling.seed = s.seed();
-  if (s.max_depth() < 1 || s.max_depth() > 64) throw InputError("frame_setup.max_depth: must be in [1, 64]");
-  f.tracing.maxDepth = static_cast<int>(s.max_depth());
+  f.tracing.maxDepth = toInt(s.max_depth());
   f.tracing.minWeight = s.min_weight();
-  if (!(f.tracing.minWeight >= 0.0f && f.tracing.minWeight <= 1.0f)) {
-    throw InputError("frame_setup.min_weight: must be in [0, 1]");
-  }
+  checkFrame(f, maxPixels,
+             {.size = "frame_setup.width, height",
+              .camera = "frame_setup.",
+              .samples = "frame_setup.samples",
+              .seed = "frame_setup.seed",
+              .maxDepth = "frame_setup.max_depth",
+              .minWeight = "frame_setup.min_weight"});
   return f;
 }
 

@@ -1,7 +1,7 @@
 #include "server/session.h"
 
 #include "common/error.h"
-#include "common/load_limits.h"
+#include "common/frame_limits.h"
 #include "common/timing.h"
 #include "proto/messages.h"
 #include "server/log.h"
@@ -132,7 +132,7 @@ void Session::onFrameSetup(const wire::FrameSetup& setup) {
             false, frameId);
       return;
     }
-    const FrameSettings settings = proto::decodeFrameSettings(setup, LoadLimits{}.maxImagePixels);
+    const FrameSettings settings = proto::decodeFrameSettings(setup, FrameLimits::kMaxPixels);
     auto frame = std::make_shared<SessionFrame>();
     frame->renderer = std::make_unique<Renderer>(*scene, settings);
     frame->scene = std::move(scene);
