@@ -41,6 +41,11 @@ void checkPngChunks(std::string_view bytes, const std::string& place) {
       throw InputError(place + ": PNG chunk " + type + " claims " + std::to_string(length) + " bytes, but only " +
                        std::to_string(left) + " follow (truncated or corrupt)");
     }
+    // stb_image copies an empty IDAT into a buffer it has not allocated yet
+    // (memcpy to null: undefined behaviour, found by the image fuzzer).
+    if (type == "IDAT" && length == 0) {
+      throw InputError(place + ": PNG with an empty IDAT chunk is not supported (save it again with any PNG encoder)");
+    }
     if (type == "IEND") return;
     at += kChunkOverhead + length;
   }

@@ -75,6 +75,17 @@ TEST(ImageIo, PngChunkLongerThanTheFileIsRefusedBeforeDecoding) {
   EXPECT_LT(peakVirtualKb() - before, 256 * 1024) << "an 85-byte PNG reserved memory for what it claims";
 }
 
+// Found by the image fuzzer (corpus/image/regression-png-empty-idat): an
+// empty IDAT chunk made stb_image memcpy into a null buffer.
+TEST(ImageIo, PngWithAnEmptyIdatIsRefused) {
+  const std::string png(
+      "\x89PNG\r\n\x1a\n\x00\x00\x00\x0dIHDR\x00\x00\x00\x04\x00\x00\x04\x03\x08\x02\x00\x00\x00\x3b\x96\x39"
+      "\x91\x00\x00\x00\x00IDAT\xae\x42\x60\x82",
+      45);
+  EXPECT_NE(decodeError(png).find("t.png: PNG with an empty IDAT chunk is not supported"), std::string::npos)
+      << decodeError(png);
+}
+
 // A BMP header announcing 4096 x 4096 pixels with no pixels after it: stb_image
 // would allocate (and fill) 48 MiB for it.
 TEST(ImageIo, BmpShorterThanItsRowsIsRefusedBeforeDecoding) {
