@@ -2,9 +2,7 @@
 
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <algorithm>
-#include <iostream>
 #include <memory>
 #include <optional>
 
@@ -50,16 +48,6 @@ void printTimingTable(const std::vector<HybridTimes>& frames, bool hybrid) {
   std::fprintf(stderr, "  RT unit    %8.1f ms\n", median(&HybridTimes::traceMs));
   if (hybrid) std::fprintf(stderr, "  compose    %8.1f ms\n", median(&HybridTimes::composeMs));
   std::fprintf(stderr, "  frame      %8.1f ms\n", median(&HybridTimes::totalMs));
-}
-
-void writeStats(const std::string& path, const nlohmann::json& record, bool append) {
-  if (path == "-") {
-    std::cout << record.dump() << '\n' << std::flush;
-    return;
-  }
-  std::ofstream out(path, append ? std::ios::app : std::ios::trunc);
-  out << record.dump() << '\n';
-  if (!out) throw InputError("--stats " + path + ": cannot write the file");
 }
 
 }  // namespace
@@ -110,6 +98,8 @@ void runRender(const RenderOptions& options) {
     context.emplace(frame.width, frame.height);
     raster.emplace(context->api(), scene);
   }
+  std::optional<StatsWriter> stats;
+  if (!options.statsPath.empty()) stats.emplace(options.statsPath);
   std::vector<HybridTimes> frameTimes;
   HybridResult r;  // reused: each frame overwrites it
   for (int f = 0; f < options.frames; ++f) {
@@ -129,18 +119,22 @@ void runRender(const RenderOptions& options) {
       r.times.traceMs = r.times.totalMs = msSince(frameStart);
     }
     if (f == 0 && !options.maskOut.empty()) writeMaskPng(options.maskOut, r.mask, frame.width, frame.height);
-    if (!options.statsPath.empty()) {
-      FrameTimes times{loadMs, prepareMs, r.times.traceMs, f == 0 ? msSince(start) : r.times.totalMs};
-      nlohmann::json record = frameStats(f, frame.width, frame.height, r.maskedPixels, r.rays, times, plan, dropped);
-      record["tiles"] = r.tiles;
-      record["frame_ms"] = r.times.totalMs;
-      if (hybridPath) {
-        record["raster_ms"] = r.times.rasterMs;
-        record["readback_ms"] = r.times.readbackMs;
-        record["network_ms"] = r.times.networkMs;
-        record["compose_ms"] = r.times.composeMs;
-      }
-      writeStats(options.statsPath, record, f > 0);
+    if (stats) {
+      stats->write({.frame = f,
+                    .width = frame.width,
+                    .height = frame.height,
+                    .maskedPixels = r.maskedPixels,
+                    .tiles = r.tiles,
+                    .rays = r.rays,
+                    .plan = &plan,
+                    .droppedTriangles = dropped,
+                    .remote = !options.server.empty(),
+                    .loadMs = loadMs,
+                    .prepareMs = prepareMs,
+                    .traceMs = r.times.traceMs,
+                    .frameMs = r.times.totalMs,
+                    .totalMs = f == 0 ? msSince(start) : r.times.totalMs,
+                    .hybrid = hybridPath ? std::optional<HybridTimes>(r.times) : std::nullopt});
     }
     frameTimes.push_back(r.times);
   }

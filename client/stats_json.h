@@ -1,25 +1,50 @@
 #pragma once
 
 #include <cstddef>
+#include <fstream>
+#include <optional>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "client/hybrid_frame.h"
 #include "common/effects.h"
 #include "common/ray_stats.h"
 
 namespace glint {
 
-// Timings of one frame, in milliseconds.
-struct FrameTimes {
-  double loadMs = 0.0;
-  double bvhMs = 0.0;
-  double traceMs = 0.0;
-  double totalMs = 0.0;
+// Everything one --stats record says about a frame. This file owns the
+// record's schema; docs/stats.md lists its keys.
+struct FrameRecord {
+  int frame = 0;
+  int width = 0;
+  int height = 0;
+  std::size_t maskedPixels = 0;
+  int tiles = 0;
+  RayStats rays;
+  const EffectPlan* plan = nullptr;
+  std::size_t droppedTriangles = 0;
+  bool remote = false;     // tiles traced by a glintd
+  double loadMs = 0.0;     // reading and checking the scene and its files
+  double prepareMs = 0.0;  // in process: the BVH build; remote: connect, upload and the server's build
+  double traceMs = 0.0;    // the tile service filling the traced pixels
+  double frameMs = 0.0;    // the frame alone
+  double totalMs = 0.0;    // frame 0: since the start, load and preparation included; then the frame
+  std::optional<HybridTimes> hybrid;  // the hybrid frame's other steps
 };
 
-// The --stats record of one frame (one JSON object per line).
-nlohmann::json frameStats(int frame, int width, int height, std::size_t maskedPixels,
-                          const RayStats& rays, const FrameTimes& times, const EffectPlan& plan,
-                          std::size_t droppedTriangles);
+nlohmann::json toJson(const FrameRecord& record);
+
+// Writes one record a line to stdout ("-") or to a file, created (or
+// truncated) at the first record.
+class StatsWriter {
+ public:
+  explicit StatsWriter(const std::string& path);
+  void write(const FrameRecord& record);
+
+ private:
+  std::string path_;
+  std::ofstream file_;
+};
 
 }  // namespace glint

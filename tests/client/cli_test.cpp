@@ -86,10 +86,13 @@ TEST_F(Cli, HybridRenderWritesImageMaskAndStepTimes) {
   EXPECT_TRUE(fs::exists(path("m.png")));
   std::ifstream statsFile(path("s.json"));
   std::string stats((std::istreambuf_iterator<char>(statsFile)), std::istreambuf_iterator<char>());
-  for (const char* key : {"\"raster_ms\":", "\"readback_ms\":", "\"network_ms\":", "\"compose_ms\":", "\"trace_ms\":", "\"tiles\":",
-                          "\"masked_pixels\":"}) {
+  for (const char* key : {"\"raster_ms\":", "\"readback_ms\":", "\"compose_ms\":", "\"trace_ms\":", "\"tiles\":",
+                          "\"masked_pixels\":", "\"bvh_ms\":"}) {
     EXPECT_NE(stats.find(key), std::string::npos) << key << " in " << stats;
   }
+  // In process nothing crosses a network, and the preparation is the BVH build.
+  EXPECT_EQ(stats.find("\"network_ms\""), std::string::npos) << stats;
+  EXPECT_EQ(stats.find("\"connect_ms\""), std::string::npos) << stats;
 }
 
 // glint view in a real window (an X server in memory, Xvfb) shows exactly the

@@ -1,0 +1,37 @@
+// The --stats record names what it measured: the BVH build in process, the
+// connection (connect, upload, the server's build) through a glintd, and the
+// network's share of tracing only where there is a network.
+#include "client/stats_json.h"
+
+#include <gtest/gtest.h>
+
+namespace glint {
+namespace {
+
+TEST(StatsJson, InProcessRecordHasNoNetwork) {
+  FrameRecord r;
+  r.maskedPixels = 32;
+  r.prepareMs = 1.5;
+  r.hybrid = HybridTimes{};
+  const nlohmann::json j = toJson(r);
+  EXPECT_EQ(j["bvh_ms"], 1.5);
+  EXPECT_FALSE(j.contains("connect_ms"));
+  EXPECT_FALSE(j.contains("network_ms"));
+  EXPECT_TRUE(j.contains("raster_ms"));
+  EXPECT_EQ(j["masked_pixels"], 32);
+}
+
+TEST(StatsJson, RemoteRecordNamesTheConnection) {
+  FrameRecord r;
+  r.remote = true;
+  r.prepareMs = 7.0;
+  EXPECT_EQ(toJson(r)["connect_ms"], 7.0);
+  EXPECT_FALSE(toJson(r).contains("bvh_ms"));
+  EXPECT_FALSE(toJson(r).contains("network_ms"));  // a full trace measures no network share
+  r.hybrid = HybridTimes{};
+  r.hybrid->networkMs = 0.25;
+  EXPECT_EQ(toJson(r)["network_ms"], 0.25);
+}
+
+}  // namespace
+}  // namespace glint
