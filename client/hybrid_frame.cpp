@@ -5,21 +5,12 @@
 #include <cstring>
 #include <string>
 
+#include "client/image_rows.h"
 #include "common/error.h"
 #include "common/timing.h"
 
 namespace glint {
 namespace {
-
-// GL's rows run bottom-up; Glint's images top-down.
-void flipRows(std::vector<std::uint8_t>& pixels, int width, int height, int channels) {
-  const auto row = static_cast<std::size_t>(width) * static_cast<std::size_t>(channels);
-  for (int y = 0; y < height / 2; ++y) {
-    const auto top = pixels.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(y) * row);
-    const auto bottom = pixels.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(height - 1 - y) * row);
-    std::swap_ranges(top, top + static_cast<std::ptrdiff_t>(row), bottom);
-  }
-}
 
 // Reads the frame into `pixels` (resized, so that its buffer is kept from
 // one frame to the next) with rows top-down.
@@ -32,6 +23,12 @@ void readPixels(const gl::Api& gl, int width, int height, GLenum format, int cha
 }
 
 }  // namespace
+
+double medianOf(const std::vector<HybridTimes>& frames, double HybridTimes::*step) {
+  std::vector<double> values;
+  for (const HybridTimes& t : frames) values.push_back(t.*step);
+  return median(std::move(values));
+}
 
 void renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& service, const FrameSettings& frame,
                   const MaskSettings& mask, int tileSize, HybridResult& result) {

@@ -20,6 +20,9 @@ struct HybridTimes {
   double totalMs = 0.0;
 };
 
+// The median of one step's time over frames.
+double medianOf(const std::vector<HybridTimes>& frames, double HybridTimes::*step);
+
 struct HybridResult {
   FrameImage image;
   std::vector<std::uint8_t> mask;  // one byte per pixel, row 0 at the top: 1 traced, 0 OpenGL

@@ -35,7 +35,9 @@ unsigned compile(const Api& gl, GLenum type, std::initializer_list<const char*> 
 // traced: the variant for masked objects, which shades nothing.
 unsigned link(const Api& gl, const char* vertex, const char* fragment, bool traced) {
   const unsigned vs = compile(gl, GL_VERTEX_SHADER, {vertex});
-  const unsigned fs = compile(gl, GL_FRAGMENT_SHADER, {kFragmentShading, traced ? "#define TRACED\n" : "", fragment});
+  const std::string prelude = fragmentPrelude();
+  const unsigned fs =
+      compile(gl, GL_FRAGMENT_SHADER, {prelude.c_str(), kFragmentShading, traced ? "#define TRACED\n" : "", fragment});
   const unsigned program = gl.CreateProgram();
   gl.AttachShader(program, vs);
   gl.AttachShader(program, fs);

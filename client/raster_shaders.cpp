@@ -1,13 +1,21 @@
 #include "client/raster_shaders.h"
 
+#include <string>
+#include <utility>
+
 namespace glint::gl {
 
-// Shared by both fragment shaders (array sizes as in raster_shaders.h):
-// material, texture and light data, and shade(), which mirrors Tracer::shade.
-const char* const kFragmentShading = R"(#version 330
-#define MAX_LIGHTS 16
-#define MAX_MATERIALS 128
-#define MAX_TEXTURES 32
+std::string fragmentPrelude() {
+  std::string prelude = "#version 330\n";
+  const std::pair<const char*, int> limits[] = {
+      {"MAX_LIGHTS", kMaxLights}, {"MAX_MATERIALS", kMaxMaterials}, {"MAX_TEXTURES", kMaxTextures}};
+  for (const auto& [name, value] : limits) prelude.append("#define ").append(name).append(" ").append(std::to_string(value)).append("\n");
+  return prelude;
+}
+
+// Shared by both fragment shaders, after the prelude: material, texture and
+// light data, and shade(), which mirrors Tracer::shade.
+const char* const kFragmentShading = R"(
 uniform vec3 uEye;
 uniform mat4 uViewProjection;
 uniform int uLightCount;

@@ -34,12 +34,7 @@ void writeMaskPng(const std::string& path, const std::vector<std::uint8_t>& mask
 // Medians over the frames, as the thesis's Table 4.1: the RT unit's time
 // beside the whole frame, and each step of the hybrid frame.
 void printTimingTable(const std::vector<HybridTimes>& frames, bool hybrid) {
-  const auto median = [&](double HybridTimes::*field) {
-    std::vector<double> v;
-    for (const HybridTimes& t : frames) v.push_back(t.*field);
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-  };
+  const auto median = [&frames](double HybridTimes::*step) { return medianOf(frames, step); };
   std::fprintf(stderr, "median of %zu frames:\n", frames.size());
   if (hybrid) {
     std::fprintf(stderr, "  raster     %8.1f ms\n  readback   %8.1f ms\n", median(&HybridTimes::rasterMs),

@@ -13,6 +13,7 @@
 
 #include "client/gl_api.h"
 #include "client/hybrid_frame.h"
+#include "client/image_rows.h"
 #include "client/raster_scene.h"
 #include "client/tile_backend.h"
 #include "common/error.h"
@@ -96,14 +97,10 @@ void drawOverlay(const gl::Api& gl, const HybridResult& r, int width, int height
   for (std::size_t i = 0; i < r.mask.size(); ++i) {
     if (r.mask[i]) rgb[3 * i] = static_cast<std::uint8_t>(std::min(255, rgb[3 * i] / 2 + 128));
   }
-  std::vector<std::uint8_t> flipped(rgb.size());
-  const auto row = static_cast<std::size_t>(width) * 3;
-  for (int y = 0; y < height; ++y) {
-    std::copy_n(&rgb[static_cast<std::size_t>(y) * row], row, &flipped[static_cast<std::size_t>(height - 1 - y) * row]);
-  }
+  flipRows(rgb, width, height, 3);
   gl.Disable(GL_STENCIL_TEST);
   gl.WindowPos2i(0, 0);
-  gl.DrawPixels(width, height, GL_RGB, GL_UNSIGNED_BYTE, flipped.data());
+  gl.DrawPixels(width, height, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
 }
 
 }  // namespace

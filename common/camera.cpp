@@ -5,13 +5,14 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "common/finite.h"
+
 namespace glint {
 
 std::string cameraProblem(const CameraSpec& c) {
-  const auto finite = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
-  if (!finite(c.eye)) return "eye: must be finite";
-  if (!finite(c.lookAt)) return "look_at: must be finite";
-  if (!finite(c.up)) return "up: must be finite";
+  if (!allFinite(c.eye)) return "eye: must be finite";
+  if (!allFinite(c.lookAt)) return "look_at: must be finite";
+  if (!allFinite(c.up)) return "up: must be finite";
   if (!(c.fovY > 0.0f && c.fovY <= 179.0f)) return "fov_y: must be in (0, 179]";
   const glm::vec3 forward = c.lookAt - c.eye;
   if (glm::dot(forward, forward) == 0.0f) return "look_at: must differ from camera.eye";

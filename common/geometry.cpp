@@ -5,15 +5,11 @@
 
 #include <glm/geometric.hpp>
 
+#include "common/finite.h"
 #include "common/float_bits.h"
-
 
 namespace glint {
 namespace {
-
-bool finite(const glm::vec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
 
 glm::vec3 faceForward(const glm::vec3& n, const glm::vec3& d) {
   return glm::dot(n, d) > 0.0f ? -n : n;
@@ -39,7 +35,7 @@ void Geometry::addMesh(MeshInput mesh) {
     const glm::vec3& b = mesh.positions[v[1]];
     const glm::vec3& c = mesh.positions[v[2]];
     const glm::vec3 n = glm::cross(b - a, c - a);
-    if (!finite(a) || !finite(b) || !finite(c) || !finite(n) || glm::dot(n, n) == 0.0f) {
+    if (!allFinite(a) || !allFinite(b) || !allFinite(c) || !allFinite(n) || glm::dot(n, n) == 0.0f) {
       ++dropped_;
       continue;
     }

@@ -3,16 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/finite.h"
 #include "common/sampling.h"
 
 namespace glint {
-namespace {
-
-bool finite(const glm::vec3& c) {
-  return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z);
-}
-
-}  // namespace
 
 Renderer::Renderer(const PreparedScene& prepared, const FrameSettings& frame)
     : Renderer(prepared, frame, EffectPlan::derive(prepared.scene(), frame)) {}
@@ -45,7 +39,7 @@ glm::vec3 Renderer::pixel(int x, int y, RayStats& stats) const {
     const Ray ray = camera_.generateRay({static_cast<float>(x) + offset.x,
                                          static_cast<float>(y) + offset.y});
     const glm::vec3 c = tracer_.radiance(ray, stats);
-    if (!finite(c)) {
+    if (!allFinite(c)) {
       ++stats.nonFiniteSamples;
       continue;
     }

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "common/error.h"
+#include "common/finite.h"
 #include "common/frame_limits.h"
 
 namespace glint::proto {
@@ -22,7 +23,7 @@ wire::Vec3 toWire(const glm::vec3& v) { return {v.x, v.y, v.z}; }
 glm::vec3 fromWire(const wire::Vec3* v, const char* field) {
   if (!v) throw InputError(std::string("frame_setup.") + field + ": missing");
   const glm::vec3 out(v->x(), v->y(), v->z());
-  if (!std::isfinite(out.x) || !std::isfinite(out.y) || !std::isfinite(out.z)) {
+  if (!allFinite(out)) {
     throw InputError(std::string("frame_setup.") + field + ": not finite");
   }
   return out;

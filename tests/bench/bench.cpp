@@ -21,6 +21,7 @@
 #include "client/raster_scene.h"
 #include "client/remote_tile_service.h"
 #include "common/scene_load.h"
+#include "common/timing.h"
 #include "proto/scene_bundle.h"
 #include "server/log.h"
 #include "server/background_server.h"
@@ -29,8 +30,6 @@
 
 namespace glint::bench {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 struct Options {
   std::string scenes = "scenes";
@@ -47,10 +46,9 @@ double medianMs(int runs, const std::function<void()>& work) {
   for (int i = 0; i < runs; ++i) {
     const Clock::time_point start = Clock::now();
     work();
-    ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+    ms.push_back(msSince(start));
   }
-  std::sort(ms.begin(), ms.end());
-  return ms[ms.size() / 2];
+  return median(std::move(ms));
 }
 
 struct BvhResult {
@@ -245,10 +243,6 @@ void protocolSection(const Options& o, const Scene& room) {
       differences.push_back(remoteTimes.back() - localTimes.back());
     }
     const auto after = remote.traffic();
-    const auto median = [](std::vector<double> v) {
-      std::sort(v.begin(), v.end());
-      return v[v.size() / 2];
-    };
     const double localMs = median(localTimes), remoteMs = median(remoteTimes);
     const double received = static_cast<double>(after.bytesReceived - before.bytesReceived) / frames;
     const double sent = static_cast<double>(after.bytesSent - before.bytesSent) / frames;
@@ -296,12 +290,7 @@ void hybridSection(const Options& o) {
         renderHybrid(context.api(), raster, *service, frame, prepared.scene().mask, 64, r);
         if (f > 0) times.push_back(r.times);  // the first frame compiles the shaders
       }
-      const auto median = [&](double HybridTimes::*field) {
-        std::vector<double> v;
-        for (const HybridTimes& t : times) v.push_back(t.*field);
-        std::sort(v.begin(), v.end());
-        return v[v.size() / 2];
-      };
+      const auto median = [&times](double HybridTimes::*step) { return medianOf(times, step); };
       const bool inProcess = service == &local;
       std::printf("| %d (%s) | %s | %.1f | %.1f | %.1f | %.1f | %.1f | %s |\n", index + 1, name,
                   inProcess ? "in process" : "glintd", median(&HybridTimes::rasterMs), median(&HybridTimes::readbackMs),
@@ -311,8 +300,7 @@ void hybridSection(const Options& o) {
     }
     ++index;
   }
-  std::sort(povTimes.begin(), povTimes.end());
-  const double pov = povTimes.empty() ? -1.0 : povTimes[povTimes.size() / 2];
+  const double pov = povTimes.empty() ? -1.0 : median(povTimes);
   if (pov > 0.0) {
     std::printf("\nPOV-Ray 3.7 full trace of the room (median of %zu runs between scene 1's frames): %.1f ms; "
                 "scene 1's hybrid frame is **%.1fx** faster.\n",
