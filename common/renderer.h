@@ -26,6 +26,9 @@ class Renderer {
   Renderer(const PreparedScene& prepared, const FrameSettings& frame);
   // With an explicit plan (tests compare derived and full plans).
   Renderer(const PreparedScene& prepared, const FrameSettings& frame, const EffectPlan& plan);
+  // Its tracer refers to its own plan: a copy would trace with the original's.
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
 
   // The tile interface, called the same way in-process, by the server and by
   // the GL client: traces the pixels of `rect` whose mask bit is set (every

@@ -1,9 +1,9 @@
 #include "common/tile_service.h"
 
-#include <chrono>
 #include <mutex>
 
 #include "common/renderer.h"
+#include "common/timing.h"
 
 namespace glint {
 
@@ -19,9 +19,9 @@ void renderTiles(const Renderer& renderer, ThreadPool& pool, std::span<const Til
   pool.parallelFor(jobs.size(), [&](std::size_t i) {
     TileOutput out;
     out.rgb.reserve(jobs[i].rect.pixelCount() * 3);
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = Clock::now();
     renderer.renderTile(jobs[i].rect, jobs[i].mask, out.rgb, out.rays);
-    out.computeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    out.computeMs = msSince(start);
     std::lock_guard lock(doneMutex);
     done(i, std::move(out));
   });

@@ -30,7 +30,11 @@ struct TileOutput {
 // service (a glintd over the network) and the GL client all meet here.
 class TileService {
  public:
+  TileService() = default;
   virtual ~TileService() = default;
+  // A service is a place where tiles are traced (a pool, a connection), not a value.
+  TileService(const TileService&) = delete;
+  TileService& operator=(const TileService&) = delete;
   // Renders every job of one frame. done(i, output) is called once per job,
   // never concurrently, in any order; returns when all are done. Throws
   // InputError when the frame cannot be rendered.

@@ -21,6 +21,9 @@ namespace glint {
 class Tracer {
  public:
   Tracer(const Scene& scene, const Bvh& bvh, const TracingSettings& tracing, const EffectPlan& plan);
+  // It refers to the scene, BVH and plan it was made with.
+  Tracer(const Tracer&) = delete;
+  Tracer& operator=(const Tracer&) = delete;
 
   // Radiance along a primary ray (direction unit length).
   glm::vec3 radiance(const Ray& ray, RayStats& stats) const;

@@ -160,10 +160,11 @@ void Connection::trace(TileWork work) {
 // Called on pool threads. Results wait in the outbox until it holds
 // kFlushBytes or the client's last submitted tile is done; then one wake-up
 // of the I/O thread takes them all into one gathered write. Each wake-up
-// preempts a tracing thread where client and server share the cores, so a
-// frame's 80 results go out in about 23 writes instead of about 65.
+// preempts a tracing thread where client and server share the cores; the
+// writes saved and the flush size chosen are measured in docs/protocol.md
+// and docs/performance.md.
 void Connection::deliver(std::vector<std::uint8_t> result) {
-  constexpr std::size_t kFlushBytes = 128 * 1024;  // 64 KiB: 2.1 ms overhead per frame, 128 KiB: 1.0-1.4
+  constexpr std::size_t kFlushBytes = 128 * 1024;
   bool wake = false;
   {
     std::lock_guard lock(outboxMutex_);
