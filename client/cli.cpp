@@ -2,8 +2,11 @@
 
 #include <cstdio>
 #include <exception>
-#include <map>
+#include <functional>
+#include <memory>
 #include <regex>
+#include <utility>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -19,6 +22,9 @@ constexpr const char* kRenderHelp =
     "Ray-trace a Glint scene (JSON, see docs/scene-format.md) and write a PNG.\n"
     "Settings given here override the scene file's. The image is the same\n"
     "whatever --threads and --tile-size are.";
+constexpr const char* kViewHelp =
+    "Open a window on a scene: the hybrid frame, live. Left drag orbits, right drag pans, the wheel "
+    "zooms; M cycles the mask rule (auto, all, none), O shows the mask, Q or Escape closes.";
 
 void parseSize(const std::string& text, std::optional<int>& width, std::optional<int>& height) {
   static const std::regex pattern(R"((\d{1,5})x(\d{1,5}))");
@@ -47,87 +53,108 @@ CLI::Option* addEnumOption(CLI::App* app, const std::string& name, std::optional
       ->check(CLI::IsMember(enumWordList<Enum>()));
 }
 
+// Declares `glint render`'s options; returns what runs once they are parsed.
+std::function<void()> declareRender(CLI::App* render) {
+  auto options = std::make_shared<RenderOptions>();
+  auto size = std::make_shared<std::string>();
+  RenderOptions& o = *options;
+  render->add_option("scene", o.scene, "Scene file (.json)")->required()->check(CLI::ExistingFile);
+  render->add_option("-o,--output", o.output, "PNG file to write (written only when the render succeeds)")
+      ->required();
+  addEnumOption(render, "--mask", o.mask,
+                "Which pixels are ray traced (default: the scene's): auto, objects whose materials need it, "
+                "drawn by OpenGL otherwise; all, the full ray trace; none, OpenGL only");
+  render->add_option("--mask-threshold", o.maskThreshold,
+                     "Under --mask auto: materials with reflectivity above this are ray traced")
+      ->check(CLI::Range(0.0f, 1.0f));
+  render->add_option("--mask-out", o.maskOut, "Also write the mask as a PNG (white: ray traced)");
+  render->add_option("--threads", o.threads, "Render threads; 0 = one per hardware thread")
+      ->check(CLI::Range(0, 1024))
+      ->default_val(0);
+  render->add_option("--tile-size", o.tileSize, "Tile edge in pixels (work unit of a thread)")
+      ->check(CLI::Range(1, 4096))
+      ->default_val(64);
+  render->add_option("--samples", o.samples, "Samples per pixel (regular: 1, 2, 4, 9, 16 ...)")
+      ->check(CLI::Range(1, FrameLimits::kMaxSamples));
+  addEnumOption(render, "--pattern", o.pattern, "Sample pattern (default: the scene's)");
+  addEnumOption(render, "--filter", o.filter, "Pixel filter (default: the scene's)");
+  render->add_option("--seed", o.seed, "Seed of the jitter (same seed, same image)")
+      ->check(CLI::Range(0u, FrameLimits::kMaxSeed));
+  render->add_option("--max-depth", o.maxDepth, "Maximum ray depth (primary ray = 1)")
+      ->check(CLI::Range(1, FrameLimits::kMaxDepth));
+  render->add_option("--min-weight", o.minWeight, "Rays whose path weight falls below this are not traced")
+      ->check(CLI::Range(0.0f, 1.0f));
+  render->add_option("--size", *size, "Image size WIDTHxHEIGHT (the camera's fov_y is kept)");
+  addEnumOption(render, "--bvh", o.bvh, "BVH builder in process (default: sah; qsplit is the thesis's)");
+  render->add_option("--server", o.server,
+                     "Render through the glintd at HOST:PORT (e.g. 127.0.0.1:7878); the image is "
+                     "byte-identical to the in-process one");
+  render->add_option("--stats", o.statsPath,
+                     "Write one JSON object per frame (rays by kind, timings, effect plan; docs/stats.md) to FILE; "
+                     "- for stdout");
+  render->add_option("--frames", o.frames,
+                     "Render N frames and print the median time of each step (like the thesis's Table 4.1)")
+      ->check(CLI::Range(1, 100000))
+      ->default_val(1);
+  render->add_flag("-q,--quiet", o.quiet, "No summary line on stderr");
+  return [options, size] {
+    if (!size->empty()) parseSize(*size, options->width, options->height);
+    runRender(*options);
+  };
+}
+
+// Declares `glint view`'s options; returns what runs once they are parsed.
+std::function<void()> declareView(CLI::App* view) {
+  auto options = std::make_shared<ViewOptions>();
+  auto size = std::make_shared<std::string>();
+  ViewOptions& o = *options;
+  view->add_option("scene", o.scene, "Scene file (.json)")->required()->check(CLI::ExistingFile);
+  view->add_option("--server", o.server, "Trace through the glintd at HOST:PORT");
+  addEnumOption(view, "--mask", o.mask, "Initial mask rule (default: the scene's)");
+  view->add_option("--threads", o.threads, "Tracing threads; 0 = one per hardware thread")->check(CLI::Range(0, 1024));
+  addEnumOption(view, "--bvh", o.bvh, "BVH builder in process (default: sah; qsplit is the thesis's)");
+  view->add_option("--tile-size", o.tileSize, "Tile edge in pixels")->check(CLI::Range(1, 4096));
+  view->add_option("--size", *size, "Window size WIDTHxHEIGHT (default: the scene's image size)");
+  view->add_option("--frames", o.frames, "Close after N frames (for scripts)")->check(CLI::Range(1, 1000000));
+  view->add_option("--screenshot", o.screenshot, "Write the last frame as PNG when the window closes");
+  return [options, size] {
+    if (!size->empty()) parseSize(*size, options->width, options->height);
+    runView(*options);
+  };
+}
+
+// glint's commands: a name, its help, and the function that declares its
+// options. A new command is one more row.
+struct CommandSpec {
+  const char* name;
+  const char* help;
+  std::function<void()> (*declare)(CLI::App*);
+};
+constexpr CommandSpec kCommands[] = {
+    {"render", kRenderHelp, declareRender},
+    {"view", kViewHelp, declareView},
+};
+
 }  // namespace
 
 int runCli(int argc, char** argv) {
   CLI::App app{"glint: a hybrid OpenGL / ray-tracing renderer", "glint"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "glint 0.1.0");
-
-  RenderOptions options;
-  std::string size;
-  CLI::App* render = app.add_subcommand("render", kRenderHelp);
-  render->add_option("scene", options.scene, "Scene file (.json)")->required()->check(CLI::ExistingFile);
-  render->add_option("-o,--output", options.output, "PNG file to write (written only when the render succeeds)")
-      ->required();
-  addEnumOption(render, "--mask", options.mask,
-                "Which pixels are ray traced (default: the scene's): auto, objects whose materials need it, "
-                "drawn by OpenGL otherwise; all, the full ray trace; none, OpenGL only");
-  render->add_option("--mask-threshold", options.maskThreshold,
-                     "Under --mask auto: materials with reflectivity above this are ray traced")
-      ->check(CLI::Range(0.0f, 1.0f));
-  render->add_option("--mask-out", options.maskOut, "Also write the mask as a PNG (white: ray traced)");
-  render->add_option("--threads", options.threads, "Render threads; 0 = one per hardware thread")
-      ->check(CLI::Range(0, 1024))
-      ->default_val(0);
-  render->add_option("--tile-size", options.tileSize, "Tile edge in pixels (work unit of a thread)")
-      ->check(CLI::Range(1, 4096))
-      ->default_val(64);
-  render->add_option("--samples", options.samples, "Samples per pixel (regular: 1, 2, 4, 9, 16 ...)")
-      ->check(CLI::Range(1, FrameLimits::kMaxSamples));
-  addEnumOption(render, "--pattern", options.pattern, "Sample pattern (default: the scene's)");
-  addEnumOption(render, "--filter", options.filter, "Pixel filter (default: the scene's)");
-  render->add_option("--seed", options.seed, "Seed of the jitter (same seed, same image)")
-      ->check(CLI::Range(0u, FrameLimits::kMaxSeed));
-  render->add_option("--max-depth", options.maxDepth, "Maximum ray depth (primary ray = 1)")
-      ->check(CLI::Range(1, FrameLimits::kMaxDepth));
-  render->add_option("--min-weight", options.minWeight,
-                     "Rays whose path weight falls below this are not traced")
-      ->check(CLI::Range(0.0f, 1.0f));
-  render->add_option("--size", size, "Image size WIDTHxHEIGHT (the camera's fov_y is kept)");
-  addEnumOption(render, "--bvh", options.bvh, "BVH builder in process (default: sah; qsplit is the thesis's)");
-  render->add_option("--server", options.server,
-                     "Render through the glintd at HOST:PORT (e.g. 127.0.0.1:7878); the image is "
-                     "byte-identical to the in-process one");
-  render->add_option("--stats", options.statsPath,
-                     "Write one JSON object per frame (rays by kind, timings, effect plan) to FILE; "
-                     "- for stdout");
-  render->add_option("--frames", options.frames,
-                     "Render N frames and print the median time of each step (like the thesis's Table 4.1)")
-      ->check(CLI::Range(1, 100000))
-      ->default_val(1);
-  render->add_flag("-q,--quiet", options.quiet, "No summary line on stderr");
-
-  ViewOptions view;
-  std::string viewSize;
-  CLI::App* viewCommand = app.add_subcommand(
-      "view", "Open a window on a scene: the hybrid frame, live. Left drag orbits, right drag pans, the wheel "
-              "zooms; M cycles the mask rule (auto, all, none), O shows the mask, Q or Escape closes.");
-  viewCommand->add_option("scene", view.scene, "Scene file (.json)")->required()->check(CLI::ExistingFile);
-  viewCommand->add_option("--server", view.server, "Trace through the glintd at HOST:PORT");
-  addEnumOption(viewCommand, "--mask", view.mask, "Initial mask rule (default: the scene's)");
-  viewCommand->add_option("--threads", view.threads, "Tracing threads; 0 = one per hardware thread")
-      ->check(CLI::Range(0, 1024));
-  addEnumOption(viewCommand, "--bvh", view.bvh, "BVH builder in process (default: sah; qsplit is the thesis's)");
-  viewCommand->add_option("--tile-size", view.tileSize, "Tile edge in pixels")->check(CLI::Range(1, 4096));
-  viewCommand->add_option("--size", viewSize, "Window size WIDTHxHEIGHT (default: the scene's image size)");
-  viewCommand->add_option("--frames", view.frames, "Close after N frames (for scripts)")->check(CLI::Range(1, 1000000));
-  viewCommand->add_option("--screenshot", view.screenshot, "Write the last frame as PNG when the window closes");
-
+  std::vector<std::pair<CLI::App*, std::function<void()>>> commands;
+  for (const CommandSpec& c : kCommands) {
+    CLI::App* sub = app.add_subcommand(c.name, c.help);
+    commands.emplace_back(sub, c.declare(sub));
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
-
   try {
-    if (!size.empty()) parseSize(size, options.width, options.height);
-    if (!viewSize.empty()) parseSize(viewSize, view.width, view.height);
-    if (viewCommand->parsed()) {
-      runView(view);
-      return 0;
+    for (const auto& [sub, run] : commands) {
+      if (sub->parsed()) run();
     }
-    if (render->parsed()) runRender(options);
     return 0;
   } catch (const InputError& e) {
     std::fprintf(stderr, "glint: error: %s\n", e.what());

@@ -53,8 +53,7 @@ class SceneLoader {
     const JsonReader root(doc, "");
     root.allowKeys({"glint", "image", "camera", "sampling", "tracing", "mask", "background",
                     "textures", "materials", "lights", "objects"});
-    const int version = root["glint"].integer(1, 1);
-    (void)version;
+    root["glint"].integer(1, 1);  // the format's version: only 1 exists
     readImage(root["image"]);
     readCamera(root["camera"]);
     if (auto s = root.find("sampling")) readSampling(*s);
