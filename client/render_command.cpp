@@ -45,6 +45,36 @@ void printTimingTable(const std::vector<HybridTimes>& frames, bool hybrid) {
   std::fprintf(stderr, "  frame      %8.1f ms\n", median(&HybridTimes::totalMs));
 }
 
+// --mask all: every pixel through the tile service, no OpenGL.
+void renderFullTrace(TileService& service, const FrameSettings& frame, int tileSize, HybridResult& r) {
+  const Clock::time_point start = Clock::now();
+  FrameOptions frameOptions;
+  frameOptions.tileSize = tileSize;
+  ProgressBar progress("rendering");
+  frameOptions.progress = [&progress](int done, int total) { progress.update(done, total); };
+  FrameResult full = renderFrame(service, frame, frameOptions);
+  r.image = std::move(full.image);
+  r.rays = full.stats;
+  r.maskedPixels = static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height);
+  r.tiles = static_cast<int>(tileGrid(frame.width, frame.height, tileSize).size());
+  r.times.traceMs = r.times.totalMs = msSince(start);
+}
+
+// The line on stderr after a render, the medians of --frames N, and a
+// warning for discarded samples.
+void printSummary(const RenderOptions& options, const FrameSettings& frame, const std::string& where,
+                  const std::vector<HybridTimes>& frameTimes, const RayStats& rays, bool hybrid) {
+  std::fprintf(stderr, "%s: %dx%d, %d spp, %s: trace %.1f ms, frame %.1f ms, %.2f M rays -> %s\n",
+               options.scene.c_str(), frame.width, frame.height, frame.sampling.samples, where.c_str(),
+               frameTimes.back().traceMs, frameTimes.back().totalMs, static_cast<double>(rays.total()) / 1e6,
+               options.output.c_str());
+  if (options.frames > 1) printTimingTable(frameTimes, hybrid);
+  if (rays.nonFiniteSamples > 0) {
+    std::fprintf(stderr, "warning: %llu samples were not finite and were discarded\n",
+                 static_cast<unsigned long long>(rays.nonFiniteSamples));
+  }
+}
+
 }  // namespace
 
 void applyOverrides(const RenderOptions& o, Scene& scene) {
@@ -98,20 +128,10 @@ void runRender(const RenderOptions& options) {
   std::vector<HybridTimes> frameTimes;
   HybridResult r;  // reused: each frame overwrites it
   for (int f = 0; f < options.frames; ++f) {
-    const Clock::time_point frameStart = Clock::now();
     if (hybridPath) {
       renderHybrid(context->api(), *raster, service, frame, scene.mask, options.tileSize, r);
     } else {
-      FrameOptions frameOptions;
-      frameOptions.tileSize = options.tileSize;
-      ProgressBar progress("rendering");
-      frameOptions.progress = [&progress](int done, int total) { progress.update(done, total); };
-      FrameResult full = renderFrame(service, frame, frameOptions);
-      r.image = std::move(full.image);
-      r.rays = full.stats;
-      r.maskedPixels = static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height);
-      r.tiles = static_cast<int>(tileGrid(frame.width, frame.height, options.tileSize).size());
-      r.times.traceMs = r.times.totalMs = msSince(frameStart);
+      renderFullTrace(service, frame, options.tileSize, r);
     }
     if (f == 0 && !options.maskOut.empty()) writeMaskPng(options.maskOut, r.mask, frame.width, frame.height);
     if (stats) {
@@ -135,18 +155,7 @@ void runRender(const RenderOptions& options) {
   }
   writePng(options.output, r.image);
 
-  if (!options.quiet) {
-    const std::string where = backend.where();
-    std::fprintf(stderr, "%s: %dx%d, %d spp, %s: trace %.1f ms, frame %.1f ms, %.2f M rays -> %s\n",
-                 options.scene.c_str(), frame.width, frame.height, frame.sampling.samples, where.c_str(),
-                 frameTimes.back().traceMs, frameTimes.back().totalMs, static_cast<double>(r.rays.total()) / 1e6,
-                 options.output.c_str());
-    if (options.frames > 1) printTimingTable(frameTimes, hybridPath);
-    if (r.rays.nonFiniteSamples > 0) {
-      std::fprintf(stderr, "warning: %llu samples were not finite and were discarded\n",
-                   static_cast<unsigned long long>(r.rays.nonFiniteSamples));
-    }
-  }
+  if (!options.quiet) printSummary(options, frame, backend.where(), frameTimes, r.rays, hybridPath);
 }
 
 }  // namespace glint
