@@ -152,14 +152,20 @@ TEST_F(ServerTest, UnreachableServerSaysWhichAddressAndWhy) {
 
 // Each bad input gets a clear error or a closed connection, and a good
 // client right after it is still served.
-TEST_F(ServerTest, BadInputNeverStopsTheServer) {
-  TestServer server;
-  const RoomFrame r = smallRoom();
-  const FrameImage expected = localImage(r);
-  const auto stillServes = [&](const char* after) {
+class BadInputTest : public ServerTest {
+ protected:
+  BadInputTest() : r(smallRoom()), expected(localImage(r)), hash(r.loaded.bundle.hash()) {}
+  void stillServes(const char* after) {
     EXPECT_EQ(remoteImage(server.address(), r).rgb, expected.rgb) << "after " << after;
-  };
-  const proto::SceneHash hash = r.loaded.bundle.hash();
+  }
+
+  TestServer server;
+  const RoomFrame r;
+  const FrameImage expected;
+  const proto::SceneHash hash;
+};
+
+TEST_F(BadInputTest, BytesThatAreNotGlint) {
   {  // An HTTP request.
     RawClient c(server.port());
     c.write("GET / HTTP/1.1\r\nHost: localhost\r\n\r\n");
@@ -188,6 +194,16 @@ TEST_F(ServerTest, BadInputNeverStopsTheServer) {
     EXPECT_TRUE(c.closed());
   }
   stillServes("silent client");
+  {  // Oversized: over the server's limit, refused before reading the body.
+    RawClient c(server.port());
+    c.write(std::vector<std::uint8_t>{0, 0, 0, 0x10});  // 256 MiB announced
+    EXPECT_EQ(c.readError().first, wire::ErrorCode::TooLarge);
+    EXPECT_TRUE(c.closed());
+  }
+  stillServes("oversized frame");
+}
+
+TEST_F(BadInputTest, HandshakeErrorsEndTheConnection) {
   {  // Wrong protocol version.
     RawClient c(server.port());
     flatbuffers::FlatBufferBuilder b;
@@ -203,6 +219,10 @@ TEST_F(ServerTest, BadInputNeverStopsTheServer) {
     c.write(proto::encodeSceneQuery(hash));
     EXPECT_EQ(c.readError().first, wire::ErrorCode::UnknownMessage);
   }
+  stillServes("handshake errors");
+}
+
+TEST_F(BadInputTest, ProtocolErrorsKeepTheConnection) {
   {  // Messages a server does not take, and references to unknown things:
      // errors, and the connection goes on.
     RawClient c(server.port());
@@ -248,13 +268,6 @@ TEST_F(ServerTest, BadInputNeverStopsTheServer) {
     EXPECT_EQ(result->body_as_TileResult()->rgb()->size(), 8u * 8u * 3u);
   }
   stillServes("bad messages");
-  {  // Oversized: over the server's limit, refused before reading the body.
-    RawClient c(server.port());
-    c.write(std::vector<std::uint8_t>{0, 0, 0, 0x10});  // 256 MiB announced
-    EXPECT_EQ(c.readError().first, wire::ErrorCode::TooLarge);
-    EXPECT_TRUE(c.closed());
-  }
-  stillServes("oversized frame");
 }
 
 // A client that asks for many tiles and never reads the results is dropped
