@@ -62,16 +62,19 @@ struct BuildPrimitive {
   std::uint32_t id;
 };
 
+// A BVH over one Geometry, bound to it: its primitive ids mean nothing for
+// another, so the queries take only the ray. The geometry must outlive it and
+// stay where it is (PreparedScene keeps the two together).
 class Bvh {
  public:
-  static Bvh build(std::vector<BuildPrimitive> prims, const BvhSettings& settings);
+  Bvh() = default;  // empty: finds nothing
   static Bvh build(const Geometry& geometry, const BvhSettings& settings);
 
   // Nearest hit with t < tMax; boxes are skipped once they lie beyond the
   // nearest hit so far.
-  std::optional<Hit> intersect(const Geometry& geometry, const Ray& ray, float tMax) const;
+  std::optional<Hit> intersect(const Ray& ray, float tMax) const;
   // Any hit with t < tMax (shadow rays): stops at the first one.
-  bool occluded(const Geometry& geometry, const Ray& ray, float tMax) const;
+  bool occluded(const Ray& ray, float tMax) const;
 
   const std::vector<BvhNode>& nodes() const { return nodes_; }
   const std::vector<std::uint32_t>& primIds() const { return primIds_; }
@@ -80,6 +83,7 @@ class Bvh {
 
  private:
   friend class BvhBuilderImpl;
+  const Geometry* geometry_ = nullptr;
   std::vector<BvhNode> nodes_;
   std::vector<std::uint32_t> primIds_;
   int depth_ = 0;

@@ -229,21 +229,18 @@ class BvhBuilderImpl {
   const BvhSettings& settings_;
 };
 
-Bvh Bvh::build(std::vector<BuildPrimitive> prims, const BvhSettings& settings) {
-  Bvh bvh;
-  if (prims.empty()) return bvh;  // traversal of an empty tree finds nothing
-  bvh.primIds_.reserve(prims.size());
-  BvhBuilderImpl(bvh, settings).build(prims);
-  return bvh;
-}
-
 Bvh Bvh::build(const Geometry& geometry, const BvhSettings& settings) {
+  Bvh bvh;
+  bvh.geometry_ = &geometry;
   std::vector<BuildPrimitive> prims;
   prims.reserve(geometry.primitiveCount());
   for (std::uint32_t i = 0; i < geometry.primitiveCount(); ++i) {
     prims.push_back({geometry.primitiveBounds(i), i});
   }
-  return build(std::move(prims), settings);
+  if (prims.empty()) return bvh;  // traversal of an empty tree finds nothing
+  bvh.primIds_.reserve(prims.size());
+  BvhBuilderImpl(bvh, settings).build(prims);
+  return bvh;
 }
 
 }  // namespace glint

@@ -55,7 +55,7 @@ void walk(const std::vector<BvhNode>& nodes, const Ray& ray, float& tMax, Visit 
 
 }  // namespace
 
-std::optional<Hit> Bvh::intersect(const Geometry& geometry, const Ray& ray, float tMax) const {
+std::optional<Hit> Bvh::intersect(const Ray& ray, float tMax) const {
   std::optional<Hit> nearest;
   const WatertightRay w(ray);  // per ray, not per triangle
   walk<true>(nodes_, ray, tMax, [&](std::uint32_t offset, std::uint32_t count) {
@@ -63,7 +63,7 @@ std::optional<Hit> Bvh::intersect(const Geometry& geometry, const Ray& ray, floa
       // One ulp beyond the nearest hit so far, so that a hit at exactly the
       // same distance reaches the tie-break of closerHit.
       const float limit = nearest ? nextFloatUp(tMax) : tMax;
-      const std::optional<Hit> hit = geometry.intersect(primIds_[i], ray, w, limit);
+      const std::optional<Hit> hit = geometry_->intersect(primIds_[i], ray, w, limit);
       if (hit && (!nearest || closerHit(*hit, *nearest))) {
         nearest = hit;
         tMax = hit->t;  // a later hit counts only if closer
@@ -74,12 +74,12 @@ std::optional<Hit> Bvh::intersect(const Geometry& geometry, const Ray& ray, floa
   return nearest;
 }
 
-bool Bvh::occluded(const Geometry& geometry, const Ray& ray, float tMax) const {
+bool Bvh::occluded(const Ray& ray, float tMax) const {
   bool found = false;
   const WatertightRay w(ray);
   walk<false>(nodes_, ray, tMax, [&](std::uint32_t offset, std::uint32_t count) {
     for (std::uint32_t i = offset; i < offset + count; ++i) {
-      if (geometry.intersect(primIds_[i], ray, w, tMax)) {
+      if (geometry_->intersect(primIds_[i], ray, w, tMax)) {
         found = true;
         return true;
       }

@@ -11,6 +11,9 @@ class PreparedScene {
  public:
   PreparedScene(Scene scene, const BvhSettings& settings)
       : scene_(std::move(scene)), bvh_(Bvh::build(scene_.geometry, settings)) {}
+  // The BVH refers to this object's geometry: it stays where it was built.
+  PreparedScene(const PreparedScene&) = delete;
+  PreparedScene& operator=(const PreparedScene&) = delete;
 
   const Scene& scene() const { return scene_; }
   const Bvh& bvh() const { return bvh_; }

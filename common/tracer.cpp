@@ -41,7 +41,7 @@ glm::vec3 Tracer::shade(const SurfaceHit& s, const glm::vec3& toViewer, const Ma
       ++stats.shadow;
       const glm::vec3 fromOrigin = scene_.lights[i].position - origin;
       const float shadowDistance = glm::length(fromOrigin);
-      if (bvh_.occluded(scene_.geometry, Ray(origin, fromOrigin / shadowDistance), shadowDistance)) {
+      if (bvh_.occluded(Ray(origin, fromOrigin / shadowDistance), shadowDistance)) {
         ++stats.shadowBlocked;
         continue;
       }
@@ -55,7 +55,7 @@ glm::vec3 Tracer::shade(const SurfaceHit& s, const glm::vec3& toViewer, const Ma
 
 glm::vec3 Tracer::trace(const Ray& ray, int depth, float weight, bool inside,
                         RayStats& stats) const {
-  const std::optional<Hit> hit = bvh_.intersect(scene_.geometry, ray, kInfinity);
+  const std::optional<Hit> hit = bvh_.intersect(ray, kInfinity);
   if (!hit) return scene_.background;
   const std::uint32_t material = scene_.geometry.materialOf(hit->prim);
   const Material& m = scene_.materials[material];

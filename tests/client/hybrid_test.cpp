@@ -51,7 +51,7 @@ std::vector<bool> fullyCovered(const PreparedScene& prepared, const FrameSetting
   std::vector<bool> covered(static_cast<std::size_t>(frame.width * frame.height), false);
   const auto probe = [&](float x, float y) -> std::pair<long long, glm::vec3> {
     const Ray ray = camera.generateRay({x, y});
-    const auto hit = prepared.bvh().intersect(scene.geometry, ray, 1e30f);
+    const auto hit = prepared.bvh().intersect(ray, 1e30f);
     if (!hit) return {-1, glm::vec3(0.0f)};
     const SurfaceHit s = scene.geometry.surface(ray, *hit);
     const Material& m = scene.materials[scene.geometry.materialOf(hit->prim)];
@@ -178,7 +178,7 @@ TEST(Hybrid, MaskFollowsTheObjectAtThePixelCentre) {
     for (int x = 0; x < s.frame.width; ++x) {
       const auto i = static_cast<std::size_t>(y * s.frame.width + x);
       const Ray ray = camera.generateRay({x + 0.5f, y + 0.5f});
-      const auto hit = prepared.bvh().intersect(prepared.scene().geometry, ray, 1e30f);
+      const auto hit = prepared.bvh().intersect(ray, 1e30f);
       const bool expected =
           hit && materialMasked(prepared.scene().materials[prepared.scene().geometry.materialOf(hit->prim)], mask);
       masked += expected ? 1 : 0;

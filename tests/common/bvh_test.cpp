@@ -66,13 +66,13 @@ TEST_P(BvhBuilders, NearestHitAndOcclusionEqualBruteForce) {
   int mismatches = 0;
   for (const Ray& ray : randomRays(100'000, 2)) {
     const auto expected = bruteForce(g, ray);
-    const auto got = bvh.intersect(g, ray, 1e30f);
+    const auto got = bvh.intersect(ray, 1e30f);
     hits += expected ? 1 : 0;
     if (expected.has_value() != got.has_value() ||
         (expected && (expected->prim != got->prim || expected->t != got->t))) {
       ++mismatches;
     }
-    if (expected.has_value() != bvh.occluded(g, ray, 1e30f)) ++mismatches;
+    if (expected.has_value() != bvh.occluded(ray, 1e30f)) ++mismatches;
   }
   EXPECT_EQ(mismatches, 0);
   EXPECT_GT(hits, 5000);  // the comparison covers many hits, not only misses
@@ -110,12 +110,12 @@ TEST_P(BvhBuilders, SmallTreesHaveWellFormedWideNodes) {
     for (int count : seen) EXPECT_EQ(count, 1) << "n " << n;
     for (const Ray& ray : randomRays(2000, static_cast<unsigned>(100 + n))) {
       const auto expected = bruteForce(g, ray);
-      const auto got = bvh.intersect(g, ray, 1e30f);
+      const auto got = bvh.intersect(ray, 1e30f);
       ASSERT_EQ(expected.has_value(), got.has_value()) << "n " << n;
       if (expected) {
         EXPECT_EQ(expected->prim, got->prim);
       }
-      EXPECT_EQ(expected.has_value(), bvh.occluded(g, ray, 1e30f));
+      EXPECT_EQ(expected.has_value(), bvh.occluded(ray, 1e30f));
     }
   }
 }
@@ -152,7 +152,7 @@ TEST_P(BvhBuilders, GridMeshOnNodeFacesEqualsBruteForce) {
     if (i % 2 == 1) d = glm::normalize(glm::vec3(dir(rng), -std::abs(dir(rng)) - 0.1f, dir(rng)));
     const Ray ray(o, d);
     const auto expected = bruteForce(g, ray);
-    const auto got = bvh.intersect(g, ray, 1e30f);
+    const auto got = bvh.intersect(ray, 1e30f);
     hits += expected ? 1 : 0;
     if (expected.has_value() != got.has_value() ||
         (expected && (expected->t != got->t || expected->prim != got->prim))) {
@@ -171,8 +171,8 @@ INSTANTIATE_TEST_SUITE_P(Builders, BvhBuilders, ::testing::Values(BvhBuilder::kQ
 TEST(Bvh, EmptyTreeFindsNothing) {
   const Geometry g;
   const Bvh bvh = Bvh::build(g, {});
-  EXPECT_FALSE(bvh.intersect(g, Ray({0, 0, 0}, {0, 0, 1}), 1e30f));
-  EXPECT_FALSE(bvh.occluded(g, Ray({0, 0, 0}, {0, 0, 1}), 1e30f));
+  EXPECT_FALSE(bvh.intersect(Ray({0, 0, 0}, {0, 0, 1}), 1e30f));
+  EXPECT_FALSE(bvh.occluded(Ray({0, 0, 0}, {0, 0, 1}), 1e30f));
 }
 
 TEST(Bvh, IdenticalPrimitivesStayWithinTheStackDepth) {
@@ -183,7 +183,7 @@ TEST(Bvh, IdenticalPrimitivesStayWithinTheStackDepth) {
     settings.builder = builder;
     const Bvh bvh = Bvh::build(g, settings);
     EXPECT_LE(bvh.depth(), kBvhMaxDepth);
-    EXPECT_TRUE(bvh.intersect(g, Ray({0, 0, 5}, {0, 0, -1}), 1e30f));
+    EXPECT_TRUE(bvh.intersect(Ray({0, 0, 5}, {0, 0, -1}), 1e30f));
   }
 }
 
@@ -200,7 +200,7 @@ TEST(Bvh, DegenerateTrianglesAreDroppedAndCounted) {
   EXPECT_EQ(g.triangles().size(), 1u);
   EXPECT_EQ(g.droppedTriangles(), 3u);
   const Bvh bvh = Bvh::build(g, {});
-  const auto hit = bvh.intersect(g, Ray({0.2f, 0.2f, 1.0f}, {0, 0, -1}), 1e30f);
+  const auto hit = bvh.intersect(Ray({0.2f, 0.2f, 1.0f}, {0, 0, -1}), 1e30f);
   ASSERT_TRUE(hit);
   EXPECT_FLOAT_EQ(hit->t, 1.0f);
 }
