@@ -53,16 +53,13 @@ struct VertexKey {
   auto operator<=>(const VertexKey&) const = default;
 };
 
-}  // namespace
-
-ObjModel loadObj(FileSource& files, const std::string& path, const std::string& place,
-                 SceneBudget& budget, bool withMaterials) {
-  const LoadLimits& limits = budget.limits();
+// The OBJ (and, when materials are wanted, its mtllib) parsed by tinyobjloader.
+tinyobj::ObjReader parseObj(FileSource& files, const std::string& path, const std::string& place,
+                            const LoadLimits& limits, bool withMaterials) {
   const std::string text = files.read(path, place);
   std::string mtl;
   const std::string lib = mtllibName(text);
   if (withMaterials && !lib.empty()) mtl = files.read(siblingPath(path, lib), place + " (mtllib " + lib + ")");
-
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;
@@ -70,90 +67,119 @@ ObjModel loadObj(FileSource& files, const std::string& path, const std::string& 
   if (!reader.ParseFromString(text, mtl, config)) {
     throw InputError(place + ": '" + path + "' is not a valid OBJ file: " + reader.Error());
   }
-  const tinyobj::attrib_t& attrib = reader.GetAttrib();
-  const std::size_t positions = attrib.vertices.size() / 3;
-  const std::size_t normals = attrib.normals.size() / 3;
-  const std::size_t uvs = attrib.texcoords.size() / 2;
+  const std::size_t positions = reader.GetAttrib().vertices.size() / 3;
   if (positions > limits.maxVertices) {
     throw InputError(place + ": '" + path + "' has " + std::to_string(positions) +
                      " vertices, over the limit of " + std::to_string(limits.maxVertices));
   }
+  return reader;
+}
 
-  ObjModel model;
-  if (withMaterials) {
-    for (const tinyobj::material_t& m : reader.GetMaterials()) {
-      Material mat = toMaterial(m);
-      if (!m.diffuse_texname.empty()) {
-        const std::string texPath = siblingPath(path, m.diffuse_texname);
-        const std::string texPlace = place + " (map_Kd of material " + m.name + ")";
-        Texture tex;
-        tex.type = TextureType::kImage;
-        tex.image = std::make_shared<Image>(
-            decodeImage(files.read(texPath, texPlace), texPlace, budget));
-        mat.texture = static_cast<int>(model.textures.size());
-        mat.color = glm::vec3(1.0f);
-        model.textures.push_back(std::move(tex));
-      }
-      model.materials.push_back(std::move(mat));
+// The MTL materials, each map_Kd decoded as the material's texture.
+void readMaterials(const tinyobj::ObjReader& reader, FileSource& files, const std::string& path,
+                   const std::string& place, SceneBudget& budget, ObjModel& model) {
+  for (const tinyobj::material_t& m : reader.GetMaterials()) {
+    Material mat = toMaterial(m);
+    if (!m.diffuse_texname.empty()) {
+      const std::string texPath = siblingPath(path, m.diffuse_texname);
+      const std::string texPlace = place + " (map_Kd of material " + m.name + ")";
+      Texture tex;
+      tex.type = TextureType::kImage;
+      tex.image = std::make_shared<Image>(decodeImage(files.read(texPath, texPlace), texPlace, budget));
+      mat.texture = static_cast<int>(model.textures.size());
+      mat.color = glm::vec3(1.0f);
+      model.textures.push_back(std::move(tex));
+    }
+    model.materials.push_back(std::move(mat));
+  }
+}
+
+// The faces of one material become one mesh; a corner (position, normal, uv)
+// seen before reuses its vertex.
+class FaceGrouper {
+ public:
+  explicit FaceGrouper(const tinyobj::attrib_t& attrib) : attrib_(attrib) {}
+
+  // False when the corner refers to data the file does not have.
+  bool addCorner(int material, const tinyobj::index_t& idx) {
+    if (idx.vertex_index < 0 || static_cast<std::size_t>(idx.vertex_index) >= attrib_.vertices.size() / 3 ||
+        idx.normal_index >= static_cast<int>(attrib_.normals.size() / 3) ||
+        idx.texcoord_index >= static_cast<int>(attrib_.texcoords.size() / 2)) {
+      return false;
+    }
+    MeshInput& group = groups_[material];
+    const VertexKey key{idx.vertex_index, idx.normal_index, idx.texcoord_index};
+    auto [it, inserted] = vertexMaps_[material].try_emplace(key, static_cast<std::uint32_t>(group.positions.size()));
+    if (inserted) {
+      const auto v = static_cast<std::size_t>(idx.vertex_index);
+      group.positions.emplace_back(attrib_.vertices[3 * v], attrib_.vertices[3 * v + 1], attrib_.vertices[3 * v + 2]);
+      const auto n = static_cast<std::size_t>(std::max(idx.normal_index, 0));
+      group.normals.push_back(idx.normal_index >= 0 ? glm::vec3(attrib_.normals[3 * n], attrib_.normals[3 * n + 1],
+                                                                attrib_.normals[3 * n + 2])
+                                                    : glm::vec3(0.0f));
+      const auto t = static_cast<std::size_t>(std::max(idx.texcoord_index, 0));
+      group.uvs.push_back(idx.texcoord_index >= 0
+                              ? glm::vec2(attrib_.texcoords[2 * t], attrib_.texcoords[2 * t + 1])
+                              : glm::vec2(0.0f));
+      auto [c, fresh] = complete_.try_emplace(material, true);
+      c->second = c->second && idx.normal_index >= 0;
+    }
+    group.indices.push_back(it->second);
+    return true;
+  }
+
+  // The meshes; a mesh some of whose corners lack a normal gets its normals
+  // from the faces instead.
+  void finish(ObjModel& model) {
+    for (auto& [mat, group] : groups_) {
+      if (!complete_[mat]) group.normals.clear();
+      group.material = static_cast<std::uint32_t>(mat);
+      model.meshes.push_back(std::move(group));
     }
   }
+  bool uses(int material) const { return groups_.count(material) > 0; }
+
+ private:
+  const tinyobj::attrib_t& attrib_;
+  std::map<int, MeshInput> groups_;
+  std::map<int, std::map<VertexKey, std::uint32_t>> vertexMaps_;
+  std::map<int, bool> complete_;  // every corner has a normal
+};
+
+}  // namespace
+
+ObjModel loadObj(FileSource& files, const std::string& path, const std::string& place, SceneBudget& budget,
+                 bool withMaterials) {
+  const LoadLimits& limits = budget.limits();
+  const tinyobj::ObjReader reader = parseObj(files, path, place, limits, withMaterials);
+  ObjModel model;
+  if (withMaterials) readMaterials(reader, files, path, place, budget, model);
   // Faces without a material (or all faces, without MTL) use a default one.
   const int defaultMaterial = static_cast<int>(model.materials.size());
-
-  std::map<int, MeshInput> groups;
-  std::map<int, std::map<VertexKey, std::uint32_t>> vertexMaps;
-  std::map<int, bool> complete;  // every corner has a normal / uv
+  FaceGrouper grouper(reader.GetAttrib());
   std::size_t triangles = 0;
   for (const tinyobj::shape_t& shape : reader.GetShapes()) {
     const auto& mesh = shape.mesh;
     for (std::size_t f = 0; f < mesh.num_face_vertices.size(); ++f) {
-      if (mesh.num_face_vertices[f] != 3) {
-        throw InputError(place + ": '" + path + "' face " + std::to_string(f) + " of '" + shape.name +
-                         "' could not be triangulated");
-      }
+      const auto faceError = [&](const char* what) {
+        return InputError(place + ": '" + path + "' face " + std::to_string(f) + " of '" + shape.name + "' " + what);
+      };
+      if (mesh.num_face_vertices[f] != 3) throw faceError("could not be triangulated");
       if (++triangles > limits.maxTriangles) {
         throw InputError(place + ": '" + path + "' has more triangles than the limit of " +
                          std::to_string(limits.maxTriangles));
       }
       int mat = withMaterials && f < mesh.material_ids.size() ? mesh.material_ids[f] : -1;
       if (mat < 0 || mat >= defaultMaterial) mat = defaultMaterial;
-      MeshInput& group = groups[mat];
-      auto& vertexMap = vertexMaps[mat];
-      for (int k = 0; k < 3; ++k) {
-        const tinyobj::index_t& idx = mesh.indices[3 * f + static_cast<std::size_t>(k)];
-        if (idx.vertex_index < 0 || static_cast<std::size_t>(idx.vertex_index) >= positions ||
-            idx.normal_index >= static_cast<int>(normals) || idx.texcoord_index >= static_cast<int>(uvs)) {
-          throw InputError(place + ": '" + path + "' face " + std::to_string(f) + " of '" + shape.name +
-                           "' refers to a vertex, normal or uv that the file does not have");
+      for (std::size_t k = 0; k < 3; ++k) {
+        if (!grouper.addCorner(mat, mesh.indices[3 * f + k])) {
+          throw faceError("refers to a vertex, normal or uv that the file does not have");
         }
-        const VertexKey key{idx.vertex_index, idx.normal_index, idx.texcoord_index};
-        auto [it, inserted] = vertexMap.try_emplace(key, static_cast<std::uint32_t>(group.positions.size()));
-        if (inserted) {
-          const auto v = static_cast<std::size_t>(idx.vertex_index);
-          group.positions.emplace_back(attrib.vertices[3 * v], attrib.vertices[3 * v + 1],
-                                       attrib.vertices[3 * v + 2]);
-          const auto n = static_cast<std::size_t>(std::max(idx.normal_index, 0));
-          group.normals.push_back(idx.normal_index >= 0
-                                      ? glm::vec3(attrib.normals[3 * n], attrib.normals[3 * n + 1],
-                                                  attrib.normals[3 * n + 2])
-                                      : glm::vec3(0.0f));
-          const auto t = static_cast<std::size_t>(std::max(idx.texcoord_index, 0));
-          group.uvs.push_back(idx.texcoord_index >= 0
-                                  ? glm::vec2(attrib.texcoords[2 * t], attrib.texcoords[2 * t + 1])
-                                  : glm::vec2(0.0f));
-          auto [c, fresh] = complete.try_emplace(mat, true);
-          c->second = c->second && idx.normal_index >= 0;
-        }
-        group.indices.push_back(it->second);
       }
     }
   }
-  for (auto& [mat, group] : groups) {
-    if (!complete[mat]) group.normals.clear();  // computed from the faces instead
-    group.material = static_cast<std::uint32_t>(mat);
-    model.meshes.push_back(std::move(group));
-  }
-  if (groups.count(defaultMaterial)) model.materials.push_back(Material{});
+  grouper.finish(model);
+  if (grouper.uses(defaultMaterial)) model.materials.push_back(Material{});
   return model;
 }
 
