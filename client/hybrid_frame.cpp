@@ -22,6 +22,57 @@ void readPixels(const gl::Api& gl, int width, int height, GLenum format, int cha
   flipRows(pixels, width, height, channels);
 }
 
+
+// The tiles with at least one masked pixel, each with its mask bits.
+std::vector<TileJob> maskedTiles(const std::vector<std::uint8_t>& mask, int w, int h, int tileSize,
+                                 std::size_t& maskedPixels) {
+  std::vector<TileJob> jobs;
+  for (const TileRect& rect : tileGrid(w, h, std::max(1, tileSize))) {
+    TileJob job{rect, std::vector<std::uint8_t>(maskByteCount(rect), 0)};
+    std::size_t count = 0;
+    for (int y = 0; y < rect.height; ++y) {
+      for (int x = 0; x < rect.width; ++x) {
+        if (!mask[static_cast<std::size_t>(rect.y + y) * static_cast<std::size_t>(w) +
+                  static_cast<std::size_t>(rect.x + x)]) {
+          continue;
+        }
+        setMaskBit(job.mask, static_cast<std::size_t>(y * rect.width + x));
+        ++count;
+      }
+    }
+    maskedPixels += count;
+    if (count > 0) jobs.push_back(std::move(job));
+  }
+  return jobs;
+}
+
+// Draws one traced tile back (bottom-up rows for glDrawPixels); the stencil
+// test keeps GL's own pixels. `rect` is scratch space kept between tiles.
+void drawTile(const gl::Api& gl, const TileJob& job, std::size_t index, const TileOutput& out, int frameHeight,
+              std::vector<std::uint8_t>& rect) {
+  const TileRect& r = job.rect;
+  if (out.rgb.size() != countMasked(r, job.mask) * 3) {
+    throw InputError("tile " + std::to_string(index) + ": the tile service returned " +
+                     std::to_string(out.rgb.size()) + " bytes for " + std::to_string(countMasked(r, job.mask)) +
+                     " masked pixels");
+  }
+  rect.assign(r.pixelCount() * 3, 0);
+  std::size_t k = 0;
+  for (int y = 0; y < r.height; ++y) {
+    for (int x = 0; x < r.width; ++x) {
+      const auto i = static_cast<std::size_t>(y * r.width + x);
+      if (!maskBit(job.mask, i)) continue;
+      const auto dst =
+          (static_cast<std::size_t>(r.height - 1 - y) * static_cast<std::size_t>(r.width) + static_cast<std::size_t>(x)) *
+          3;
+      std::memcpy(&rect[dst], &out.rgb[k], 3);
+      k += 3;
+    }
+  }
+  gl.WindowPos2i(r.x, frameHeight - r.y - r.height);
+  gl.DrawPixels(r.width, r.height, GL_RGB, GL_UNSIGNED_BYTE, rect.data());
+}
+
 }  // namespace
 
 double medianOf(const std::vector<HybridTimes>& frames, double HybridTimes::*step) {
@@ -35,7 +86,6 @@ void renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
   const Clock::time_point start = Clock::now();
   const int w = frame.width, h = frame.height;
   result.maskedPixels = 0;
-  result.tiles = 0;
   result.rays = RayStats{};
   result.times = HybridTimes{};
 
@@ -51,24 +101,7 @@ void renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
   }
   result.times.readbackMs = msSince(readStart);
 
-  // Tiles with at least one masked pixel, each with its mask bits.
-  std::vector<TileJob> jobs;
-  for (const TileRect& rect : tileGrid(w, h, std::max(1, tileSize))) {
-    TileJob job{rect, std::vector<std::uint8_t>(maskByteCount(rect), 0)};
-    std::size_t count = 0;
-    for (int y = 0; y < rect.height; ++y) {
-      for (int x = 0; x < rect.width; ++x) {
-        if (!result.mask[static_cast<std::size_t>(rect.y + y) * static_cast<std::size_t>(w) +
-                         static_cast<std::size_t>(rect.x + x)]) {
-          continue;
-        }
-        setMaskBit(job.mask, static_cast<std::size_t>(y * rect.width + x));
-        ++count;
-      }
-    }
-    result.maskedPixels += count;
-    if (count > 0) jobs.push_back(std::move(job));
-  }
+  const std::vector<TileJob> jobs = maskedTiles(result.mask, w, h, tileSize, result.maskedPixels);
   result.tiles = static_cast<int>(jobs.size());
 
   const Clock::time_point traceStart = Clock::now();
@@ -82,7 +115,6 @@ void renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
   result.times.traceMs = msSince(traceStart);
   result.times.networkMs = std::max(0.0, result.times.traceMs - computeMs / std::max(1, service.parallelism()));
 
-  // Draw the traced pixels back; the stencil test keeps GL's own pixels.
   const Clock::time_point composeStart = Clock::now();
   gl.Disable(GL_DEPTH_TEST);
   if (mask.rule == MaskRule::kAll) {
@@ -93,30 +125,8 @@ void renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
     gl.StencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
   }
   gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  std::vector<std::uint8_t> rect;
-  for (std::size_t j = 0; j < jobs.size(); ++j) {
-    const TileRect& r = jobs[j].rect;
-    if (outputs[j].rgb.size() != countMasked(r, jobs[j].mask) * 3) {
-      throw InputError("tile " + std::to_string(j) + ": the tile service returned " +
-                       std::to_string(outputs[j].rgb.size()) + " bytes for " +
-                       std::to_string(countMasked(r, jobs[j].mask)) + " masked pixels");
-    }
-    rect.assign(r.pixelCount() * 3, 0);
-    std::size_t k = 0;
-    for (int y = 0; y < r.height; ++y) {
-      for (int x = 0; x < r.width; ++x) {
-        const auto i = static_cast<std::size_t>(y * r.width + x);
-        if (!maskBit(jobs[j].mask, i)) continue;
-        // Bottom-up rows for glDrawPixels.
-        const auto dst = (static_cast<std::size_t>(r.height - 1 - y) * static_cast<std::size_t>(r.width) +
-                          static_cast<std::size_t>(x)) * 3;
-        std::memcpy(&rect[dst], &outputs[j].rgb[k], 3);
-        k += 3;
-      }
-    }
-    gl.WindowPos2i(r.x, h - r.y - r.height);
-    gl.DrawPixels(r.width, r.height, GL_RGB, GL_UNSIGNED_BYTE, rect.data());
-  }
+  std::vector<std::uint8_t> scratch;
+  for (std::size_t j = 0; j < jobs.size(); ++j) drawTile(gl, jobs[j], j, outputs[j], h, scratch);
   result.image.width = w;
   result.image.height = h;
   readPixels(gl, w, h, GL_RGB, 3, result.image.rgb);
