@@ -8,7 +8,7 @@ namespace {
 
 constexpr std::size_t kReadChunkBytes = 64 * 1024;  // a message buffer's first size, and what an idle one keeps
 
-std::string peerName(const asio::ip::tcp::socket& socket, std::uint64_t id) {
+std::string peerName(const asio::ip::tcp::socket::lowest_layer_type& socket, std::uint64_t id) {
   asio::error_code ec;
   const auto remote = socket.remote_endpoint(ec);
   return ec ? "client " + std::to_string(id) : remote.address().to_string() + ":" + std::to_string(remote.port());
@@ -22,31 +22,35 @@ Session::Settings sessionSettings(const ServerContext& context) {
 
 }  // namespace
 
-Connection::Connection(asio::ip::tcp::socket socket, ServerContext& context, std::uint64_t id)
-    : socket_(std::move(socket)),
+template <typename Stream>
+BasicConnection<Stream>::BasicConnection(Stream stream, ServerContext& context, std::uint64_t id)
+    : socket_(std::move(stream)),
       timer_(context.io),
       context_(context),
       id_(id),
-      session_(*this, context.cache, sessionSettings(context), peerName(socket_, id)) {
+      session_(*this, context.cache, sessionSettings(context), peerName(socket_.lowest_layer(), id)) {
   asio::error_code ignored;
-  socket_.set_option(asio::ip::tcp::no_delay(true), ignored);
+  socket_.lowest_layer().set_option(asio::ip::tcp::no_delay(true), ignored);
 }
 
-void Connection::start() {
+template <typename Stream>
+void BasicConnection<Stream>::start() {
   logLine(session_.peer() + ": connected");
   readHeader();
 }
 
-void Connection::armTimer(std::chrono::milliseconds timeout, const char* what) {
+template <typename Stream>
+void BasicConnection<Stream>::armTimer(std::chrono::milliseconds timeout, const char* what) {
   timer_.expires_after(timeout);
-  timer_.async_wait([self = shared_from_this(), what](const asio::error_code& error) {
+  timer_.async_wait([self = this->shared_from_this(), what](const asio::error_code& error) {
     if (!error && !self->closed_) self->onTimer(what);  // else re-armed or closed
   });
 }
 
 // What a silent client holds is freed: a message started and not finished,
 // a connection with nothing to do, a client that stopped reading its results.
-void Connection::onTimer(const char* what) {
+template <typename Stream>
+void BasicConnection<Stream>::onTimer(const char* what) {
   if (midMessage_) {
     close("read timeout: a message was not finished");
   } else if (pending_ > 0) {
@@ -62,12 +66,13 @@ void Connection::onTimer(const char* what) {
   }
 }
 
-void Connection::readHeader() {
+template <typename Stream>
+void BasicConnection<Stream>::readHeader() {
   if (closed_ || closeAfterWrites_) return;
   armTimer(greeted() ? context_.options.idleTimeout : context_.options.handshakeTimeout,
            greeted() ? "idle" : "handshake");
   asio::async_read(socket_, asio::buffer(header_),
-                   [self = shared_from_this()](const asio::error_code& error, std::size_t) {
+                   [self = this->shared_from_this()](const asio::error_code& error, std::size_t) {
                      if (error) {
                        self->close(error == asio::error::eof ? "disconnected" : error.message());
                        return;
@@ -88,7 +93,8 @@ void Connection::readHeader() {
                    });
 }
 
-void Connection::readBody(std::uint32_t length) {
+template <typename Stream>
+void BasicConnection<Stream>::readBody(std::uint32_t length) {
   midMessage_ = true;
   armTimer(context_.options.readTimeout, "read");
   body_.clear();
@@ -98,12 +104,13 @@ void Connection::readBody(std::uint32_t length) {
 // Memory follows the bytes that arrive, not the length a header announces:
 // the buffer grows by at most what it already holds (kReadChunkBytes to
 // start), so a peer that announces 64 MiB and sends 4 bytes costs 64 KiB.
-void Connection::readMore(std::uint32_t length) {
+template <typename Stream>
+void BasicConnection<Stream>::readMore(std::uint32_t length) {
   const std::size_t have = body_.size();
   const std::size_t step = std::min<std::size_t>(length - have, std::max(kReadChunkBytes, have));
   body_.resize(have + step);
   asio::async_read(socket_, asio::buffer(body_.data() + have, step),
-                   [self = shared_from_this(), length](const asio::error_code& error, std::size_t) {
+                   [self = this->shared_from_this(), length](const asio::error_code& error, std::size_t) {
                      if (error) {
                        self->close(error == asio::error::eof ? "disconnected mid-message" : error.message());
                      } else if (self->body_.size() < length) {
@@ -114,7 +121,8 @@ void Connection::readMore(std::uint32_t length) {
                    });
 }
 
-void Connection::onBody() {
+template <typename Stream>
+void BasicConnection<Stream>::onBody() {
   midMessage_ = false;
   std::string problem;
   const wire::Message* message = proto::verifyMessage(body_, &problem);
@@ -129,17 +137,20 @@ void Connection::onBody() {
   readHeader();
 }
 
-void Connection::end(const std::string& why) {
+template <typename Stream>
+void BasicConnection<Stream>::end(const std::string& why) {
   logLine(session_.peer() + ": " + why);
   closeAfterWrites_ = true;
   if (!writing_) close(why);
 }
 
-bool Connection::admit() { return context_.registry.admit(id_); }
+template <typename Stream>
+bool BasicConnection<Stream>::admit() { return context_.registry.admit(id_); }
 
-void Connection::build(SceneJob job) {
+template <typename Stream>
+void BasicConnection<Stream>::build(SceneJob job) {
   ++pending_;
-  context_.scheduler.submit(id_, [self = shared_from_this(), job = std::move(job)] {
+  context_.scheduler.submit(id_, [self = this->shared_from_this(), job = std::move(job)] {
     BuiltScene built = buildScene(job, self->context_.options.maxSceneBytes, self->context_.buildMemory);
     asio::post(self->context_.io, [self, built = std::move(built)] {
       --self->pending_;
@@ -148,13 +159,14 @@ void Connection::build(SceneJob job) {
   });
 }
 
-void Connection::trace(TileWork work) {
+template <typename Stream>
+void BasicConnection<Stream>::trace(TileWork work) {
   ++pending_;
   {
     std::lock_guard lock(outboxMutex_);
     ++untraced_;
   }
-  context_.scheduler.submit(id_, [self = shared_from_this(), work = std::move(work)] { self->deliver(traceTile(work)); });
+  context_.scheduler.submit(id_, [self = this->shared_from_this(), work = std::move(work)] { self->deliver(traceTile(work)); });
 }
 
 // Called on pool threads. Results wait in the outbox until it holds
@@ -163,7 +175,8 @@ void Connection::trace(TileWork work) {
 // preempts a tracing thread where client and server share the cores; the
 // writes saved and the flush size chosen are measured in docs/protocol.md
 // and docs/performance.md.
-void Connection::deliver(std::vector<std::uint8_t> result) {
+template <typename Stream>
+void BasicConnection<Stream>::deliver(std::vector<std::uint8_t> result) {
   constexpr std::size_t kFlushBytes = 128 * 1024;
   bool wake = false;
   {
@@ -175,7 +188,7 @@ void Connection::deliver(std::vector<std::uint8_t> result) {
     wakePosted_ = wakePosted_ || wake;
   }
   if (!wake) return;
-  asio::post(context_.io, [self = shared_from_this()] {
+  asio::post(context_.io, [self = this->shared_from_this()] {
     std::vector<std::vector<std::uint8_t>> results;
     {
       std::lock_guard lock(self->outboxMutex_);
@@ -188,7 +201,8 @@ void Connection::deliver(std::vector<std::uint8_t> result) {
   });
 }
 
-void Connection::reply(std::vector<std::uint8_t> frame) {
+template <typename Stream>
+void BasicConnection<Stream>::reply(std::vector<std::uint8_t> frame) {
   if (closed_) return;
   queuedBytes_ += frame.size();
   if (queuedBytes_ > context_.options.maxQueuedBytes) {
@@ -199,7 +213,8 @@ void Connection::reply(std::vector<std::uint8_t> frame) {
   if (!writing_) writeNext();
 }
 
-void Connection::writeNext() {
+template <typename Stream>
+void BasicConnection<Stream>::writeNext() {
   if (writes_.empty() || closed_) {
     writing_ = false;
     if (closeAfterWrites_) close("closed after its last reply");
@@ -213,7 +228,7 @@ void Connection::writeNext() {
   std::vector<asio::const_buffer> buffers;
   buffers.reserve(inFlight_);
   for (const auto& frame : writes_) buffers.push_back(asio::buffer(frame));
-  asio::async_write(socket_, buffers, [self = shared_from_this()](const asio::error_code& error, std::size_t) {
+  asio::async_write(socket_, buffers, [self = this->shared_from_this()](const asio::error_code& error, std::size_t) {
     if (error) {
       self->close(error.message());
       return;
@@ -226,7 +241,8 @@ void Connection::writeNext() {
   });
 }
 
-void Connection::close(const std::string& why) {
+template <typename Stream>
+void BasicConnection<Stream>::close(const std::string& why) {
   if (closed_) return;
   closed_ = true;
   context_.registry.remove(id_);
@@ -234,10 +250,12 @@ void Connection::close(const std::string& why) {
   pending_ -= static_cast<int>(dropped);
   asio::error_code ignored;
   timer_.cancel();
-  socket_.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
-  socket_.close(ignored);
+  socket_.lowest_layer().shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
+  socket_.lowest_layer().close(ignored);
   logLine(session_.peer() + ": closed (" + why + (dropped ? ", " + std::to_string(dropped) + " queued tiles cancelled" : "") +
           ")");
 }
+
+template class BasicConnection<asio::ip::tcp::socket>;
 
 }  // namespace glint::server

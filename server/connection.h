@@ -12,25 +12,32 @@
 #include <asio.hpp>
 
 #include "proto/framing.h"
+#include "server/connection_registry.h"
 #include "server/server.h"
 #include "server/session.h"
 
 namespace glint::server {
 
-// One client's socket: reads frames, hands verified messages to its Session,
-// runs the session's builds and tiles on the scheduler and writes what comes
-// back, one write in flight. Lives on the I/O thread; work on the pool
-// reaches it only through asio::post. Nothing a client sends can stop the
-// server or other clients: a connection that cannot go on is closed.
-class Connection : public std::enable_shared_from_this<Connection>, private SessionHost {
+// One client's stream: reads frames, hands verified messages to its
+// Session, runs the session's builds and tiles on the scheduler and writes
+// what comes back, one write in flight. Lives on the I/O thread; work on the
+// pool reaches it only through asio::post. Nothing a client sends can stop
+// the server or other clients: a connection that cannot go on is closed.
+// Stream is the byte stream (a TCP socket; a TLS stream over one is another
+// type, not another copy): it needs Asio's async read and write and a
+// lowest_layer() that is a TCP socket.
+template <typename Stream>
+class BasicConnection : public std::enable_shared_from_this<BasicConnection<Stream>>,
+                        public ConnectionHandle,
+                        private SessionHost {
  public:
-  Connection(asio::ip::tcp::socket socket, ServerContext& context, std::uint64_t id);
-  Connection(const Connection&) = delete;
-  Connection& operator=(const Connection&) = delete;
+  BasicConnection(Stream stream, ServerContext& context, std::uint64_t id);
+  BasicConnection(const BasicConnection&) = delete;
+  BasicConnection& operator=(const BasicConnection&) = delete;
 
   void start();
-  // Cancels queued work and closes the socket; safe to call twice.
-  void close(const std::string& why);
+  // Cancels queued work and closes the stream; safe to call twice.
+  void close(const std::string& why) override;
 
  private:
   // SessionHost
@@ -50,7 +57,7 @@ class Connection : public std::enable_shared_from_this<Connection>, private Sess
   void writeNext();
   bool greeted() const { return session_.state() != Session::State::kAwaitingHello; }
 
-  asio::ip::tcp::socket socket_;
+  Stream socket_;
   asio::steady_timer timer_;
   ServerContext& context_;
   std::uint64_t id_;
@@ -72,5 +79,9 @@ class Connection : public std::enable_shared_from_this<Connection>, private Sess
   int untraced_ = 0;         // tiles submitted whose results are not in the outbox yet
   bool wakePosted_ = false;  // the I/O thread is already asked to take the outbox
 };
+
+// glintd's connections today: plain TCP.
+using Connection = BasicConnection<asio::ip::tcp::socket>;
+extern template class BasicConnection<asio::ip::tcp::socket>;
 
 }  // namespace glint::server

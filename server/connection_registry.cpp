@@ -1,10 +1,9 @@
 #include "server/connection_registry.h"
 
-#include "server/connection.h"
 
 namespace glint::server {
 
-void ConnectionRegistry::addWaiting(std::uint64_t id, const std::shared_ptr<Connection>& connection) {
+void ConnectionRegistry::addWaiting(std::uint64_t id, const std::shared_ptr<ConnectionHandle>& connection) {
   while (waiting_.size() >= maxWaiting_ && dropOldestWaiting("dropped: too many connections waiting for Hello")) {
   }
   waiting_[id] = connection;
@@ -24,7 +23,7 @@ void ConnectionRegistry::remove(std::uint64_t id) {
 
 bool ConnectionRegistry::dropOldestWaiting(const std::string& why) {
   if (waiting_.empty()) return false;
-  const std::shared_ptr<Connection> oldest = waiting_.begin()->second.lock();
+  const std::shared_ptr<ConnectionHandle> oldest = waiting_.begin()->second.lock();
   waiting_.erase(waiting_.begin());
   if (oldest) oldest->close(why);
   return true;

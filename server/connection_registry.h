@@ -8,7 +8,13 @@
 
 namespace glint::server {
 
-class Connection;
+// What the registry needs of a connection, whatever its stream type.
+class ConnectionHandle {
+ public:
+  virtual ~ConnectionHandle() = default;
+  // Cancels its queued work and closes it; safe to call twice.
+  virtual void close(const std::string& why) = 0;
+};
 
 // Who is connected, in two pools: connections that have not said Hello yet
 // (a larger pool, oldest dropped first when it is full, so that silent
@@ -21,7 +27,7 @@ class ConnectionRegistry {
 
   // A new connection waits for its Hello; when the waiting pool is full, the
   // oldest waiting connection is closed to make room.
-  void addWaiting(std::uint64_t id, const std::shared_ptr<Connection>& connection);
+  void addWaiting(std::uint64_t id, const std::shared_ptr<ConnectionHandle>& connection);
   // Moves a connection that said Hello to the clients; false when the server
   // already has maxClients clients (the connection stays where it was).
   bool admit(std::uint64_t id);
@@ -37,7 +43,7 @@ class ConnectionRegistry {
   std::size_t maxClients() const { return maxClients_; }
 
  private:
-  using Pool = std::map<std::uint64_t, std::weak_ptr<Connection>>;  // by id: accept order
+  using Pool = std::map<std::uint64_t, std::weak_ptr<ConnectionHandle>>;  // by id: accept order
   std::size_t maxClients_;
   std::size_t maxWaiting_;
   Pool waiting_;

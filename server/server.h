@@ -13,8 +13,6 @@
 
 namespace glint::server {
 
-class Connection;
-
 // State the connections share; lives as long as the server.
 struct ServerContext {
   asio::io_context& io;
