@@ -69,22 +69,6 @@ EffectPlan EffectPlan::derive(const Scene& scene, const FrameSettings& frame) {
   return plan;
 }
 
-EffectPlan EffectPlan::everything(const Scene& scene) {
-  EffectPlan plan;
-  plan.shadows = plan.reflection = plan.refraction = true;
-  plan.textures = plan.attenuation = plan.antialiasing = true;
-  plan.materials.assign(scene.materials.size(), MaterialEffects{true, true, true, true, true});
-  plan.lights.assign(scene.lights.size(), true);
-  return plan;
-}
-
-EffectPlan EffectPlan::directLight(const Scene& scene, const FrameSettings& frame) {
-  EffectPlan plan = derive(scene, frame);
-  plan.shadows = plan.reflection = plan.refraction = false;
-  for (MaterialEffects& e : plan.materials) e.reflects = e.refracts = false;
-  return plan;
-}
-
 nlohmann::json toJson(const EffectPlan& plan) {
   nlohmann::json j = {{"shadows", plan.shadows},       {"reflection", plan.reflection},
                       {"refraction", plan.refraction}, {"textures", plan.textures},

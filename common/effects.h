@@ -33,12 +33,6 @@ struct EffectPlan {
 
   static EffectPlan derive(const Scene& scene, const FrameSettings& frame);
   static EffectPlan derive(const Scene& scene) { return derive(scene, scene.frame); }
-  // Every effect switched on for every material and light: the reference the
-  // tests compare derive() against.
-  static EffectPlan everything(const Scene& scene);
-  // Direct light only, no shadow, reflected or refracted rays: what the
-  // OpenGL pass draws, for comparing the two.
-  static EffectPlan directLight(const Scene& scene, const FrameSettings& frame);
 };
 
 nlohmann::json toJson(const EffectPlan& plan);

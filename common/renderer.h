@@ -24,7 +24,7 @@ namespace glint {
 class Renderer {
  public:
   Renderer(const PreparedScene& prepared, const FrameSettings& frame);
-  // With an explicit plan (tests compare derived and full plans).
+  // With a given plan (the one above derives it from the scene and frame).
   Renderer(const PreparedScene& prepared, const FrameSettings& frame, const EffectPlan& plan);
   // Its tracer refers to its own plan: a copy would trace with the original's.
   Renderer(const Renderer&) = delete;

@@ -78,7 +78,7 @@ void expectRasterMatchesDirectTrace(const char* sceneFile) {
   SceneSetup s = load(sceneFile);
   s.frame.sampling = {SamplePattern::kRegular, 1, FilterType::kBox, 0};
   const PreparedScene prepared(s.loaded.scene, BvhSettings{});
-  const Renderer renderer(prepared, s.frame, EffectPlan::directLight(prepared.scene(), s.frame));
+  const Renderer renderer(prepared, s.frame, test::directLightOnly(prepared.scene(), s.frame));
   ThreadPool pool(2);
   const FrameImage traced = renderFrame(renderer, pool, {}).image;
 

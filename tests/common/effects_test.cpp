@@ -15,7 +15,7 @@ using nlohmann::json;
 // byte-identical (turning off an absent effect changes nothing).
 std::pair<FrameResult, FrameResult> derivedAndFull(const Scene& s) {
   FrameResult derived = test::render(s, EffectPlan::derive(s), 2);
-  FrameResult full = test::render(s, EffectPlan::everything(s), 2);
+  FrameResult full = test::render(s, test::everyEffect(s), 2);
   EXPECT_EQ(derived.image.rgb, full.image.rgb);
   return {std::move(derived), std::move(full)};
 }

@@ -31,6 +31,22 @@ FrameResult render(const Scene& scene, const EffectPlan& plan, int threads, int 
   return renderFrame(renderer, pool, options);
 }
 
+EffectPlan everyEffect(const Scene& scene) {
+  EffectPlan plan;
+  plan.shadows = plan.reflection = plan.refraction = true;
+  plan.textures = plan.attenuation = plan.antialiasing = true;
+  plan.materials.assign(scene.materials.size(), MaterialEffects{true, true, true, true, true});
+  plan.lights.assign(scene.lights.size(), true);
+  return plan;
+}
+
+EffectPlan directLightOnly(const Scene& scene, const FrameSettings& frame) {
+  EffectPlan plan = EffectPlan::derive(scene, frame);
+  plan.shadows = plan.reflection = plan.refraction = false;
+  for (MaterialEffects& e : plan.materials) e.reflects = e.refracts = false;
+  return plan;
+}
+
 std::string sourcePath(const std::string& relative) {
   return (std::filesystem::path(GLINT_SOURCE_DIR) / relative).string();
 }

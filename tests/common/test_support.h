@@ -12,6 +12,14 @@ namespace glint::test {
 // Loads a scene from JSON text that names no files.
 Scene sceneFromJson(const std::string& json);
 
+// Every effect switched on for every material and light: the reference the
+// tests compare EffectPlan::derive against.
+EffectPlan everyEffect(const Scene& scene);
+
+// Direct light only, no shadow, reflected or refracted rays: what the OpenGL
+// pass draws, for comparing the two.
+EffectPlan directLightOnly(const Scene& scene, const FrameSettings& frame);
+
 // Renders a whole frame through the tile interface.
 FrameResult render(const Scene& scene, int threads = 1, int tileSize = 32);
 FrameResult render(const Scene& scene, const EffectPlan& plan, int threads = 1, int tileSize = 32);
