@@ -71,14 +71,26 @@ class PathTracker {
   std::vector<Level> levels_;
 };
 
+// Where a value the parser refused lies: the text parsed again with a
+// PathTracker (only on that error, so that good scenes parse at full speed).
+std::string pathOfBadValue(std::string_view text) {
+  PathTracker tracker;
+  try {
+    const nlohmann::json unused =
+        nlohmann::json::parse(text, [&tracker](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+          return tracker.event(event, parsed);
+        });
+  } catch (const nlohmann::json::exception&) {
+    return tracker.path();
+  }
+  return "(top level)";
+}
+
 }  // namespace
 
 nlohmann::json parseJson(std::string_view text) {
-  PathTracker tracker;
   try {
-    return nlohmann::json::parse(text, [&tracker](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
-      return tracker.event(event, parsed);
-    });
+    return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     // e.what() reads "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
     const std::string what = e.what();
@@ -88,7 +100,7 @@ nlohmann::json parseJson(std::string_view text) {
     // "[json.exception.out_of_range.406] number overflow parsing '1e999'"
     const std::string what = e.what();
     const auto at = what.find("] ");
-    throw InputError(tracker.path() + ": " + (at == std::string::npos ? what : what.substr(at + 2)) +
+    throw InputError(pathOfBadValue(text) + ": " + (at == std::string::npos ? what : what.substr(at + 2)) +
                      " (out of range)");
   }
 }

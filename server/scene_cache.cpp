@@ -1,13 +1,16 @@
 #include "server/scene_cache.h"
 
+#include "common/scene_budget.h"
+
 namespace glint::server {
 
 std::size_t memoryFootprint(const PreparedScene& p) {
   const Scene& s = p.scene();
   const Geometry& g = s.geometry;
-  std::size_t bytes = g.positions().size() * (sizeof(glm::vec3) * 2 + sizeof(glm::vec2)) +
-                      g.triangles().size() * (sizeof(Triangle) + sizeof(glm::vec3)) +  // with its face normal
-                      g.spheres().size() * sizeof(Sphere) +
+  // The per-item costs the loader charged (SceneBudget), with the BVH as built.
+  std::size_t bytes = g.positions().size() * SceneBudget::kBytesPerVertex +
+                      g.triangles().size() * SceneBudget::kBytesPerTriangle +
+                      g.spheres().size() * SceneBudget::kBytesPerSphere +
                       p.bvh().nodes().size() * sizeof(BvhNode) + p.bvh().primIds().size() * sizeof(std::uint32_t);
   for (const Texture& t : s.textures) {
     if (t.image) bytes += t.image->rgb.size();
