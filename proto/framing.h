@@ -12,7 +12,7 @@
 
 namespace glint::proto {
 
-constexpr std::uint32_t kProtocolVersion = 1;
+constexpr std::uint32_t kProtocolVersion = 2;  // 2: Hello.build, Cancel
 constexpr std::size_t kHeaderBytes = 4;  // little-endian uint32 length
 constexpr std::size_t kDefaultMaxMessageBytes = std::size_t{64} << 20;
 

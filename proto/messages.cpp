@@ -4,6 +4,7 @@
 #include <climits>
 #include <cmath>
 
+#include "common/build_identity.h"
 #include "common/error.h"
 #include "common/finite.h"
 #include "common/frame_limits.h"
@@ -32,9 +33,10 @@ glm::vec3 fromWire(const wire::Vec3* v, const char* field) {
 }  // namespace
 
 std::vector<std::uint8_t> encodeHello(std::uint32_t maxMessageBytes, std::uint32_t threads,
-                                      const std::string& software) {
+                                      const std::string& software, const std::string& build) {
   FlatBufferBuilder b;
-  const auto hello = wire::CreateHelloDirect(b, kProtocolVersion, maxMessageBytes, threads, software.c_str());
+  const auto hello =
+      wire::CreateHelloDirect(b, kProtocolVersion, maxMessageBytes, threads, software.c_str(), build.c_str());
   return finish(b, hello, wire::Body::Hello);
 }
 
@@ -115,6 +117,12 @@ std::vector<std::uint8_t> encodeError(wire::ErrorCode code, const std::string& m
                                       std::uint32_t tileId) {
   FlatBufferBuilder b;
   return finish(b, wire::CreateErrorDirect(b, code, message.c_str(), frameId, tileId), wire::Body::Error);
+}
+
+std::vector<std::uint8_t> encodeCancel(std::uint32_t frameId, std::span<const std::uint32_t> tileIds) {
+  FlatBufferBuilder b;
+  const auto tiles = b.CreateVector(tileIds.data(), tileIds.size());
+  return finish(b, wire::CreateCancel(b, frameId, tiles), wire::Body::Cancel);
 }
 
 std::vector<std::uint8_t> encodeGoodbye() {

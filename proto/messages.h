@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "common/build_identity.h"
 #include "common/ray_stats.h"
 #include "common/scene.h"
 #include "common/tile.h"
@@ -14,8 +15,10 @@
 namespace glint::proto {
 
 // Encoders: each returns one framed message, ready to write.
+// Hello carries this build's identity (common/build_identity.h); a test may
+// pose as another build.
 std::vector<std::uint8_t> encodeHello(std::uint32_t maxMessageBytes, std::uint32_t threads,
-                                      const std::string& software);
+                                      const std::string& software, const std::string& build = buildIdentity());
 std::vector<std::uint8_t> encodeSceneQuery(const SceneHash& hash);
 std::vector<std::uint8_t> encodeSceneStatus(const SceneHash& hash, bool present);
 std::vector<std::uint8_t> encodeSceneUpload(const SceneHash& hash, const SceneBundle& bundle);
@@ -28,6 +31,8 @@ std::vector<std::uint8_t> encodeTileResult(std::uint32_t frameId, std::uint32_t 
                                            std::uint32_t computeMicros);
 std::vector<std::uint8_t> encodeError(wire::ErrorCode code, const std::string& message, std::uint32_t frameId = 0,
                                       std::uint32_t tileId = 0);
+// tileIds empty: every tile of the frame.
+std::vector<std::uint8_t> encodeCancel(std::uint32_t frameId, std::span<const std::uint32_t> tileIds);
 std::vector<std::uint8_t> encodeGoodbye();
 
 // Decoders of verified messages that check every value and throw InputError

@@ -1,5 +1,7 @@
 #include "server/connection.h"
 
+#include <unordered_set>
+
 #include "common/timing.h"
 #include "server/log.h"
 
@@ -12,6 +14,11 @@ std::string peerName(const asio::ip::tcp::socket::lowest_layer_type& socket, std
   asio::error_code ec;
   const auto remote = socket.remote_endpoint(ec);
   return ec ? "client " + std::to_string(id) : remote.address().to_string() + ":" + std::to_string(remote.port());
+}
+
+// A tile's name in the scheduler's queue, for Cancel.
+std::uint64_t tileTag(std::uint32_t frameId, std::uint32_t tileId) {
+  return std::uint64_t{frameId} << 32 | tileId;
 }
 
 Session::Settings sessionSettings(const ServerContext& context) {
@@ -166,7 +173,28 @@ void BasicConnection<Stream>::trace(TileWork work) {
     std::lock_guard lock(outboxMutex_);
     ++untraced_;
   }
-  context_.scheduler.submit(id_, [self = this->shared_from_this(), work = std::move(work)] { self->deliver(traceTile(work)); });
+  const std::uint64_t tag = tileTag(work.frameId, work.tileId);
+  context_.scheduler.submit(
+      id_, [self = this->shared_from_this(), work = std::move(work)] { self->deliver(traceTile(work)); }, tag);
+}
+
+// The dropped tiles will never reach the outbox: when they were all it waited
+// for, what it holds is written now.
+template <typename Stream>
+void BasicConnection<Stream>::cancel(std::uint32_t frameId, std::span<const std::uint32_t> tileIds) {
+  const std::unordered_set<std::uint32_t> tiles(tileIds.begin(), tileIds.end());
+  const std::size_t dropped = context_.scheduler.cancel(id_, [&](std::uint64_t tag) {
+    return tag >> 32 == frameId && (tiles.empty() || tiles.contains(static_cast<std::uint32_t>(tag)));
+  });
+  if (dropped == 0) return;
+  pending_ -= static_cast<int>(dropped);
+  bool take = false;
+  {
+    std::lock_guard lock(outboxMutex_);
+    untraced_ -= static_cast<int>(dropped);
+    take = !wakePosted_ && untraced_ == 0 && !outbox_.empty();
+  }
+  if (take) takeOutbox();
 }
 
 // Called on pool threads. Results wait in the outbox until it holds
@@ -188,17 +216,20 @@ void BasicConnection<Stream>::deliver(std::vector<std::uint8_t> result) {
     wakePosted_ = wakePosted_ || wake;
   }
   if (!wake) return;
-  asio::post(context_.io, [self = this->shared_from_this()] {
-    std::vector<std::vector<std::uint8_t>> results;
-    {
-      std::lock_guard lock(self->outboxMutex_);
-      results.swap(self->outbox_);
-      self->outboxBytes_ = 0;
-      self->wakePosted_ = false;
-    }
-    self->pending_ -= static_cast<int>(results.size());
-    for (auto& r : results) self->reply(std::move(r));
-  });
+  asio::post(context_.io, [self = this->shared_from_this()] { self->takeOutbox(); });
+}
+
+template <typename Stream>
+void BasicConnection<Stream>::takeOutbox() {
+  std::vector<std::vector<std::uint8_t>> results;
+  {
+    std::lock_guard lock(outboxMutex_);
+    results.swap(outbox_);
+    outboxBytes_ = 0;
+    wakePosted_ = false;
+  }
+  pending_ -= static_cast<int>(results.size());
+  for (auto& r : results) reply(std::move(r));
 }
 
 template <typename Stream>

@@ -46,6 +46,7 @@ class BasicConnection : public std::enable_shared_from_this<BasicConnection<Stre
   bool admit() override;
   void build(SceneJob job) override;
   void trace(TileWork work) override;
+  void cancel(std::uint32_t frameId, std::span<const std::uint32_t> tileIds) override;
 
   void readHeader();
   void readBody(std::uint32_t length);
@@ -54,6 +55,7 @@ class BasicConnection : public std::enable_shared_from_this<BasicConnection<Stre
   void armTimer(std::chrono::milliseconds timeout, const char* what);
   void onTimer(const char* what);
   void deliver(std::vector<std::uint8_t> result);  // from a pool thread
+  void takeOutbox();  // on the I/O thread
   void writeNext();
   bool greeted() const { return session_.state() != Session::State::kAwaitingHello; }
 

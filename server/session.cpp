@@ -54,6 +54,8 @@ void Session::dispatch(const wire::Message& m) {
       return onFrameSetup(*m.body_as_FrameSetup());
     case wire::Body::TileRequest:
       return onTileRequest(*m.body_as_TileRequest());
+    case wire::Body::Cancel:
+      return onCancel(*m.body_as_Cancel());
     case wire::Body::Goodbye:
       state_ = State::kEnded;
       frames_.clear();
@@ -162,6 +164,12 @@ void Session::onTileRequest(const wire::TileRequest& request) {
   }
   if (request.mask()) work.mask.assign(request.mask()->begin(), request.mask()->end());
   host_.trace(std::move(work));
+}
+
+void Session::onCancel(const wire::Cancel& cancel) {
+  std::vector<std::uint32_t> tiles;
+  if (cancel.tile_ids()) tiles.assign(cancel.tile_ids()->begin(), cancel.tile_ids()->end());
+  host_.cancel(cancel.frame_id(), tiles);
 }
 
 }  // namespace glint::server

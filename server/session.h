@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,9 @@ class SessionHost {
   // Work for the pool; the build's result comes back to sceneBuilt().
   virtual void build(SceneJob job) = 0;
   virtual void trace(TileWork work) = 0;
+  // Drops queued tiles of frame `frameId` (all of them when `tileIds` is
+  // empty); tiles already being traced are still answered.
+  virtual void cancel(std::uint32_t frameId, std::span<const std::uint32_t> tileIds) = 0;
 };
 
 // The protocol state of one client, without a socket: it takes verified
@@ -79,6 +83,7 @@ class Session {
   void onSceneUpload(const wire::SceneUpload& upload);
   void onFrameSetup(const wire::FrameSetup& setup);
   void onTileRequest(const wire::TileRequest& tile);
+  void onCancel(const wire::Cancel& cancel);
 
   SessionHost& host_;
   SceneCache& cache_;

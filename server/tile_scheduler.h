@@ -5,6 +5,7 @@
 #include <functional>
 #include <map>
 #include <mutex>
+#include <optional>
 
 #include "common/thread_pool.h"
 
@@ -18,17 +19,27 @@ class TileScheduler {
   explicit TileScheduler(int threads);
   ~TileScheduler();
 
+  // A task's tag names it for cancel(client, which); untagged tasks (scene
+  // builds) are dropped only with all of the client's.
+  using Tag = std::optional<std::uint64_t>;
+
   int threads() const { return pool_.size(); }
-  void submit(std::uint64_t client, std::function<void()> task);
+  void submit(std::uint64_t client, std::function<void()> task, Tag tag = std::nullopt);
   // Drops the client's queued tasks (running ones finish). Returns how many.
   std::size_t cancel(std::uint64_t client);
+  // Drops the client's queued tasks whose tag `which` accepts. Returns how many.
+  std::size_t cancel(std::uint64_t client, const std::function<bool(std::uint64_t)>& which);
   std::size_t queued() const;
 
  private:
   void runOne();
 
   mutable std::mutex mutex_;
-  std::map<std::uint64_t, std::deque<std::function<void()>>> queues_;
+  struct Task {
+    std::function<void()> run;
+    Tag tag;
+  };
+  std::map<std::uint64_t, std::deque<Task>> queues_;
   std::deque<std::uint64_t> turn_;  // clients with queued work, in serving order
   std::size_t queued_ = 0;
   ThreadPool pool_;  // last member: its workers stop before the queues go away

@@ -1,7 +1,9 @@
 #pragma once
 
 #include <cstddef>
+#include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/scene_budget.h"
@@ -33,7 +35,12 @@ class InlineHost : public SessionHost {
     if (work.rect.pixelCount() * samples <= maxTraceWork_) reply(traceTile(work));
   }
 
+  void cancel(std::uint32_t frameId, std::span<const std::uint32_t> tileIds) override {
+    cancelled.push_back({frameId, std::vector<std::uint32_t>(tileIds.begin(), tileIds.end())});
+  }
+
   std::vector<std::vector<std::uint8_t>> replies;  // framed messages, in order
+  std::vector<std::pair<std::uint32_t, std::vector<std::uint32_t>>> cancelled;  // frame, tiles
   std::string ended;                               // why the session ended, if it did
   bool admits = true;
   int builds = 0;

@@ -112,5 +112,22 @@ TEST_F(SessionTest, BadSceneIsAnErrorAndTheSessionGoesOn) {
   EXPECT_EQ(cache_.size(), 0u);
 }
 
+// Cancel names the frame and its tiles (none: the whole frame) and is handed
+// to the host, which drops what is still queued; it gets no reply. The
+// server's Hello carries its build identity.
+TEST_F(SessionTest, CancelReachesTheHostAndHelloNamesTheBuild) {
+  hello();
+  const auto* serverHello = decode(host_.replies.at(0)).body_as_Hello();
+  ASSERT_TRUE(serverHello && serverHello->build());
+  EXPECT_EQ(serverHello->build()->str(), buildIdentity());
+  const std::vector<std::uint32_t> tiles{3, 5};
+  send(proto::encodeCancel(7, tiles));
+  send(proto::encodeCancel(8, {}));
+  ASSERT_EQ(host_.cancelled.size(), 2u);
+  EXPECT_EQ(host_.cancelled[0], (std::pair<std::uint32_t, std::vector<std::uint32_t>>{7, tiles}));
+  EXPECT_EQ(host_.cancelled[1], (std::pair<std::uint32_t, std::vector<std::uint32_t>>{8, {}}));
+  EXPECT_EQ(host_.replies.size(), 1u);
+}
+
 }  // namespace
 }  // namespace glint::server

@@ -1,5 +1,6 @@
 #include "server/tile_scheduler.h"
 
+#include <algorithm>
 #include <atomic>
 #include <condition_variable>
 #include <mutex>
@@ -62,6 +63,33 @@ TEST(TileScheduler, CancelDropsQueuedWorkOfOneClient) {
   while (ran2 < 3) std::this_thread::yield();
   while (scheduler.queued() > 0) std::this_thread::yield();
   EXPECT_EQ(ran1, 0);
+}
+
+// Cancelling by tag drops only the tagged tasks it names; untagged tasks
+// (scene builds) and other clients' tasks run.
+TEST(TileScheduler, CancelByTagDropsOnlyTheNamedTasks) {
+  TileScheduler scheduler(1);
+  Gate gate(scheduler);
+  std::mutex m;
+  std::vector<int> ran;
+  std::atomic<int> done{0};
+  const auto record = [&](int id) {
+    return [&, id] {
+      std::lock_guard l(m);
+      ran.push_back(id);
+      ++done;
+    };
+  };
+  for (int i = 0; i < 6; ++i) scheduler.submit(1, record(i), static_cast<std::uint64_t>(i));
+  scheduler.submit(1, record(100));  // untagged
+  scheduler.submit(2, record(200), 1);  // another client, same tag
+  EXPECT_EQ(scheduler.cancel(1, [](std::uint64_t tag) { return tag % 2 == 1; }), 3u);
+  gate.open();
+  while (done < 5) std::this_thread::yield();
+  EXPECT_EQ(scheduler.queued(), 0u);
+  std::lock_guard l(m);
+  std::sort(ran.begin(), ran.end());
+  EXPECT_EQ(ran, (std::vector<int>{0, 2, 4, 100, 200}));
 }
 
 }  // namespace

@@ -1,0 +1,31 @@
+#include "common/build_identity.h"
+
+#include <cstdint>
+#include <cstdio>
+
+namespace glint {
+namespace {
+
+// Raised whenever a change to the tracer, the shading or the sampling
+// changes the bytes of any pixel.
+constexpr int kTracerVersion = 1;
+
+// FNV-1a: the flags only need a short, stable fingerprint.
+std::uint64_t fingerprint(const char* text) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (const char* c = text; *c; ++c) h = (h ^ static_cast<unsigned char>(*c)) * 1099511628211ull;
+  return h;
+}
+
+}  // namespace
+
+const std::string& buildIdentity() {
+  static const std::string identity = [] {
+    char hash[17];
+    std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(fingerprint(GLINT_PIXEL_FLAGS)));
+    return "pixels-" + std::to_string(kTracerVersion) + " " + GLINT_COMPILER + " " + hash;
+  }();
+  return identity;
+}
+
+}  // namespace glint
