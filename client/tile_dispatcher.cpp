@@ -1,0 +1,190 @@
+#include "client/tile_dispatcher.h"
+
+#include <algorithm>
+#include <cassert>
+#include <limits>
+
+namespace glint {
+namespace {
+
+// A frame's measured pace counts this much against what earlier frames
+// taught (view and --frames: the camera moves, the server's load changes).
+constexpr double kPaceWeight = 0.5;
+
+}  // namespace
+
+TileDispatcher::TileDispatcher(std::vector<double> tileCosts, std::vector<ServerPace>& paces,
+                               const DispatchSettings& settings)
+    : costs_(std::move(tileCosts)),
+      paces_(paces),
+      settings_(settings),
+      servers_(paces.size()),
+      tiles_(costs_.size()),
+      queue_(CostlierFirst{&costs_}) {
+  for (std::size_t t = 0; t < costs_.size(); ++t) queue_.insert(t);
+}
+
+void TileDispatcher::join(std::size_t server, double now) {
+  Server& s = servers_[server];
+  if (s.joined) return;
+  s.joined = true;
+  s.joinedAt = s.lastProgress = now;
+}
+
+std::size_t TileDispatcher::liveServers() const {
+  return static_cast<std::size_t>(
+      std::count_if(servers_.begin(), servers_.end(), [](const Server& s) { return s.joined && !s.lost; }));
+}
+
+// Throughput in cost per ms: this frame's once it has delivered, else what
+// earlier frames measured; 0 when nothing is known.
+double TileDispatcher::rate(std::size_t server, double now) const {
+  const Server& s = servers_[server];
+  const double elapsed = now - s.joinedAt;
+  if (s.deliveredCost > 0.0 && elapsed > 0.0) return s.deliveredCost / elapsed;
+  return paces_[server].costPerMs;
+}
+
+bool TileDispatcher::hasRoom(std::size_t server) const {
+  const Server& s = servers_[server];
+  const ServerPace& pace = paces_[server];
+  const auto threads = static_cast<std::size_t>(std::max(1, pace.threads));
+  if (s.outstanding.size() < threads) return true;
+  if (pace.costPerMs <= 0.0 || pace.rttMs < 0.0) {
+    return s.outstanding.size() < threads * static_cast<std::size_t>(settings_.initialTilesPerThread);
+  }
+  return s.outstandingCost < pace.costPerMs * (pace.rttMs + settings_.leadMs);
+}
+
+void TileDispatcher::send(std::size_t server, std::size_t tile, double now, std::vector<Assignment>& out) {
+  Server& s = servers_[server];
+  if (s.outstanding.empty()) s.lastProgress = now;
+  s.outstanding.push_back({tile, now});
+  s.outstandingCost += costs_[tile];
+  tiles_[tile].holders.push_back(server);
+  out.push_back({server, tile});
+}
+
+std::vector<TileDispatcher::Assignment> TileDispatcher::assign(double now) {
+  std::vector<Assignment> out;
+  // Fresh tiles first, handed round the servers one at a time so that each
+  // gets some of the costliest.
+  bool progress = true;
+  while (!queue_.empty() && progress) {
+    progress = false;
+    for (std::size_t s = 0; s < servers_.size() && !queue_.empty(); ++s) {
+      if (!servers_[s].joined || servers_[s].lost || !hasRoom(s)) continue;
+      const std::size_t tile = *queue_.begin();
+      queue_.erase(queue_.begin());
+      send(s, tile, now, out);
+      progress = true;
+    }
+  }
+  if (!queue_.empty()) return out;
+  // Nothing fresh: servers with idle threads take copies of the last bucket.
+  for (std::size_t s = 0; s < servers_.size(); ++s) {
+    const Server& server = servers_[s];
+    if (!server.joined || server.lost) continue;
+    const auto threads = static_cast<std::size_t>(std::max(1, paces_[s].threads));
+    std::size_t tile = 0;
+    while (servers_[s].outstanding.size() < threads && pickDuplicate(s, now, tile)) {
+      send(s, tile, now, out);
+      ++duplicated_;
+    }
+  }
+  return out;
+}
+
+bool TileDispatcher::pickDuplicate(std::size_t except, double now, std::size_t& tile) const {
+  double latest = -1.0;
+  bool found = false;
+  for (std::size_t s = 0; s < servers_.size(); ++s) {
+    const Server& server = servers_[s];
+    if (s == except || !server.joined || server.lost) continue;
+    const auto candidate = std::find_if(server.outstanding.begin(), server.outstanding.end(), [&](const Sent& sent) {
+      return tiles_[sent.tile].holders.size() == 1;
+    });
+    if (candidate == server.outstanding.end()) continue;
+    const double r = rate(s, now);
+    const double ends = r > 0.0 ? server.outstandingCost / r : std::numeric_limits<double>::max();
+    if (ends > latest) {
+      latest = ends;
+      tile = candidate->tile;
+      found = true;
+    }
+  }
+  return found;
+}
+
+void TileDispatcher::removeOutstanding(std::size_t server, std::size_t tile) {
+  Server& s = servers_[server];
+  const auto it = std::find_if(s.outstanding.begin(), s.outstanding.end(), [tile](const Sent& x) { return x.tile == tile; });
+  if (it == s.outstanding.end()) return;
+  s.outstanding.erase(it);
+  s.outstandingCost = s.outstanding.empty() ? 0.0 : s.outstandingCost - costs_[tile];
+  std::erase(tiles_[tile].holders, server);
+}
+
+TileDispatcher::Delivery TileDispatcher::deliver(std::size_t server, std::size_t tile, double now, double computeMs) {
+  Server& s = servers_[server];
+  const auto sent = std::find_if(s.outstanding.begin(), s.outstanding.end(), [tile](const Sent& x) { return x.tile == tile; });
+  if (sent != s.outstanding.end()) {
+    const double overhead = std::max(0.0, now - sent->at - computeMs);
+    ServerPace& pace = paces_[server];
+    pace.rttMs = pace.rttMs < 0.0 ? overhead : std::min(pace.rttMs, overhead);
+  }
+  s.lastProgress = now;
+  removeOutstanding(server, tile);
+  Delivery d;
+  Tile& t = tiles_[tile];
+  if (t.done) return d;
+  t.done = true;
+  ++delivered_;
+  s.deliveredCost += costs_[tile];
+  d.first = true;
+  d.cancelOn = t.holders;
+  for (const std::size_t other : d.cancelOn) removeOutstanding(other, tile);
+  return d;
+}
+
+std::vector<std::size_t> TileDispatcher::lose(std::size_t server) {
+  Server& s = servers_[server];
+  s.lost = true;
+  std::vector<std::size_t> requeued;
+  while (!s.outstanding.empty()) {
+    const std::size_t tile = s.outstanding.front().tile;
+    removeOutstanding(server, tile);
+    Tile& t = tiles_[tile];
+    if (t.done || !t.holders.empty()) continue;
+    t.reissued = true;
+    queue_.insert(tile);
+    requeued.push_back(tile);
+    ++reissued_;
+  }
+  return requeued;
+}
+
+std::vector<std::size_t> TileDispatcher::stalled(double now) const {
+  std::vector<std::size_t> out;
+  for (std::size_t s = 0; s < servers_.size(); ++s) {
+    const Server& server = servers_[s];
+    if (server.joined && !server.lost && !server.outstanding.empty() &&
+        now - server.lastProgress > settings_.stallTimeoutMs) {
+      out.push_back(s);
+    }
+  }
+  return out;
+}
+
+void TileDispatcher::finish(double now) {
+  for (std::size_t s = 0; s < servers_.size(); ++s) {
+    const Server& server = servers_[s];
+    const double elapsed = now - server.joinedAt;
+    if (!server.joined || server.lost || server.deliveredCost <= 0.0 || elapsed <= 0.0) continue;
+    ServerPace& pace = paces_[s];
+    const double measured = server.deliveredCost / elapsed;
+    pace.costPerMs = pace.costPerMs > 0.0 ? kPaceWeight * measured + (1.0 - kPaceWeight) * pace.costPerMs : measured;
+  }
+}
+
+}  // namespace glint

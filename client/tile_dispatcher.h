@@ -1,0 +1,121 @@
+#pragma once
+
+#include <cstddef>
+#include <deque>
+#include <set>
+#include <vector>
+
+namespace glint {
+
+// What the client has learnt about one server's pace, kept from frame to
+// frame. Cost is in the dispatcher's cost units (see TileDispatcher).
+struct ServerPace {
+  int threads = 1;
+  double costPerMs = 0.0;  // measured throughput; 0 until the first frame it served
+  double rttMs = -1.0;     // smallest seen (latency - compute) of a tile; < 0 unknown
+};
+
+// When a server counts as stalled, and how far ahead of it to keep work.
+struct DispatchSettings {
+  double stallTimeoutMs = 2000.0;  // tiles outstanding, nothing delivered for this long: lost
+  double leadMs = 25.0;            // work queued beyond one round trip, covers result batching
+  int initialTilesPerThread = 2;   // window before the server's pace is known
+};
+
+// Which server traces which tile of one frame: pure logic, no sockets, no
+// clock of its own (every call takes `now` in ms), so that it can be tested
+// and simulated in virtual time (tests/sim).
+//
+// - Tiles go out costliest first. A tile's cost is an estimate in any unit
+//   (masked pixels times the effect plan's depth, or last frame's measured
+//   milliseconds); only ratios between tiles and servers matter.
+// - A server is kept fed with a window of outstanding work sized from its
+//   pace: throughput times (round trip + lead), at least one tile per thread.
+// - With no unassigned tile left, a server with idle threads takes a copy of
+//   the oldest outstanding tile of the server that will finish last; the
+//   first result wins and the other copy is to be cancelled.
+// - A lost server's tiles that no other server holds go back to the queue.
+class TileDispatcher {
+ public:
+  struct Assignment {
+    std::size_t server;
+    std::size_t tile;
+  };
+  struct Delivery {
+    bool first = false;               // false: another copy won; drop this result
+    std::vector<std::size_t> cancelOn;  // servers that still hold a copy
+  };
+
+  TileDispatcher(std::vector<double> tileCosts, std::vector<ServerPace>& paces, const DispatchSettings& settings);
+
+  // The server is ready for this frame (scene present, frame set up).
+  void join(std::size_t server, double now);
+  // Tiles to send now, each to one server.
+  std::vector<Assignment> assign(double now);
+  // `server` delivered `tile`, which took it `computeMs` to trace.
+  Delivery deliver(std::size_t server, std::size_t tile, double now, double computeMs);
+  // The server is gone for this frame; its tiles held by no one else are
+  // queued again. Returns them.
+  std::vector<std::size_t> lose(std::size_t server);
+  // Servers with tiles outstanding that delivered nothing for the stall timeout.
+  std::vector<std::size_t> stalled(double now) const;
+
+  bool done() const { return delivered_ == costs_.size(); }
+  // Joined servers not lost.
+  std::size_t liveServers() const;
+  bool joined(std::size_t server) const { return servers_[server].joined; }
+  bool lost(std::size_t server) const { return servers_[server].lost; }
+  std::size_t outstanding(std::size_t server) const { return servers_[server].outstanding.size(); }
+  std::size_t reissued() const { return reissued_; }
+  std::size_t duplicated() const { return duplicated_; }
+  bool wasReissued(std::size_t tile) const { return tiles_[tile].reissued; }
+  // At the frame's end: folds this frame's measured pace into the paces.
+  void finish(double now);
+
+ private:
+  struct Sent {
+    std::size_t tile;
+    double at;
+  };
+  struct Server {
+    bool joined = false;
+    bool lost = false;
+    double joinedAt = 0.0;
+    double lastProgress = 0.0;  // last delivery, or when work was sent to an empty window
+    double outstandingCost = 0.0;
+    double deliveredCost = 0.0;
+    std::deque<Sent> outstanding;  // in the order sent
+  };
+  struct Tile {
+    std::vector<std::size_t> holders;  // servers holding a copy
+    bool done = false;
+    bool reissued = false;
+  };
+  // Queue order: costliest first, then by index.
+  struct CostlierFirst {
+    const std::vector<double>* costs;
+    bool operator()(std::size_t a, std::size_t b) const {
+      return (*costs)[a] != (*costs)[b] ? (*costs)[a] > (*costs)[b] : a < b;
+    }
+  };
+
+  bool hasRoom(std::size_t server) const;
+  double rate(std::size_t server, double now) const;
+  // The server whose outstanding work ends last (other than `except`) and its
+  // oldest tile with one copy; false when there is none.
+  bool pickDuplicate(std::size_t except, double now, std::size_t& tile) const;
+  void send(std::size_t server, std::size_t tile, double now, std::vector<Assignment>& out);
+  void removeOutstanding(std::size_t server, std::size_t tile);
+
+  std::vector<double> costs_;
+  std::vector<ServerPace>& paces_;
+  DispatchSettings settings_;
+  std::vector<Server> servers_;
+  std::vector<Tile> tiles_;
+  std::set<std::size_t, CostlierFirst> queue_;
+  std::size_t delivered_ = 0;
+  std::size_t reissued_ = 0;
+  std::size_t duplicated_ = 0;
+};
+
+}  // namespace glint

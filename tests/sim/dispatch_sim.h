@@ -1,0 +1,52 @@
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "client/tile_dispatcher.h"
+
+namespace glint::sim {
+
+// A server in virtual time: threads tracing tiles in the order they arrive,
+// a link of some rate and round trip, and possibly a moment it is lost.
+struct SimServer {
+  int threads = 1;
+  double speed = 1.0;           // tiles take ms / speed
+  double rttMs = 0.2;
+  double bytesPerMs = 125000;   // 1 Gbit/s
+  double lossAtMs = -1.0;       // < 0: never lost
+  bool silentLoss = false;      // lost as SIGSTOP (stalls) rather than as SIGKILL (closes)
+  double joinAtMs = 0.0;        // when its scene is ready
+};
+
+struct SimTile {
+  double ms = 1.0;               // tracing time at speed 1
+  std::size_t resultBytes = 0;   // the TileResult message
+};
+
+enum class Policy {
+  kDispatcher,        // client/tile_dispatcher
+  kStaticRoundRobin,  // tile i to server i mod n, all at once (OSPRay's default)
+};
+
+struct SimResult {
+  bool completed = false;        // every tile delivered
+  double frameMs = 0.0;
+  std::vector<int> firstDeliveries;  // per tile: results the frame took (must be 1)
+  std::size_t reissued = 0;
+  std::size_t duplicated = 0;
+  std::size_t cancelledQueued = 0;   // copies a Cancel removed before they ran
+  std::vector<double> busyMs;        // per server: thread time spent tracing
+};
+
+// One frame in virtual time. `estimates` are the costs the dispatcher is
+// given (tile ms, or a model of them); `paces` carry over between frames.
+SimResult simulateFrame(const std::vector<SimTile>& tiles, const std::vector<double>& estimates,
+                        const std::vector<SimServer>& servers, Policy policy, const DispatchSettings& settings,
+                        std::vector<ServerPace>& paces);
+
+// Frame time if the work were shared perfectly: total tile time over the
+// servers' combined speed.
+double idealMs(const std::vector<SimTile>& tiles, const std::vector<SimServer>& servers);
+
+}  // namespace glint::sim
