@@ -53,6 +53,20 @@ CLI::Option* addEnumOption(CLI::App* app, const std::string& name, std::optional
       ->check(CLI::IsMember(enumWordList<Enum>()));
 }
 
+// --server (repeatable, comma-separated) and --stall-timeout, for render and view.
+void addServerOptions(CLI::App* app, std::vector<std::string>& servers, double& stallTimeoutS) {
+  app->add_option("--server", servers,
+                  "Trace through the glintd at HOST:PORT (e.g. 127.0.0.1:7878); several: A:P,B:P or the option "
+                  "repeated; a name with several addresses is one server each. The image is byte-identical to the "
+                  "in-process one whatever the servers do")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  app->add_option("--stall-timeout", stallTimeoutS,
+                  "Seconds a server with tiles outstanding may deliver nothing before its tiles go to the others")
+      ->check(CLI::Range(0.05, 3600.0))
+      ->default_val(2.0);
+}
+
 // Declares `glint render`'s options; returns what runs once they are parsed.
 std::function<void()> declareRender(CLI::App* render) {
   auto options = std::make_shared<RenderOptions>();
@@ -86,9 +100,10 @@ std::function<void()> declareRender(CLI::App* render) {
       ->check(CLI::Range(0.0f, 1.0f));
   render->add_option("--size", *size, "Image size WIDTHxHEIGHT (the camera's fov_y is kept)");
   addEnumOption(render, "--bvh", o.bvh, "BVH builder in process (default: sah; qsplit is the thesis's)");
-  render->add_option("--server", o.server,
-                     "Render through the glintd at HOST:PORT (e.g. 127.0.0.1:7878); the image is "
-                     "byte-identical to the in-process one");
+  addServerOptions(render, o.servers, o.stallTimeoutS);
+  render->add_option("--provenance-out", o.provenanceOut,
+                     "With --server: also write the frame with each tile tinted by the server that traced it "
+                     "(tiles re-issued from a lost server outlined; the legend is printed)");
   render->add_option("--stats", o.statsPath,
                      "Write one JSON object per frame (rays by kind, timings, effect plan; docs/stats.md) to FILE; "
                      "- for stdout");
@@ -109,7 +124,7 @@ std::function<void()> declareView(CLI::App* view) {
   auto size = std::make_shared<std::string>();
   ViewOptions& o = *options;
   view->add_option("scene", o.scene, "Scene file (.json)")->required()->check(CLI::ExistingFile);
-  view->add_option("--server", o.server, "Trace through the glintd at HOST:PORT");
+  addServerOptions(view, o.servers, o.stallTimeoutS);
   addEnumOption(view, "--mask", o.mask, "Initial mask rule (default: the scene's)");
   view->add_option("--threads", o.threads, "Tracing threads; 0 = one per hardware thread")->check(CLI::Range(0, 1024));
   addEnumOption(view, "--bvh", o.bvh, "BVH builder in process (default: sah; qsplit is the thesis's)");

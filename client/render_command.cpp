@@ -9,6 +9,8 @@
 #include "client/hybrid_frame.h"
 #include "client/offscreen_context.h"
 #include "client/progress.h"
+#include "client/provenance.h"
+#include "client/distributed_tile_service.h"
 #include "client/raster_scene.h"
 #include "client/stats_json.h"
 #include "client/tile_backend.h"
@@ -75,6 +77,20 @@ void printSummary(const RenderOptions& options, const FrameSettings& frame, cons
   }
 }
 
+// Each server's share of the last frame, and the provenance image's legend.
+void printServers(const DistributionReport& report, bool legend) {
+  for (const ServerReport& s : report.servers) {
+    std::fprintf(stderr, "  server %-24s %-11s %5zu tiles %9zu pixels  busy %8.1f ms  rtt %6.2f ms%s%s\n",
+                 s.address.c_str(), std::string(enumWord(s.state)).c_str(), s.tiles, s.maskedPixels, s.busyMs,
+                 s.rttMs, s.why.empty() ? "" : "  ", s.why.c_str());
+  }
+  if (report.reissuedTiles + report.duplicatedTiles > 0) {
+    std::fprintf(stderr, "  %zu tiles re-issued from lost servers, %zu duplicated at the end\n", report.reissuedTiles,
+                 report.duplicatedTiles);
+  }
+  if (legend) std::fprintf(stderr, "provenance: %s\n", provenanceLegend(report).c_str());
+}
+
 }  // namespace
 
 void applyOverrides(const RenderOptions& o, Scene& scene) {
@@ -109,7 +125,10 @@ void runRender(const RenderOptions& options) {
 
   // In process (the default) or through a glintd: the same tiles either way.
   const Clock::time_point prepareStart = Clock::now();
-  TileBackend backend({options.server, options.threads, options.bvh}, std::move(loaded));
+  if (!options.provenanceOut.empty() && options.servers.empty()) {
+    throw InputError("--provenance-out " + options.provenanceOut + ": shows which server traced each tile; give --server");
+  }
+  TileBackend backend({options.servers, options.threads, options.bvh, options.stallTimeoutS}, std::move(loaded));
   TileService& service = backend.service();
   const Scene& scene = backend.scene();
   const double prepareMs = msSince(prepareStart);
@@ -143,19 +162,26 @@ void runRender(const RenderOptions& options) {
                     .rays = r.rays,
                     .plan = &plan,
                     .droppedTriangles = dropped,
-                    .remote = !options.server.empty(),
+                    .remote = !options.servers.empty(),
                     .loadMs = loadMs,
                     .prepareMs = prepareMs,
                     .traceMs = r.times.traceMs,
                     .frameMs = r.times.totalMs,
                     .totalMs = f == 0 ? msSince(start) : r.times.totalMs,
-                    .hybrid = hybridPath ? std::optional<HybridTimes>(r.times) : std::nullopt});
+                    .hybrid = hybridPath ? std::optional<HybridTimes>(r.times) : std::nullopt,
+                    .distribution = backend.distributed() ? &backend.distributed()->lastFrame() : nullptr});
     }
     frameTimes.push_back(r.times);
   }
   writePng(options.output, r.image);
+  if (!options.provenanceOut.empty()) {
+    writePng(options.provenanceOut, provenanceImage(r.image, backend.distributed()->lastFrame()));
+  }
 
-  if (!options.quiet) printSummary(options, frame, backend.where(), frameTimes, r.rays, hybridPath);
+  if (!options.quiet) {
+    printSummary(options, frame, backend.where(), frameTimes, r.rays, hybridPath);
+    if (backend.distributed()) printServers(backend.distributed()->lastFrame(), !options.provenanceOut.empty());
+  }
 }
 
 }  // namespace glint

@@ -5,6 +5,29 @@
 #include "common/error.h"
 
 namespace glint {
+namespace {
+
+nlohmann::json toJson(const RayStats& rays) {
+  return {{"primary", rays.primary},       {"shadow", rays.shadow},
+          {"shadow_blocked", rays.shadowBlocked}, {"reflection", rays.reflection},
+          {"refraction", rays.refraction}, {"total", rays.total()}};
+}
+
+nlohmann::json toJson(const ServerReport& s) {
+  nlohmann::json j = {{"address", s.address},
+                      {"state", enumWord(s.state)},
+                      {"tiles", s.tiles},
+                      {"masked_pixels", s.maskedPixels},
+                      {"rays", toJson(s.rays)},
+                      {"busy_ms", s.busyMs},
+                      {"rtt_ms", s.rttMs},
+                      {"bytes_in", s.bytesIn},
+                      {"bytes_out", s.bytesOut}};
+  if (!s.why.empty()) j["why"] = s.why;
+  return j;
+}
+
+}  // namespace
 
 nlohmann::json toJson(const FrameRecord& r) {
   nlohmann::json j = {
@@ -13,13 +36,7 @@ nlohmann::json toJson(const FrameRecord& r) {
       {"height", r.height},
       {"masked_pixels", r.maskedPixels},
       {"tiles", r.tiles},
-      {"rays",
-       {{"primary", r.rays.primary},
-        {"shadow", r.rays.shadow},
-        {"shadow_blocked", r.rays.shadowBlocked},
-        {"reflection", r.rays.reflection},
-        {"refraction", r.rays.refraction},
-        {"total", r.rays.total()}}},
+      {"rays", toJson(r.rays)},
       {"nonfinite_samples", r.rays.nonFiniteSamples},
       {"dropped_triangles", r.droppedTriangles},
       {"load_ms", r.loadMs},
@@ -35,6 +52,13 @@ nlohmann::json toJson(const FrameRecord& r) {
     j["compose_ms"] = r.hybrid->composeMs;
   }
   if (r.remote && r.hybrid) j["network_ms"] = r.hybrid->networkMs;
+  if (r.distribution) {
+    nlohmann::json servers = nlohmann::json::array();
+    for (const ServerReport& s : r.distribution->servers) servers.push_back(toJson(s));
+    j["servers"] = std::move(servers);
+    j["reissued_tiles"] = r.distribution->reissuedTiles;
+    j["duplicated_tiles"] = r.distribution->duplicatedTiles;
+  }
   return j;
 }
 

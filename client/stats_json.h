@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "client/distribution_report.h"
 #include "client/hybrid_frame.h"
 #include "common/effects.h"
 #include "common/ray_stats.h"
@@ -31,6 +32,7 @@ struct FrameRecord {
   double frameMs = 0.0;    // the frame alone
   double totalMs = 0.0;    // frame 0: since the start, load and preparation included; then the frame
   std::optional<HybridTimes> hybrid;  // the hybrid frame's other steps
+  const DistributionReport* distribution = nullptr;  // through glintd: who did what
 };
 
 nlohmann::json toJson(const FrameRecord& record);

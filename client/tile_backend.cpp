@@ -1,18 +1,21 @@
 #include "client/tile_backend.h"
 
-#include "client/remote_tile_service.h"
+#include "client/distributed_tile_service.h"
 #include "common/error.h"
 
 namespace glint {
 
-TileBackend::TileBackend(const Options& options, proto::LoadedBundle loaded)
-    : server_(options.server), loaded_(std::move(loaded)) {
-  if (!server_.empty()) {
+TileBackend::TileBackend(const Options& options, proto::LoadedBundle loaded) : loaded_(std::move(loaded)) {
+  if (!options.servers.empty()) {
     if (options.bvh) {
       throw InputError("--bvh: a glintd builds the BVH of the scenes it holds itself (SAH); --bvh applies to "
                        "in-process rendering");
     }
-    service_ = std::make_unique<RemoteTileService>(server_, loaded_.bundle);
+    DistributedSettings settings;
+    settings.stallTimeout = std::chrono::milliseconds(static_cast<long>(options.stallTimeoutS * 1000.0));
+    auto service = std::make_unique<DistributedTileService>(resolveServers(options.servers), loaded_.bundle, settings);
+    distributed_ = service.get();
+    service_ = std::move(service);
     return;
   }
   BvhSettings bvh;
@@ -27,7 +30,10 @@ TileBackend::~TileBackend() = default;
 const Scene& TileBackend::scene() const { return prepared_ ? prepared_->scene() : loaded_.scene; }
 
 std::string TileBackend::where() const {
-  return pool_ ? std::to_string(pool_->size()) + " threads" : "server " + server_;
+  if (pool_) return std::to_string(pool_->size()) + " threads";
+  const DistributionReport& report = distributed_->lastFrame();
+  if (distributed_->serverCount() == 1 && !report.servers.empty()) return "server " + report.servers[0].address;
+  return std::to_string(distributed_->serverCount()) + " servers";
 }
 
 }  // namespace glint

@@ -12,18 +12,20 @@
 
 namespace glint {
 
-class RemoteTileService;
+class DistributedTileService;
 
 // Where a command's tiles are traced, chosen from its options: in process
 // (the scene prepared here with the chosen BVH builder, on a thread pool) or
-// through a glintd (which builds its own BVH, so --bvh is refused there).
+// through one or many glintd (which build their own BVH, so --bvh is refused
+// there). render, view and the benchmark all get their service here.
 // Owns what the service needs; the scene stays readable for the raster pass.
 class TileBackend {
  public:
   struct Options {
-    std::string server;  // HOST:PORT of a glintd; "" traces in process
-    int threads = 0;     // in process; 0: every hardware thread
+    std::vector<std::string> servers;  // --server values (HOST:PORT[,...]); none: in process
+    int threads = 0;                   // in process; 0: every hardware thread
     std::optional<BvhBuilder> bvh;
+    double stallTimeoutS = 2.0;        // --stall-timeout
   };
 
   // Prepares the scene or connects and uploads it; throws InputError.
@@ -33,12 +35,14 @@ class TileBackend {
   TileBackend& operator=(const TileBackend&) = delete;
 
   TileService& service() { return *service_; }
+  // The servers' service; nullptr in process.
+  DistributedTileService* distributed() { return distributed_; }
   const Scene& scene() const;
-  // "4 threads" or "server HOST:PORT", for summaries.
+  // "4 threads", "server HOST:PORT" or "3 servers", for summaries.
   std::string where() const;
 
  private:
-  std::string server_;
+  DistributedTileService* distributed_ = nullptr;  // service_, when it is one
   proto::LoadedBundle loaded_;
   std::unique_ptr<PreparedScene> prepared_;  // in process only
   std::unique_ptr<ThreadPool> pool_;         // in process only

@@ -129,7 +129,7 @@ void runView(const ViewOptions& options) {
   glfwSwapInterval(0);
   const gl::Api api = gl::loadApi([](const char* name) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); });
 
-  TileBackend backend({options.server, options.threads, options.bvh}, std::move(loaded));
+  TileBackend backend({options.servers, options.threads, options.bvh, options.stallTimeoutS}, std::move(loaded));
   TileService& service = backend.service();
   const Scene& scene = backend.scene();
   gl::RasterScene raster(api, scene);
@@ -158,7 +158,7 @@ void runView(const ViewOptions& options) {
                     "glint view  |  mask %s%s  |  frame %.0f ms: raster %.0f, read %.0f, RT %.0f, compose %.0f  |  %s",
                     std::string(enumWord(controls.rule)).c_str(), controls.overlay ? " (shown)" : "", last.times.totalMs,
                     last.times.rasterMs, last.times.readbackMs, last.times.traceMs, last.times.composeMs,
-                    options.server.empty() ? "in process" : options.server.c_str());
+                    backend.where().c_str());
       glfwSetWindowTitle(window, title);
       if (options.frames > 0 && ++frames >= options.frames) break;
     }

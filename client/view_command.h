@@ -2,6 +2,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "common/bvh.h"
 #include "common/scene.h"
@@ -11,7 +12,8 @@ namespace glint {
 // Options of `glint view`.
 struct ViewOptions {
   std::string scene;
-  std::string server;          // HOST:PORT of a glintd; "" traces in process
+  std::vector<std::string> servers;  // --server HOST:PORT[,...] (repeatable); none traces in process
+  double stallTimeoutS = 2.0;
   std::optional<MaskRule> mask;  // unset: the scene's
   int threads = 0;
   std::optional<BvhBuilder> bvh;  // in process only; unset: SAH

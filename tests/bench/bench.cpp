@@ -19,7 +19,7 @@
 #include "client/hybrid_frame.h"
 #include "client/offscreen_context.h"
 #include "client/raster_scene.h"
-#include "client/remote_tile_service.h"
+#include "client/distributed_tile_service.h"
 #include "common/scene_load.h"
 #include "common/timing.h"
 #include "proto/scene_bundle.h"
@@ -229,23 +229,22 @@ void protocolSection(const Options& o, const Scene& room) {
   for (const Case& c : {Case{"the room", &room, &loaded.bundle}, Case{"empty scene (protocol only)", &empty, &emptyBundle}}) {
     const PreparedScene prepared(*c.scene, BvhSettings{});
     LocalTileService local(prepared, pool);
-    RemoteTileService remote(address, *c.bundle);
+    DistributedTileService remote(resolveServers({address}), *c.bundle);
     const FrameSettings frame = c.scene->frame;
     // Frames alternate between the two paths and the overhead is the median
     // of the pairs' differences: slow drifts of the machine cancel out.
     std::vector<double> localTimes, remoteTimes, differences;
     FrameOptions frameOptions;
     frameOptions.tileSize = o.tileSize;
-    const auto before = remote.traffic();
+    double received = 0.0, sent = 0.0;
     for (int i = 0; i < frames; ++i) {
       localTimes.push_back(medianMs(1, [&] { renderFrame(local, frame, frameOptions); }));
       remoteTimes.push_back(medianMs(1, [&] { renderFrame(remote, frame, frameOptions); }));
       differences.push_back(remoteTimes.back() - localTimes.back());
+      received += static_cast<double>(remote.lastFrame().servers[0].bytesIn) / frames;
+      sent += static_cast<double>(remote.lastFrame().servers[0].bytesOut) / frames;
     }
-    const auto after = remote.traffic();
     const double localMs = median(localTimes), remoteMs = median(remoteTimes);
-    const double received = static_cast<double>(after.bytesReceived - before.bytesReceived) / frames;
-    const double sent = static_cast<double>(after.bytesSent - before.bytesSent) / frames;
     std::printf("| %s | %.1f | %.1f | %.2f | %.0f | %d | %.0f |\n", c.name, localMs, remoteMs, median(differences),
                 received, frame.width * frame.height * 3, sent);
   }
@@ -277,7 +276,7 @@ void hybridSection(const Options& o) {
     const PreparedScene prepared(loaded.scene, BvhSettings{});
     ThreadPool pool(2);
     LocalTileService local(prepared, pool);
-    RemoteTileService remote(address, loaded.bundle);
+    DistributedTileService remote(resolveServers({address}), loaded.bundle);
     gl::OffscreenContext context(frame.width, frame.height);
     gl::RasterScene raster(context.api(), prepared.scene());
     for (TileService* service : {static_cast<TileService*>(&local), static_cast<TileService*>(&remote)}) {

@@ -7,7 +7,7 @@
 #include <thread>
 #include <vector>
 
-#include "client/remote_tile_service.h"
+#include "client/distributed_tile_service.h"
 #include "common/error.h"
 #include "common/frame.h"
 #include "common/thread_pool.h"
@@ -30,7 +30,7 @@ ClientLoad runClient(const std::string& address, const proto::SceneBundle& bundl
   ClientLoad load;
   while (Clock::now() < deadline) {
     try {
-      RemoteTileService service(address, bundle);
+      DistributedTileService service(resolveServers({address}), bundle);
       while (Clock::now() < deadline) {
         const auto start = Clock::now();
         const FrameImage image = renderFrame(service, frame, {}).image;

@@ -137,7 +137,7 @@ TEST_F(Cli, BadValuesGiveClearErrorsAndWriteNothing) {
       {"render " + path("missing.json") + out + " --mask all", "missing.json"},
       {"render " + room + " --mask all", "--output"},
       {"render " + room + " -o " + path("no/such/folder/x.png") + " --mask all --size 8x8", "no/such/folder"},
-      {"render " + room + out + " --mask all --server 127.0.0.1:1", "server 127.0.0.1:1: cannot connect"},
+      {"render " + room + out + " --mask all --server 127.0.0.1:1", "server 127.0.0.1:1: unreachable, cannot connect"},
       {"render " + room + out + " --mask all --bvh qsplit --server 127.0.0.1:1", "--bvh: a glintd builds"},
       {"render " + room + out + " --mask all --server nowhere", "--server nowhere: expected HOST:PORT"},
   };

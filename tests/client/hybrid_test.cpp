@@ -10,7 +10,7 @@
 #include "client/hybrid_frame.h"
 #include "client/offscreen_context.h"
 #include "client/raster_scene.h"
-#include "client/remote_tile_service.h"
+#include "client/distributed_tile_service.h"
 #include "common/mask_rule.h"
 #include "common/renderer.h"
 #include "proto/scene_bundle.h"
@@ -205,7 +205,7 @@ TEST(Hybrid, MaskedPixelsEqualTheFullTrace) {
   o.threads = 2;
   o.handleSignals = false;
   server::BackgroundServer glintd(o);
-  RemoteTileService remote(glintd.address(), s.loaded.bundle);
+  DistributedTileService remote(resolveServers({glintd.address()}), s.loaded.bundle);
 
   for (TileService* service : {static_cast<TileService*>(&local), static_cast<TileService*>(&remote)}) {
     const HybridResult h = hybrid(prepared.scene(), *service, s.frame, prepared.scene().mask);

@@ -12,7 +12,7 @@
 
 #include <gtest/gtest.h>
 
-#include "client/remote_tile_service.h"
+#include "client/distributed_tile_service.h"
 #include "common/error.h"
 #include "common/frame.h"
 #include "common/image_io.h"
@@ -36,7 +36,9 @@ FrameImage renderRoom(const std::string& address) {
   FrameSettings frame = loaded.scene.frame;
   frame.width = 48;
   frame.height = 36;
-  RemoteTileService service(address, loaded.bundle, 10s);
+  DistributedSettings settings;
+  settings.timeouts.connect = 10s;
+  DistributedTileService service(resolveServers({address}), loaded.bundle, settings);
   return renderFrame(service, frame, {}).image;
 }
 

@@ -11,7 +11,7 @@
 
 #include <gtest/gtest.h>
 
-#include "client/remote_tile_service.h"
+#include "client/distributed_tile_service.h"
 #include "common/error.h"
 #include "common/frame.h"
 #include "proto/message_stream.h"
@@ -67,7 +67,7 @@ FrameImage localImage(const RoomFrame& r) {
 }
 
 FrameImage remoteImage(const std::string& address, const RoomFrame& r) {
-  RemoteTileService service(address, r.loaded.bundle);
+  DistributedTileService service(resolveServers({address}), r.loaded.bundle);
   return renderFrame(service, r.frame, {}).image;
 }
 
@@ -101,7 +101,7 @@ TEST_F(ServerTest, MaskedTilesEqualInProcessTiles) {
   const PreparedScene prepared(r.loaded.scene, BvhSettings{});
   ThreadPool pool(2);
   LocalTileService(prepared, pool).render(r.frame, jobs, [&](std::size_t i, TileOutput&& o) { local[i] = o.rgb; });
-  RemoteTileService service(server.address(), r.loaded.bundle);
+  DistributedTileService service(resolveServers({server.address()}), r.loaded.bundle);
   service.render(r.frame, jobs, [&](std::size_t i, TileOutput&& o) { remote[i] = o.rgb; });
   EXPECT_EQ(remote, local);
   EXPECT_TRUE(remote[2].empty());
@@ -111,19 +111,18 @@ TEST_F(ServerTest, MaskedTilesEqualInProcessTiles) {
     masked += countMasked(j.rect, j.mask);
     maskBytes += j.mask.size();
   }
-  const auto& t = service.traffic();
-  EXPECT_LT(t.bytesReceived, masked * 3 + jobs.size() * 128 + 1024);
-  EXPECT_GT(t.bytesReceived, masked * 3);
+  const ServerReport& t = service.lastFrame().servers.at(0);
+  EXPECT_LT(t.bytesIn, masked * 3 + jobs.size() * 128 + 1024);
+  EXPECT_GT(t.bytesIn, masked * 3);
 }
 
 TEST_F(ServerTest, SecondClientWithTheSameScenePaysNoUploadOrBuild) {
   TestServer server;
   const RoomFrame r = smallRoom();
-  RemoteTileService first(server.address(), r.loaded.bundle);
-  EXPECT_TRUE(first.traffic().uploaded);
-  RemoteTileService second(server.address(), r.loaded.bundle);
-  EXPECT_FALSE(second.traffic().uploaded);
-  EXPECT_LT(second.traffic().bytesSent, 200u);
+  DistributedTileService first(resolveServers({server.address()}), r.loaded.bundle);
+  EXPECT_TRUE(first.uploaded());
+  DistributedTileService second(resolveServers({server.address()}), r.loaded.bundle);
+  EXPECT_FALSE(second.uploaded());
   EXPECT_EQ(server.server().cache().size(), 1u);
 }
 
@@ -143,10 +142,11 @@ TEST_F(ServerTest, ManyClientsAtOnce) {
 TEST_F(ServerTest, UnreachableServerSaysWhichAddressAndWhy) {
   const RoomFrame r = smallRoom();
   try {
-    RemoteTileService service("127.0.0.1:1", r.loaded.bundle);
+    DistributedTileService service(resolveServers({"127.0.0.1:1"}), r.loaded.bundle);
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("server 127.0.0.1:1: cannot connect"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("server 127.0.0.1:1: unreachable, cannot connect"), std::string::npos)
+        << e.what();
   }
 }
 

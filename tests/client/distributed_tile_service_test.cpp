@@ -1,10 +1,11 @@
-// The client's remote tile service against a peer that breaks the protocol:
-// every server message is checked before use, and a bad one ends the frame
-// with an error that names the server, never a crash or a wrong image.
-#include "client/remote_tile_service.h"
+// The client's tile service over glintd against peers that break the
+// protocol: every server message is checked before use, and a bad one loses
+// that server with a reason that names it, never a crash or a wrong image.
+#include "client/distributed_tile_service.h"
 
 #include <gtest/gtest.h>
 
+#include "common/build_identity.h"
 #include "common/error.h"
 #include "proto/messages.h"
 #include "tests/proto/hostile_frames.h"
@@ -48,9 +49,18 @@ Peer scriptedServer(std::vector<std::vector<std::uint8_t>> results) {
   });
 }
 
+std::string addressOf(const Peer& peer) {
+  return peer.endpoint().address().to_string() + ":" + std::to_string(peer.endpoint().port());
+}
+
+DistributedSettings quick() {
+  DistributedSettings s;
+  s.timeouts.connect = std::chrono::seconds(3);
+  return s;
+}
+
 std::string renderError(Peer& peer) {
-  RemoteTileService service(peer.endpoint().address().to_string() + ":" + std::to_string(peer.endpoint().port()),
-                            kBundle, std::chrono::seconds(3));
+  DistributedTileService service(resolveServers({addressOf(peer)}), kBundle, quick());
   int calls = 0;
   try {
     service.render(smallFrame(), twoTiles(), [&](std::size_t, TileOutput&&) { ++calls; });
@@ -63,44 +73,67 @@ std::string renderError(Peer& peer) {
 
 std::vector<std::uint8_t> pixels(std::size_t n) { return std::vector<std::uint8_t>(n, 7); }
 
-TEST(RemoteTileService, ResultWithTheWrongNumberOfPixelsIsRefused) {
+TEST(DistributedTileService, ResultWithTheWrongNumberOfPixelsIsRefused) {
   Peer peer = scriptedServer({proto::encodeTileResult(1, 0, pixels(5), {}, 0)});
   const std::string error = renderError(peer);
-  EXPECT_NE(error.find("tile 0 of frame 1 came with 5 bytes of pixels, not 192"), std::string::npos) << error;
+  EXPECT_NE(error.find("lost, sent tile 0 of frame 1 with 5 bytes of pixels, not 192"), std::string::npos) << error;
 }
 
-TEST(RemoteTileService, SecondResultForATileIsRefused) {
+TEST(DistributedTileService, SecondResultForATileIsRefused) {
   const auto first = proto::encodeTileResult(1, 0, pixels(192), {}, 0);
   Peer peer = scriptedServer({first, first});
   const std::string error = renderError(peer);
-  EXPECT_NE(error.find("sent an unexpected message during frame 1"), std::string::npos) << error;
+  EXPECT_NE(error.find("sent tile 0 of frame 1, which was not asked of it (or came twice)"), std::string::npos)
+      << error;
 }
 
-TEST(RemoteTileService, ResultForATileNeverRequestedIsRefused) {
+TEST(DistributedTileService, ResultForATileNeverRequestedIsRefused) {
   Peer peer = scriptedServer({proto::encodeTileResult(1, 9, pixels(192), {}, 0)});
   const std::string error = renderError(peer);
-  EXPECT_NE(error.find("unexpected message"), std::string::npos) << error;
+  EXPECT_NE(error.find("sent tile 9 of frame 1, which was not asked of it"), std::string::npos) << error;
 }
 
-TEST(RemoteTileService, ResultWithoutABodyIsRefused) {
+TEST(DistributedTileService, ResultWithoutABodyIsRefused) {
   Peer peer = scriptedServer({proto::test::bodylessFrame(wire::Body::TileResult)});
   const std::string error = renderError(peer);
   EXPECT_NE(error.find("carries none"), std::string::npos) << error;
 }
 
-TEST(RemoteTileService, HelloWithoutABodyIsRefused) {
+TEST(DistributedTileService, HelloWithoutABodyIsRefused) {
   Peer peer([](asio::ip::tcp::socket& socket) {
     readFrame(socket);
     send(socket, proto::test::bodylessFrame(wire::Body::Hello));
     while (!readFrame(socket).empty()) {
     }
   });
-  const std::string address = "127.0.0.1:" + std::to_string(peer.endpoint().port());
+  const std::string address = addressOf(peer);
   try {
-    RemoteTileService service(address, kBundle, std::chrono::seconds(3));
+    DistributedTileService service(resolveServers({address}), kBundle, quick());
     FAIL() << "a bodyless Hello was taken";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("server " + address), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("server " + address + ": unreachable, sent a bad message"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// A server whose pixels would differ (another build) is refused at Hello,
+// with both builds named, rather than risk seams in the frame.
+TEST(DistributedTileService, ServerOfAnotherBuildIsRefused) {
+  Peer peer([](asio::ip::tcp::socket& socket) {
+    readFrame(socket);
+    send(socket, proto::encodeHello(1 << 20, 1, "fake", "pixels-0 some-other-compiler 0123"));
+    while (!readFrame(socket).empty()) {
+    }
+  });
+  try {
+    DistributedTileService service(resolveServers({addressOf(peer)}), kBundle, quick());
+    FAIL() << "a server of another build was taken";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("unreachable, its pixels would differ"), std::string::npos) << what;
+    EXPECT_NE(what.find("pixels-0 some-other-compiler 0123"), std::string::npos) << what;
+    EXPECT_NE(what.find(buildIdentity()), std::string::npos) << what;
   }
 }
 

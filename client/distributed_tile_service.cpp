@@ -1,0 +1,259 @@
+#include "client/distributed_tile_service.h"
+
+#include <algorithm>
+#include <numeric>
+
+#include "common/error.h"
+
+namespace glint {
+namespace {
+
+constexpr std::chrono::milliseconds kStep{5};          // how often stalls are checked while waiting
+constexpr std::chrono::seconds kFirstRetry{1};         // a lost server is tried again after 1, 2, 4 ... s
+constexpr std::chrono::seconds kLongestRetry{30};
+constexpr std::chrono::seconds kGoodbyeGrace{1};       // for the Goodbyes to be written at the end
+
+std::size_t maskedPixels(const TileJob& job) {
+  return job.mask.empty() ? job.rect.pixelCount() : countMasked(job.rect, job.mask);
+}
+
+std::array<int, 5> tileKey(const TileJob& job) {
+  return {job.rect.x, job.rect.y, job.rect.width, job.rect.height, static_cast<int>(maskedPixels(job))};
+}
+
+}  // namespace
+
+struct DistributedTileService::Frame {
+  std::uint32_t id;
+  const FrameSettings& settings;
+  std::span<const TileJob> jobs;
+  const std::function<void(std::size_t, TileOutput&&)>& done;
+  std::vector<std::size_t> sent;  // the dispatcher's tile -> the job's index
+  std::vector<double> costs;
+  TileDispatcher dispatcher;
+  std::vector<std::uint64_t> bytesIn;   // per server, at the frame's start
+  std::vector<std::uint64_t> bytesOut;
+};
+
+DistributedTileService::DistributedTileService(std::vector<ServerAddress> servers, const proto::SceneBundle& bundle,
+                                               const DistributedSettings& settings)
+    : paces_(servers.size()), bundle_(bundle), hash_(bundle.hash()), settings_(settings) {
+  for (ServerAddress& address : servers) servers_.push_back({std::move(address), nullptr, false, 0, {}, {}});
+  for (std::size_t i = 0; i < servers_.size(); ++i) connect(i);
+  while (serversUp() == 0) {
+    if (sceneError_) throw InputError(*sceneError_);
+    throwIfHopeless();
+    io_.run_one();
+  }
+}
+
+DistributedTileService::~DistributedTileService() {
+  for (Server& s : servers_) {
+    if (s.link) s.link->close();
+  }
+  io_.restart();
+  io_.run_for(kGoodbyeGrace);
+}
+
+double DistributedTileService::nowMs() const {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - epoch_).count();
+}
+
+void DistributedTileService::connect(std::size_t index) {
+  Server& s = servers_[index];
+  if (s.link) s.link->detach();
+  s.everReady = false;
+  s.link = std::make_shared<ServerLink>(io_, index, s.address.name, s.address.endpoint, bundle_, hash_,
+                                        settings_.timeouts);
+  s.link->start(*this);
+}
+
+// Servers lost in earlier frames get another chance once their backoff ends.
+void DistributedTileService::retryLost() {
+  const auto now = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < servers_.size(); ++i) {
+    if (servers_[i].link->failed() && now >= servers_[i].retryAt) connect(i);
+  }
+}
+
+std::size_t DistributedTileService::serversUp() const {
+  return static_cast<std::size_t>(
+      std::count_if(servers_.begin(), servers_.end(), [](const Server& s) { return s.link->ready(); }));
+}
+
+bool DistributedTileService::anyConnecting() const {
+  return std::any_of(servers_.begin(), servers_.end(),
+                     [](const Server& s) { return !s.link->ready() && !s.link->failed(); });
+}
+
+bool DistributedTileService::uploaded() const {
+  return std::any_of(servers_.begin(), servers_.end(), [](const Server& s) { return s.link->uploaded(); });
+}
+
+int DistributedTileService::parallelism() const {
+  int threads = 0;
+  for (const Server& s : servers_) threads += s.link->ready() ? s.link->threads() : 0;
+  return std::max(1, threads);
+}
+
+// No server serves the frame and none is still on its way: one line each.
+void DistributedTileService::throwIfHopeless() const {
+  if (anyConnecting() || (frame_ ? frame_->dispatcher.liveServers() > 0 : serversUp() > 0)) return;
+  std::string message = "no glintd can serve this frame:";
+  for (const Server& s : servers_) {
+    message += "\n  server " + s.address.name + ": " + std::string(enumWord(s.report.state)) + ", " + s.report.why;
+  }
+  throw InputError(message);
+}
+
+void DistributedTileService::linkReady(ServerLink& link) {
+  Server& s = servers_[link.index()];
+  s.everReady = true;
+  s.failures = 0;
+  s.report.state = ServerState::kOk;
+  s.report.why.clear();
+  paces_[link.index()].threads = link.threads();
+  if (frame_) joinFrame(link.index());
+}
+
+void DistributedTileService::linkFailed(ServerLink& link, const LinkFailure& failure) {
+  Server& s = servers_[link.index()];
+  s.report.state = s.everReady ? ServerState::kLost : ServerState::kUnreachable;
+  s.report.why = failure.what;
+  ++s.failures;
+  const auto backoff = std::min<std::chrono::seconds>(kFirstRetry * (1 << std::min(s.failures - 1, 5)), kLongestRetry);
+  s.retryAt = std::chrono::steady_clock::now() + backoff;
+  if (failure.kind == LinkFailure::Kind::kSceneError && !sceneError_) {
+    sceneError_ = "server " + s.address.name + ": " + failure.what;
+  }
+  if (frame_ && frame_->dispatcher.joined(link.index()) && !frame_->dispatcher.lost(link.index())) {
+    frame_->dispatcher.lose(link.index());
+  }
+}
+
+void DistributedTileService::joinFrame(std::size_t index) {
+  servers_[index].link->setupFrame(frame_->id, frame_->settings);
+  frame_->dispatcher.join(index, nowMs());
+}
+
+void DistributedTileService::linkResult(ServerLink& link, std::uint32_t frameId, std::uint32_t tileId,
+                                        TileOutput&& out) {
+  if (!frame_ || frameId != frame_->id || tileId >= frame_->sent.size()) return;  // a cancelled copy, late
+  const std::size_t index = link.index();
+  const TileDispatcher::Delivery d = frame_->dispatcher.deliver(index, tileId, nowMs(), out.computeMs);
+  if (!d.first) return;
+  for (const std::size_t other : d.cancelOn) servers_[other].link->cancel(frameId, std::span(&tileId, 1));
+  const std::size_t job = frame_->sent[tileId];
+  ServerReport& r = servers_[index].report;
+  ++r.tiles;
+  r.maskedPixels += out.rgb.size() / 3;
+  r.rays += out.rays;
+  r.busyMs += out.computeMs;
+  report_.deliveredBy[job] = static_cast<int>(index);
+  measured_[tileKey(frame_->jobs[job])] = {frame_->costs[tileId], out.computeMs};
+  frame_->done(job, std::move(out));
+}
+
+// Traced samples per tile; where the previous frame measured the same tile,
+// its tracing time instead, scaled into the same unit.
+std::vector<double> DistributedTileService::tileCosts(std::span<const TileJob> jobs,
+                                                      const std::vector<std::size_t>& sent) const {
+  double estimated = 0.0;
+  double measured = 0.0;
+  for (const auto& [key, m] : measured_) {
+    estimated += m.first;
+    measured += m.second;
+  }
+  const double scale = measured > 0.0 ? estimated / measured : 0.0;
+  std::vector<double> costs;
+  for (const std::size_t j : sent) {
+    const auto it = measured_.find(tileKey(jobs[j]));
+    costs.push_back(it != measured_.end() && scale > 0.0 ? it->second.second * scale
+                                                          : static_cast<double>(maskedPixels(jobs[j])));
+  }
+  return costs;
+}
+
+void DistributedTileService::render(const FrameSettings& settings, std::span<const TileJob> jobs,
+                                    const std::function<void(std::size_t, TileOutput&&)>& done) {
+  retryLost();
+  std::vector<std::size_t> sent;
+  for (std::size_t j = 0; j < jobs.size(); ++j) {
+    if (maskedPixels(jobs[j]) > 0) {
+      sent.push_back(j);
+    } else {
+      done(j, TileOutput{});
+    }
+  }
+  std::vector<double> costs = tileCosts(jobs, sent);
+  measured_.clear();
+  DispatchSettings dispatch;
+  dispatch.stallTimeoutMs = static_cast<double>(settings_.stallTimeout.count());
+  Frame frame{++frameId_, settings, jobs, done, std::move(sent), costs, TileDispatcher(costs, paces_, dispatch), {}, {}};
+  startReport(frame);
+  frame_ = &frame;
+  try {
+    for (std::size_t i = 0; i < servers_.size(); ++i) {
+      if (servers_[i].link->ready()) joinFrame(i);
+    }
+    while (!frame.dispatcher.done()) {
+      if (sceneError_) throw InputError(*sceneError_);
+      throwIfHopeless();
+      step();
+    }
+  } catch (...) {
+    for (Server& s : servers_) s.link->cancel(frame.id, {});
+    frame_ = nullptr;
+    throw;
+  }
+  frame.dispatcher.finish(nowMs());
+  finishReport(frame);
+  frame_ = nullptr;
+}
+
+void DistributedTileService::step() {
+  Frame& f = *frame_;
+  for (const TileDispatcher::Assignment& a : f.dispatcher.assign(nowMs())) {
+    servers_[a.server].link->request(f.id, static_cast<std::uint32_t>(a.tile), f.jobs[f.sent[a.tile]]);
+  }
+  if (io_.stopped()) io_.restart();
+  io_.run_one_for(kStep);
+  io_.poll();
+  for (const std::size_t s : f.dispatcher.stalled(nowMs())) {
+    servers_[s].link->fail(LinkFailure::Kind::kStalled,
+                           "stalled: delivered nothing for " + std::to_string(settings_.stallTimeout.count()) +
+                               " ms with tiles outstanding (--stall-timeout)");
+  }
+}
+
+void DistributedTileService::startReport(Frame& frame) {
+  report_ = {};
+  report_.rects.reserve(frame.jobs.size());
+  for (const TileJob& job : frame.jobs) report_.rects.push_back(job.rect);
+  report_.deliveredBy.assign(frame.jobs.size(), -1);
+  for (Server& s : servers_) {
+    s.report = {s.address.name, s.report.state, s.report.why, 0, 0, {}, 0.0, 0.0, 0, 0};
+    frame.bytesIn.push_back(s.link->bytesReceived());
+    frame.bytesOut.push_back(s.link->bytesSent());
+  }
+}
+
+void DistributedTileService::finishReport(const Frame& frame) {
+  report_.reissuedTiles = frame.dispatcher.reissued();
+  report_.duplicatedTiles = frame.dispatcher.duplicated();
+  report_.reissued.resize(frame.jobs.size(), false);
+  for (std::size_t t = 0; t < frame.sent.size(); ++t) report_.reissued[frame.sent[t]] = frame.dispatcher.wasReissued(t);
+  for (std::size_t i = 0; i < servers_.size(); ++i) {
+    Server& s = servers_[i];
+    if (!s.link->ready() && !s.link->failed()) {
+      s.report.state = ServerState::kUnreachable;
+      s.report.why = "not ready yet (connecting, or receiving and building the scene)";
+    }
+    s.report.rttMs = std::max(0.0, paces_[i].rttMs);
+    s.report.bytesIn = s.link->bytesReceived() - std::min(s.link->bytesReceived(), frame.bytesIn[i]);
+    s.report.bytesOut = s.link->bytesSent() - std::min(s.link->bytesSent(), frame.bytesOut[i]);
+    report_.servers.push_back(s.report);
+  }
+}
+
+}  // namespace glint

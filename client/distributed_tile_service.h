@@ -1,0 +1,97 @@
+#pragma once
+
+#include <chrono>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <asio.hpp>
+
+#include "client/distribution_report.h"
+#include "client/server_link.h"
+#include "client/server_list.h"
+#include "client/tile_dispatcher.h"
+#include "common/tile_service.h"
+#include "proto/scene_bundle.h"
+
+namespace glint {
+
+struct DistributedSettings {
+  std::chrono::milliseconds stallTimeout{2000};  // --stall-timeout
+  LinkTimeouts timeouts;
+};
+
+// The tile interface over one or many glintd: each server gets the scene by
+// hash (all at once), and each frame's tiles flow to the servers that are
+// ready, as the TileDispatcher decides. A server lost during a frame has its
+// tiles reissued to the others, so the frame comes out byte-identical; it is
+// tried again on later frames, with backoff. All sockets run on one Asio
+// io_context, driven by the thread that calls render(), which is also the
+// thread that calls `done`.
+class DistributedTileService : public TileService, private LinkListener {
+ public:
+  // Connects to every server at once and returns when one is ready to
+  // serve. Throws InputError when none can: one line per server saying why,
+  // or the scene's error (the same on every server).
+  DistributedTileService(std::vector<ServerAddress> servers, const proto::SceneBundle& bundle,
+                         const DistributedSettings& settings = {});
+  ~DistributedTileService() override;
+
+  void render(const FrameSettings& frame, std::span<const TileJob> jobs,
+              const std::function<void(std::size_t, TileOutput&&)>& done) override;
+  int parallelism() const override;
+
+  const DistributionReport& lastFrame() const { return report_; }
+  std::size_t serversUp() const;
+  std::size_t serverCount() const { return servers_.size(); }
+  // Sent the scene to at least one server (it did not hold it).
+  bool uploaded() const;
+
+ private:
+  struct Server {
+    ServerAddress address;
+    std::shared_ptr<ServerLink> link;
+    bool everReady = false;  // in this link's life
+    int failures = 0;        // in a row, for the retry backoff
+    std::chrono::steady_clock::time_point retryAt;
+    ServerReport report;     // this frame's
+  };
+  struct Frame;  // the frame being rendered
+
+  // LinkListener
+  void linkReady(ServerLink& link) override;
+  void linkResult(ServerLink& link, std::uint32_t frameId, std::uint32_t tileId, TileOutput&& out) override;
+  void linkFailed(ServerLink& link, const LinkFailure& failure) override;
+
+  void connect(std::size_t index);
+  void retryLost();
+  void joinFrame(std::size_t index);
+  // Runs the I/O context for a moment, then loses stalled servers and sends
+  // what the dispatcher assigns.
+  void step();
+  bool anyConnecting() const;
+  void throwIfHopeless() const;
+  std::vector<double> tileCosts(std::span<const TileJob> jobs, const std::vector<std::size_t>& sent) const;
+  void startReport(Frame& frame);
+  void finishReport(const Frame& frame);
+  double nowMs() const;
+
+  asio::io_context io_;
+  std::vector<Server> servers_;
+  std::vector<ServerPace> paces_;
+  const proto::SceneBundle& bundle_;
+  proto::SceneHash hash_;
+  DistributedSettings settings_;
+  std::chrono::steady_clock::time_point epoch_ = std::chrono::steady_clock::now();
+  std::uint32_t frameId_ = 0;
+  Frame* frame_ = nullptr;
+  std::optional<std::string> sceneError_;
+  // The last frame's estimate and measured tracing time per tile (x, y, w,
+  // h, masked pixels), to refine the next frame's costs.
+  std::map<std::array<int, 5>, std::pair<double, double>> measured_;
+  DistributionReport report_;
+};
+
+}  // namespace glint

@@ -1,0 +1,54 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "common/enum_words.h"
+#include "common/ray_stats.h"
+#include "common/tile.h"
+
+namespace glint {
+
+// How a server fared in a frame.
+enum class ServerState {
+  kOk,           // served the frame (or was ready to)
+  kLost,         // was serving, and closed, failed or stalled
+  kUnreachable,  // never became ready: no connection, refused, another build
+};
+
+template <>
+struct EnumWords<ServerState> {
+  static constexpr std::array<std::pair<ServerState, std::string_view>, 3> kWords{
+      {{ServerState::kOk, "ok"}, {ServerState::kLost, "lost"}, {ServerState::kUnreachable, "unreachable"}}};
+};
+
+// One server's part in a frame (the --stats "servers" objects, docs/stats.md).
+struct ServerReport {
+  std::string address;
+  ServerState state = ServerState::kOk;
+  std::string why;  // what went wrong, when it did
+  std::size_t tiles = 0;         // results the frame took from it
+  std::size_t maskedPixels = 0;  // in those tiles
+  RayStats rays;
+  double busyMs = 0.0;  // its threads' tracing time for those tiles
+  double rttMs = 0.0;   // smallest round trip seen beyond tracing time
+  std::uint64_t bytesIn = 0;   // received from it during the frame
+  std::uint64_t bytesOut = 0;  // sent to it during the frame
+};
+
+// Who did what in the last frame: per server, and per tile (for the
+// provenance image, client/provenance).
+struct DistributionReport {
+  std::vector<ServerReport> servers;
+  std::size_t reissuedTiles = 0;    // taken again from a lost server
+  std::size_t duplicatedTiles = 0;  // copies of the last bucket sent to an idle server
+  std::vector<TileRect> rects;      // the frame's tiles
+  std::vector<int> deliveredBy;     // per tile: the server's index, -1 when nothing was traced
+  std::vector<bool> reissued;       // per tile
+};
+
+}  // namespace glint

@@ -1,0 +1,250 @@
+#include "client/server_link.h"
+
+#include <algorithm>
+
+#include "common/build_identity.h"
+#include "proto/messages.h"
+
+namespace glint {
+namespace {
+
+constexpr std::size_t kReadChunkBytes = 64 * 1024;
+constexpr std::uint32_t kMaxThreadsBelieved = 4096;  // sizes the dispatcher's window, nothing more
+// A server forgets all but its last 16 frames (server/session.cpp); results
+// of older frames are no longer expected.
+constexpr std::uint32_t kFramesRemembered = 16;
+
+std::uint64_t key(std::uint32_t frameId, std::uint32_t tileId) { return std::uint64_t{frameId} << 32 | tileId; }
+
+std::size_t pixelBytes(const TileJob& job) {
+  return 3 * (job.mask.empty() ? job.rect.pixelCount() : countMasked(job.rect, job.mask));
+}
+
+}  // namespace
+
+ServerLink::ServerLink(asio::io_context& io, std::size_t index, std::string name,
+                       const asio::ip::tcp::endpoint& endpoint, const proto::SceneBundle& bundle,
+                       const proto::SceneHash& hash, const LinkTimeouts& timeouts)
+    : socket_(io),
+      timer_(io),
+      index_(index),
+      name_(std::move(name)),
+      endpoint_(endpoint),
+      bundle_(bundle),
+      hash_(hash),
+      timeouts_(timeouts) {}
+
+void ServerLink::start(LinkListener& listener) {
+  listener_ = &listener;
+  armTimer(timeouts_.connect, "connecting");
+  socket_.async_connect(endpoint_, [self = shared_from_this()](const asio::error_code& e) { self->onConnected(e); });
+}
+
+void ServerLink::detach() {
+  listener_ = nullptr;
+  if (state_ != State::kFailed && state_ != State::kClosed) fail(LinkFailure::Kind::kClosed, "dropped by the client");
+}
+
+void ServerLink::armTimer(std::chrono::milliseconds timeout, const char* waitingFor) {
+  timer_.expires_after(timeout);
+  timer_.async_wait([self = shared_from_this(), waitingFor, timeout](const asio::error_code& e) {
+    if (e) return;  // cancelled: the awaited answer came
+    self->fail(LinkFailure::Kind::kUnreachable,
+               std::string("no answer within ") + std::to_string(timeout.count() / 1000) + " s (" + waitingFor + ")");
+  });
+}
+
+void ServerLink::onConnected(const asio::error_code& error) {
+  if (state_ != State::kConnecting) return;
+  if (error) {
+    fail(LinkFailure::Kind::kUnreachable, "cannot connect (" + error.message() + "); is glintd running there?");
+    return;
+  }
+  asio::error_code ignored;
+  socket_.set_option(asio::ip::tcp::no_delay(true), ignored);
+  state_ = State::kHello;
+  armTimer(timeouts_.connect, "Hello");
+  write(proto::encodeHello(static_cast<std::uint32_t>(maxMessageBytes_), 0, "glint 0.1"));
+  readMore();
+}
+
+void ServerLink::fail(LinkFailure::Kind kind, const std::string& what) {
+  if (state_ == State::kFailed || state_ == State::kClosed) return;
+  state_ = State::kFailed;
+  asio::error_code ignored;
+  timer_.cancel();
+  socket_.close(ignored);
+  if (listener_) listener_->linkFailed(*this, {kind, what});
+}
+
+void ServerLink::close() {
+  if (state_ == State::kFailed || state_ == State::kClosed) return;
+  listener_ = nullptr;
+  write(proto::encodeGoodbye());
+  state_ = State::kClosed;
+  timer_.cancel();
+}
+
+void ServerLink::write(std::vector<std::uint8_t> frame) {
+  writes_.push_back(std::move(frame));
+  if (inFlight_ == 0) writeNext();
+}
+
+// One write in flight, gathering every message queued meanwhile.
+void ServerLink::writeNext() {
+  if (writes_.empty() || !socket_.is_open()) return;
+  inFlight_ = writes_.size();
+  std::vector<asio::const_buffer> buffers;
+  for (const auto& frame : writes_) buffers.push_back(asio::buffer(frame));
+  asio::async_write(socket_, buffers, [self = shared_from_this()](const asio::error_code& error, std::size_t n) {
+    self->sent_ += n;
+    for (std::size_t i = 0; i < self->inFlight_; ++i) self->writes_.pop_front();
+    self->inFlight_ = 0;
+    if (self->state_ == State::kClosed) {
+      if (self->writes_.empty()) {
+        asio::error_code ignored;
+        self->socket_.close(ignored);
+      }
+    } else if (error) {
+      self->fail(LinkFailure::Kind::kClosed, "sending failed (" + error.message() + ")");
+      return;
+    }
+    self->writeNext();
+  });
+}
+
+void ServerLink::readMore() {
+  const std::size_t had = buffer_.size();
+  buffer_.resize(had + kReadChunkBytes);
+  socket_.async_read_some(asio::buffer(buffer_.data() + had, kReadChunkBytes),
+                          [self = shared_from_this(), had](const asio::error_code& error, std::size_t n) {
+                            self->buffer_.resize(had + n);
+                            self->onRead(error, n);
+                          });
+}
+
+// Decodes every whole message that arrived, in order; keeps a partial one.
+void ServerLink::onRead(const asio::error_code& error, std::size_t n) {
+  if (state_ == State::kFailed || state_ == State::kClosed) return;
+  if (error) {
+    fail(LinkFailure::Kind::kClosed,
+         error == asio::error::eof ? "closed the connection" : "connection lost (" + error.message() + ")");
+    return;
+  }
+  received_ += n;
+  std::size_t consumed = 0;
+  while (state_ != State::kFailed) {
+    const std::span<const std::uint8_t> unread(buffer_.data() + consumed, buffer_.size() - consumed);
+    const proto::Decoded d = proto::decodeFrame(unread, proto::kDefaultMaxMessageBytes, aligned_);
+    if (d.status == proto::DecodeStatus::kNeedMore) break;
+    if (d.status == proto::DecodeStatus::kBad) {
+      fail(LinkFailure::Kind::kBadBytes, "sent a bad message: " + d.error);
+      return;
+    }
+    consumed += d.consumed;
+    onMessage(*d.message);
+  }
+  if (state_ == State::kFailed) return;
+  buffer_.erase(buffer_.begin(), buffer_.begin() + static_cast<std::ptrdiff_t>(consumed));
+  readMore();
+}
+
+void ServerLink::onMessage(const wire::Message& m) {
+  if (const auto* e = m.body_as_Error()) return onError(*e);
+  if (state_ == State::kHello && m.body_type() == wire::Body::Hello) return onHello(*m.body_as_Hello());
+  if (state_ == State::kQuery && m.body_type() == wire::Body::SceneStatus) {
+    return onSceneStatus(*m.body_as_SceneStatus());
+  }
+  if (state_ == State::kUpload && m.body_type() == wire::Body::SceneReady) return becomeReady();
+  if (state_ == State::kReady && m.body_type() == wire::Body::TileResult) return onResult(*m.body_as_TileResult());
+  fail(LinkFailure::Kind::kBadBytes, std::string("sent an unexpected ") + proto::bodyName(m.body_type()) + " message");
+}
+
+void ServerLink::onHello(const wire::Hello& hello) {
+  const std::string build = hello.build() ? hello.build()->str() : "(none)";
+  if (build != buildIdentity()) {
+    fail(LinkFailure::Kind::kRefused, "its pixels would differ from this client's (server build '" + build +
+                                          "', client build '" + buildIdentity() +
+                                          "'); run glint and glintd from the same build");
+    return;
+  }
+  maxMessageBytes_ = std::min<std::size_t>(maxMessageBytes_, hello.max_message_bytes());
+  threads_ = static_cast<int>(std::clamp<std::uint32_t>(hello.threads(), 1, kMaxThreadsBelieved));
+  state_ = State::kQuery;
+  write(proto::encodeSceneQuery(hash_));
+}
+
+void ServerLink::onSceneStatus(const wire::SceneStatus& status) {
+  if (status.present()) return becomeReady();
+  std::vector<std::uint8_t> upload = proto::encodeSceneUpload(hash_, bundle_);
+  if (upload.size() - proto::kHeaderBytes > maxMessageBytes_) {
+    fail(LinkFailure::Kind::kRefused, "the scene and its files (" + std::to_string(upload.size()) +
+                                          " bytes) are over the server's limit of " + std::to_string(maxMessageBytes_) +
+                                          " bytes; start glintd with a larger --max-message-mb");
+    return;
+  }
+  state_ = State::kUpload;
+  uploaded_ = true;
+  armTimer(timeouts_.scene, "scene upload and build");
+  write(std::move(upload));
+}
+
+void ServerLink::becomeReady() {
+  state_ = State::kReady;
+  timer_.cancel();
+  if (listener_) listener_->linkReady(*this);
+}
+
+void ServerLink::onError(const wire::Error& error) {
+  const std::string text = std::string(wire::EnumNameErrorCode(error.code())) + ": " +
+                           (error.message() ? error.message()->str() : "");
+  switch (error.code()) {
+    case wire::ErrorCode::BadScene:
+      return fail(LinkFailure::Kind::kSceneError, text);
+    case wire::ErrorCode::Busy:
+    case wire::ErrorCode::Version:
+    case wire::ErrorCode::ShuttingDown:
+      return fail(state_ == State::kReady ? LinkFailure::Kind::kServerError : LinkFailure::Kind::kRefused, text);
+    default:
+      return fail(LinkFailure::Kind::kServerError, text);
+  }
+}
+
+void ServerLink::setupFrame(std::uint32_t frameId, const FrameSettings& frame) {
+  if (frameId > kFramesRemembered) std::erase_if(pending_, [&](const auto& p) { return p.first >> 32 <= frameId - kFramesRemembered; });
+  write(proto::encodeFrameSetup(frameId, hash_, frame));
+}
+
+void ServerLink::request(std::uint32_t frameId, std::uint32_t tileId, const TileJob& job) {
+  pending_[key(frameId, tileId)] = pixelBytes(job);
+  write(proto::encodeTileRequest(frameId, tileId, job.rect, job.mask));
+}
+
+void ServerLink::cancel(std::uint32_t frameId, std::span<const std::uint32_t> tileIds) {
+  if (state_ == State::kReady) write(proto::encodeCancel(frameId, tileIds));
+}
+
+// A result must answer a request of this link (a cancelled one may still
+// come) with one RGB triple per masked pixel.
+void ServerLink::onResult(const wire::TileResult& result) {
+  const auto it = pending_.find(key(result.frame_id(), result.tile_id()));
+  const std::string tile = "tile " + std::to_string(result.tile_id()) + " of frame " + std::to_string(result.frame_id());
+  if (it == pending_.end()) {
+    fail(LinkFailure::Kind::kBadBytes, "sent " + tile + ", which was not asked of it (or came twice)");
+    return;
+  }
+  const std::size_t rgbBytes = result.rgb() ? result.rgb()->size() : 0;
+  if (rgbBytes != it->second) {
+    fail(LinkFailure::Kind::kBadBytes, "sent " + tile + " with " + std::to_string(rgbBytes) +
+                                           " bytes of pixels, not " + std::to_string(it->second));
+    return;
+  }
+  pending_.erase(it);
+  TileOutput out;
+  if (result.rgb()) out.rgb.assign(result.rgb()->begin(), result.rgb()->end());
+  out.rays = proto::decodeRays(result.rays());
+  out.computeMs = result.compute_us() / 1000.0;
+  if (listener_) listener_->linkResult(*this, result.frame_id(), result.tile_id(), std::move(out));
+}
+
+}  // namespace glint

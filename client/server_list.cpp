@@ -1,0 +1,65 @@
+#include "client/server_list.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include <asio.hpp>
+
+#include "common/error.h"
+
+namespace glint {
+namespace {
+
+// "HOST:PORT", "[V6]:PORT" -> host and port, or InputError.
+std::pair<std::string, std::string> splitHostPort(const std::string& value) {
+  const auto colon = value.rfind(':');
+  const std::string port = colon == std::string::npos ? "" : value.substr(colon + 1);
+  std::string host = colon == std::string::npos ? "" : value.substr(0, colon);
+  if (host.size() >= 2 && host.front() == '[' && host.back() == ']') host = host.substr(1, host.size() - 2);
+  const bool digits = !port.empty() && port.size() <= 5 && std::all_of(port.begin(), port.end(), ::isdigit);
+  if (host.empty() || !digits || std::stoi(port) > 65535) {
+    throw InputError("--server " + value + ": expected HOST:PORT, e.g. 127.0.0.1:7878 (several: A:P,B:P)");
+  }
+  return {host, port};
+}
+
+// The addresses of one HOST:PORT: its IPv4 addresses where it has any (so
+// that "localhost" is one server, not also a ::1 that glintd may not listen
+// on), else its IPv6 ones.
+std::vector<ServerAddress> resolveOne(asio::ip::tcp::resolver& resolver, const std::string& value) {
+  const auto [host, port] = splitHostPort(value);
+  asio::error_code error;
+  auto results = resolver.resolve(asio::ip::tcp::v4(), host, port, error);
+  if (error) results = resolver.resolve(host, port, error);
+  if (error) throw InputError("--server " + value + ": cannot resolve '" + host + "' (" + error.message() + ")");
+  std::vector<ServerAddress> out;
+  for (const auto& entry : results) out.push_back({value, entry.endpoint()});
+  if (out.size() > 1) {
+    for (ServerAddress& a : out) a.name = value + " (" + a.endpoint.address().to_string() + ")";
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<ServerAddress> resolveServers(const std::vector<std::string>& values) {
+  asio::io_context io;
+  asio::ip::tcp::resolver resolver(io);
+  std::vector<ServerAddress> servers;
+  for (const std::string& value : values) {
+    std::stringstream list(value);
+    std::string item;
+    while (std::getline(list, item, ',')) {
+      if (item.empty()) continue;
+      for (ServerAddress& a : resolveOne(resolver, item)) {
+        const bool seen = std::any_of(servers.begin(), servers.end(),
+                                      [&a](const ServerAddress& s) { return s.endpoint == a.endpoint; });
+        if (!seen) servers.push_back(std::move(a));
+      }
+    }
+  }
+  if (servers.empty()) throw InputError("--server: no address given");
+  return servers;
+}
+
+}  // namespace glint
