@@ -55,6 +55,14 @@ DistributedTileService::~DistributedTileService() {
   io_.run_for(kGoodbyeGrace);
 }
 
+void DistributedTileService::awaitServers(std::chrono::milliseconds limit) {
+  const auto deadline = std::chrono::steady_clock::now() + limit;
+  while (anyConnecting() && std::chrono::steady_clock::now() < deadline) {
+    if (io_.stopped()) io_.restart();
+    io_.run_one_until(deadline);
+  }
+}
+
 double DistributedTileService::nowMs() const {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - epoch_).count();
 }

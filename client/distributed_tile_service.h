@@ -43,6 +43,10 @@ class DistributedTileService : public TileService, private LinkListener {
               const std::function<void(std::size_t, TileOutput&&)>& done) override;
   int parallelism() const override;
 
+  // Waits until no server is still connecting or receiving the scene, or
+  // `limit` passes (render does not: a frame starts on the servers ready).
+  void awaitServers(std::chrono::milliseconds limit);
+
   const DistributionReport& lastFrame() const { return report_; }
   std::size_t serversUp() const;
   std::size_t serverCount() const { return servers_.size(); }

@@ -270,6 +270,39 @@ TEST_F(BadInputTest, ProtocolErrorsKeepTheConnection) {
   stillServes("bad messages");
 }
 
+// Cancel drops the frame's queued tiles: of 200 requested at once, only
+// those already being traced come back, and the connection serves the
+// next request (the results of the traced ones are not held back waiting
+// for tiles that will never run).
+TEST_F(ServerTest, CancelDropsQueuedTiles) {
+  TestServer server;
+  const RoomFrame r = smallRoom();
+  const proto::SceneHash hash = r.loaded.bundle.hash();
+  RawClient c(server.port());
+  ASSERT_TRUE(c.hello());
+  c.write(proto::encodeSceneUpload(hash, r.loaded.bundle));
+  ASSERT_TRUE(c.read());  // SceneReady
+  c.write(proto::encodeFrameSetup(1, hash, r.frame));
+  std::vector<std::uint8_t> batch;
+  constexpr std::uint32_t kTiles = 200;
+  for (std::uint32_t t = 0; t < kTiles; ++t) {
+    const auto request = proto::encodeTileRequest(1, t, {0, 0, r.frame.width, r.frame.height}, {});
+    batch.insert(batch.end(), request.begin(), request.end());
+  }
+  const auto cancel = proto::encodeCancel(1, {});
+  batch.insert(batch.end(), cancel.begin(), cancel.end());
+  c.write(batch);
+  c.write(proto::encodeTileRequest(1, 1000, {0, 0, 8, 8}, {}));
+  std::uint32_t traced = 0;
+  while (true) {
+    const wire::Message* m = c.read();
+    ASSERT_TRUE(m && m->body_as_TileResult()) << "no result for the request after the cancel";
+    if (m->body_as_TileResult()->tile_id() == 1000) break;
+    ++traced;
+  }
+  EXPECT_LT(traced, kTiles / 2);
+}
+
 // A client that asks for many tiles and never reads the results is dropped
 // once its unread results pass the limit; others are served meanwhile.
 TEST_F(ServerTest, ClientThatStopsReadingIsDropped) {

@@ -1,0 +1,193 @@
+// One frame over several real glintd processes on loopback: byte-identical to
+// the in-process frame whatever happens to the servers (killed mid-frame,
+// stopped, speaking garbage, unreachable), with the stats naming who was
+// lost and which tiles were re-issued.
+#include <signal.h>
+
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "client/distributed_tile_service.h"
+#include "client/hybrid_frame.h"
+#include "client/offscreen_context.h"
+#include "client/raster_scene.h"
+#include "client/render_command.h"
+#include "common/error.h"
+#include "common/frame.h"
+#include "proto/messages.h"
+#include "tests/common/test_support.h"
+#include "tests/proto/loopback_peer.h"
+#include "tests/server/glintd_process.h"
+
+namespace glint {
+namespace {
+
+using server::test::GlintdProcess;
+
+struct Room {
+  proto::LoadedBundle loaded = proto::loadSceneBundle(test::sourcePath("scenes/room.json"));
+  FrameSettings frame = [this] {
+    FrameSettings f = loaded.scene.frame;
+    f.width = 160;
+    f.height = 120;
+    return f;
+  }();
+};
+
+FrameOptions smallTiles() {
+  FrameOptions o;
+  o.tileSize = 8;  // 300 tiles: every server holds some when one is lost
+  return o;
+}
+
+FrameImage inProcess(const Room& room) {
+  const PreparedScene prepared(room.loaded.scene, BvhSettings{});
+  ThreadPool pool(2);
+  LocalTileService service(prepared, pool);
+  return renderFrame(service, room.frame, smallTiles()).image;
+}
+
+// Three single-threaded glintd, started in the constructor.
+struct Farm {
+  GlintdProcess a{{"--threads", "1"}}, b{{"--threads", "1"}}, c{{"--threads", "1"}};
+  std::vector<std::string> addresses() const { return {a.address(), b.address(), c.address()}; }
+};
+
+DistributedSettings stallAfter(std::chrono::milliseconds ms) {
+  DistributedSettings s;
+  s.stallTimeout = ms;
+  return s;
+}
+
+TEST(ManyServers, ThreeServersGiveTheInProcessFrameAndAllTakePart) {
+  const Room room;
+  Farm farm;
+  DistributedTileService service(resolveServers(farm.addresses()), room.loaded.bundle);
+  service.awaitServers(std::chrono::seconds(10));
+  EXPECT_EQ(renderFrame(service, room.frame, smallTiles()).image.rgb, inProcess(room).rgb);
+  for (const ServerReport& s : service.lastFrame().servers) {
+    EXPECT_EQ(s.state, ServerState::kOk) << s.address;
+    EXPECT_GT(s.tiles, 0u) << s.address;
+  }
+  // The hybrid frame (--mask auto) too.
+  const PreparedScene prepared(room.loaded.scene, BvhSettings{});
+  ThreadPool pool(2);
+  LocalTileService local(prepared, pool);
+  gl::OffscreenContext context(room.frame.width, room.frame.height);
+  gl::RasterScene raster(context.api(), prepared.scene());
+  HybridResult here, there;
+  renderHybrid(context.api(), raster, local, room.frame, prepared.scene().mask, 16, here);
+  renderHybrid(context.api(), raster, service, room.frame, prepared.scene().mask, 16, there);
+  EXPECT_GT(here.maskedPixels, 1000u);
+  EXPECT_EQ(there.image.rgb, here.image.rgb);
+}
+
+// Server a is stopped before the frame, so that it holds the tiles it is
+// given, and killed once the frame is under way: its connection closes with
+// tiles outstanding, which the others take.
+TEST(ManyServers, AServerKilledMidFrameIsReplacedByTheOthers) {
+  const Room room;
+  const FrameImage expected = inProcess(room);
+  Farm farm;
+  DistributedTileService service(resolveServers(farm.addresses()), room.loaded.bundle);
+  service.awaitServers(std::chrono::seconds(10));
+  ::kill(farm.a.pid(), SIGSTOP);
+  FrameOptions options = smallTiles();
+  options.progress = [&farm](int done, int) {
+    if (done == 5) ::kill(farm.a.pid(), SIGKILL);
+  };
+  EXPECT_EQ(renderFrame(service, room.frame, options).image.rgb, expected.rgb);
+  const DistributionReport& report = service.lastFrame();
+  EXPECT_EQ(report.servers[0].state, ServerState::kLost);
+  EXPECT_NE(report.servers[0].why.find("connection"), std::string::npos) << report.servers[0].why;
+  EXPECT_GT(report.reissuedTiles, 0u);
+  EXPECT_EQ(report.servers[0].tiles, 0u);
+  // The next frame goes on without it (its retry fails: nothing listens).
+  EXPECT_EQ(renderFrame(service, room.frame, smallTiles()).image.rgb, expected.rgb);
+  EXPECT_EQ(service.lastFrame().servers[0].tiles, 0u);
+}
+
+// A stopped server holds its tiles without a word; once the stall timeout
+// passes (the frame is long enough: 4800 tiles) they go to the others.
+TEST(ManyServers, AStoppedServerStallsAndItsTilesGoElsewhere) {
+  Room room;
+  room.frame.width = 640;
+  room.frame.height = 480;
+  Farm farm;
+  DistributedTileService service(resolveServers(farm.addresses()), room.loaded.bundle,
+                                 stallAfter(std::chrono::milliseconds(60)));
+  service.awaitServers(std::chrono::seconds(10));
+  ::kill(farm.b.pid(), SIGSTOP);
+  const FrameImage image = renderFrame(service, room.frame, smallTiles()).image;
+  ::kill(farm.b.pid(), SIGCONT);
+  EXPECT_EQ(image.rgb, inProcess(room).rgb);
+  const ServerReport& stopped = service.lastFrame().servers[1];
+  EXPECT_EQ(stopped.state, ServerState::kLost);
+  EXPECT_NE(stopped.why.find("stalled"), std::string::npos) << stopped.why;
+  EXPECT_GT(service.lastFrame().reissuedTiles, 0u);
+}
+
+// A peer that greets properly, claims the scene, and answers its first tile
+// request with bytes that are no Glint message.
+proto::test::Peer garbageServer() {
+  return proto::test::Peer([](asio::ip::tcp::socket& socket) {
+    const auto send = [&socket](const std::vector<std::uint8_t>& bytes) {
+      asio::error_code ignored;
+      asio::write(socket, asio::buffer(bytes), ignored);
+    };
+    proto::test::readFrame(socket);  // Hello
+    send(proto::encodeHello(1 << 20, 1, "garbage"));
+    proto::test::readFrame(socket);  // SceneQuery
+    const Room room;
+    send(proto::encodeSceneStatus(room.loaded.bundle.hash(), true));
+    proto::test::readFrame(socket);  // FrameSetup
+    proto::test::readFrame(socket);  // a TileRequest
+    send({13, 0, 0, 0, 'n', 'o', 't', ' ', 'a', ' ', 'm', 'e', 's', 's', 'a', 'g', 'e'});
+    while (!proto::test::readFrame(socket).empty()) {
+    }
+  });
+}
+
+TEST(ManyServers, GarbageAndAnUnreachableAddressAmongGoodServers) {
+  const Room room;
+  GlintdProcess good({"--threads", "1"});
+  proto::test::Peer garbage = garbageServer();
+  const std::string garbageAddress = "127.0.0.1:" + std::to_string(garbage.endpoint().port());
+  DistributedTileService service(resolveServers({good.address() + "," + garbageAddress, "127.0.0.1:1"}),
+                                 room.loaded.bundle);
+  service.awaitServers(std::chrono::seconds(10));
+  EXPECT_EQ(renderFrame(service, room.frame, smallTiles()).image.rgb, inProcess(room).rgb);
+  const DistributionReport& report = service.lastFrame();
+  ASSERT_EQ(report.servers.size(), 3u);
+  EXPECT_EQ(report.servers[0].state, ServerState::kOk);
+  EXPECT_EQ(report.servers[1].state, ServerState::kLost);
+  EXPECT_NE(report.servers[1].why.find("bad message"), std::string::npos) << report.servers[1].why;
+  EXPECT_EQ(report.servers[2].state, ServerState::kUnreachable);
+  EXPECT_NE(report.servers[2].why.find("cannot connect"), std::string::npos) << report.servers[2].why;
+}
+
+// No server at all: the error names each one and why, and no file is written.
+TEST(ManyServers, EveryServerUnreachableWritesNothing) {
+  const std::string out = (std::filesystem::temp_directory_path() / "glint-no-servers.png").string();
+  std::filesystem::remove(out);
+  RenderOptions options;
+  options.scene = test::sourcePath("scenes/room.json");
+  options.output = out;
+  options.mask = MaskRule::kAll;
+  options.servers = {"127.0.0.1:1,127.0.0.1:2", "127.0.0.1:1"};
+  options.quiet = true;
+  try {
+    runRender(options);
+    FAIL() << "rendered without a server";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("server 127.0.0.1:1: unreachable, cannot connect"), std::string::npos) << what;
+    EXPECT_NE(what.find("server 127.0.0.1:2: unreachable, cannot connect"), std::string::npos) << what;
+    EXPECT_EQ(what.find("127.0.0.1:1", what.find("127.0.0.1:2")), std::string::npos) << "merged: " << what;
+  }
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+}  // namespace
+}  // namespace glint
