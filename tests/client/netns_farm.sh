@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# Several hosts on one machine: four network namespaces (a client and three
+# servers) joined by veth pairs on 198.18.0.0/24 (the range set aside for
+# network benchmarks), every link limited to 1 Gbit/s with tc tbf. A glintd
+# runs in each server namespace; the client renders the thesis's scene 1
+# through all three while one glintd is killed, and every frame must equal the
+# in-process frame byte for byte. Traffic stays inside the namespaces.
+# Usage: netns_farm.sh GLINT GLINTD SCENES_DIR
+# Exit 77 (CTest: skipped) where network namespaces cannot be made.
+set -euo pipefail
+glint=$1
+glintd=$2
+scenes=$3
+
+skip() { echo "netns_farm: skipped: $*"; exit 77; }
+[ "$(id -u)" -eq 0 ] || skip "needs root to create network namespaces"
+command -v ip > /dev/null || skip "the ip command (iproute2) is not installed"
+command -v tc > /dev/null || skip "the tc command (iproute2) is not installed"
+
+tag="glint$$"
+client="$tag-c"
+work=$(mktemp -d)
+pids=()
+cleanup() {
+  for pid in "${pids[@]}"; do kill -9 "$pid" 2>/dev/null || true; done
+  wait 2>/dev/null || true
+  for ns in "$client" "$tag-s0" "$tag-s1" "$tag-s2"; do ip netns del "$ns" 2>/dev/null || true; done
+  rm -rf "$work"
+}
+trap cleanup EXIT
+ip netns add "$client" 2> /dev/null || skip "ip netns add failed (no permission or no kernel support)"
+ip -n "$client" link set lo up
+
+# Server i sits at 198.18.0.(4i+2), the client's end of its link at .(4i+1).
+addresses=()
+for i in 0 1 2; do
+  ns="$tag-s$i"
+  ip netns add "$ns"
+  ip -n "$ns" link set lo up
+  ip link add "c$i" netns "$client" type veth peer name eth0 netns "$ns"
+  ip -n "$client" addr add "198.18.0.$((4 * i + 1))/30" dev "c$i"
+  ip -n "$ns" addr add "198.18.0.$((4 * i + 2))/30" dev eth0
+  ip -n "$client" link set "c$i" up
+  ip -n "$ns" link set eth0 up
+  ip netns exec "$client" tc qdisc add dev "c$i" root tbf rate 1gbit burst 256kb latency 10ms
+  ip netns exec "$ns" tc qdisc add dev eth0 root tbf rate 1gbit burst 256kb latency 10ms
+  address="198.18.0.$((4 * i + 2)):7878"
+  ip netns exec "$ns" "$glintd" --listen "$address" --threads 1 --quiet > "$work/glintd$i.log" 2>&1 &
+  pids+=($!)
+  addresses+=("$address")
+done
+for i in 0 1 2; do
+  for _ in $(seq 1 100); do
+    grep -q "listening on" "$work/glintd$i.log" && break
+    sleep 0.05
+  done
+  grep -q "listening on" "$work/glintd$i.log" || { cat "$work/glintd$i.log"; echo "glintd $i did not start" >&2; exit 1; }
+done
+
+scene="$scenes/room.json"
+frames=6
+"$glint" render "$scene" -o "$work/reference.png" --quiet
+# One glintd is killed while the client renders its frames.
+(sleep 0.4; kill -9 "${pids[1]}") &
+killer=$!
+ip netns exec "$client" "$glint" render "$scene" -o "$work/farm.png" --frames "$frames" --stall-timeout 1 \
+  --server "$(IFS=,; echo "${addresses[*]}")" --stats "$work/stats.json" --provenance-out "$work/provenance.png"
+wait "$killer"
+wait "${pids[1]}" 2> /dev/null || true
+
+cmp "$work/reference.png" "$work/farm.png" || { echo "the frame through three hosts differs from in process" >&2; exit 1; }
+grep -q '"state":"lost"' "$work/stats.json" || { echo "the killed glintd is not reported lost" >&2; exit 1; }
+for i in 0 2; do
+  grep -q "\"address\":\"${addresses[$i]}\",\"busy_ms\":[^,]*,\"bytes_in\":[1-9]" "$work/stats.json" \
+    || { echo "server ${addresses[$i]} delivered nothing" >&2; exit 1; }
+done
+echo "netns_farm: $frames frames through 3 namespaced glintd on 1 Gbit links, one killed: identical to in process"
