@@ -214,7 +214,7 @@ void DistributedTileService::render(const FrameSettings& settings, std::span<con
     frame_ = nullptr;
     throw;
   }
-  frame.dispatcher.finish(nowMs());
+  frame.dispatcher.finish();
   finishReport(frame);
   frame_ = nullptr;
 }

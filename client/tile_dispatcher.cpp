@@ -28,7 +28,7 @@ void TileDispatcher::join(std::size_t server, double now) {
   Server& s = servers_[server];
   if (s.joined) return;
   s.joined = true;
-  s.joinedAt = s.lastProgress = now;
+  s.lastProgress = now;
 }
 
 std::size_t TileDispatcher::liveServers() const {
@@ -36,13 +36,10 @@ std::size_t TileDispatcher::liveServers() const {
       std::count_if(servers_.begin(), servers_.end(), [](const Server& s) { return s.joined && !s.lost; }));
 }
 
-// Throughput in cost per ms: this frame's once it has delivered, else what
-// earlier frames measured; 0 when nothing is known.
-double TileDispatcher::rate(std::size_t server, double now) const {
+double TileDispatcher::rate(std::size_t server) const {
   const Server& s = servers_[server];
-  const double elapsed = now - s.joinedAt;
-  if (s.deliveredCost > 0.0 && elapsed > 0.0) return s.deliveredCost / elapsed;
-  return paces_[server].costPerMs;
+  if (s.tracedMs <= 0.0) return paces_[server].costPerMs;
+  return std::max(1, paces_[server].threads) * s.tracedCost / s.tracedMs;
 }
 
 bool TileDispatcher::hasRoom(std::size_t server) const {
@@ -65,29 +62,35 @@ void TileDispatcher::send(std::size_t server, std::size_t tile, double now, std:
   out.push_back({server, tile});
 }
 
+// Longest processing time first: each tile, costliest first, goes to the
+// server with room that would finish its outstanding work soonest.
 std::vector<TileDispatcher::Assignment> TileDispatcher::assign(double now) {
   std::vector<Assignment> out;
-  // Fresh tiles first, handed round the servers one at a time so that each
-  // gets some of the costliest.
-  bool progress = true;
-  while (!queue_.empty() && progress) {
-    progress = false;
-    for (std::size_t s = 0; s < servers_.size() && !queue_.empty(); ++s) {
+  while (!queue_.empty()) {
+    std::size_t best = servers_.size();
+    double soonest = std::numeric_limits<double>::max();
+    for (std::size_t s = 0; s < servers_.size(); ++s) {
       if (!servers_[s].joined || servers_[s].lost || !hasRoom(s)) continue;
-      const std::size_t tile = *queue_.begin();
-      queue_.erase(queue_.begin());
-      send(s, tile, now, out);
-      progress = true;
+      const double r = rate(s);
+      const double speed = r > 0.0 ? r : std::max(1, paces_[s].threads);
+      const double finish = servers_[s].outstandingCost / speed;
+      if (finish < soonest) {
+        soonest = finish;
+        best = s;
+      }
     }
+    if (best == servers_.size()) return out;
+    const std::size_t tile = *queue_.begin();
+    queue_.erase(queue_.begin());
+    send(best, tile, now, out);
   }
-  if (!queue_.empty()) return out;
   // Nothing fresh: servers with idle threads take copies of the last bucket.
   for (std::size_t s = 0; s < servers_.size(); ++s) {
     const Server& server = servers_[s];
     if (!server.joined || server.lost) continue;
     const auto threads = static_cast<std::size_t>(std::max(1, paces_[s].threads));
     std::size_t tile = 0;
-    while (servers_[s].outstanding.size() < threads && pickDuplicate(s, now, tile)) {
+    while (servers_[s].outstanding.size() < threads && pickDuplicate(s, tile)) {
       send(s, tile, now, out);
       ++duplicated_;
     }
@@ -95,7 +98,7 @@ std::vector<TileDispatcher::Assignment> TileDispatcher::assign(double now) {
   return out;
 }
 
-bool TileDispatcher::pickDuplicate(std::size_t except, double now, std::size_t& tile) const {
+bool TileDispatcher::pickDuplicate(std::size_t except, std::size_t& tile) const {
   double latest = -1.0;
   bool found = false;
   for (std::size_t s = 0; s < servers_.size(); ++s) {
@@ -105,7 +108,7 @@ bool TileDispatcher::pickDuplicate(std::size_t except, double now, std::size_t& 
       return tiles_[sent.tile].holders.size() == 1;
     });
     if (candidate == server.outstanding.end()) continue;
-    const double r = rate(s, now);
+    const double r = rate(s);
     const double ends = r > 0.0 ? server.outstandingCost / r : std::numeric_limits<double>::max();
     if (ends > latest) {
       latest = ends;
@@ -132,6 +135,8 @@ TileDispatcher::Delivery TileDispatcher::deliver(std::size_t server, std::size_t
     const double overhead = std::max(0.0, now - sent->at - computeMs);
     ServerPace& pace = paces_[server];
     pace.rttMs = pace.rttMs < 0.0 ? overhead : std::min(pace.rttMs, overhead);
+    s.tracedCost += costs_[tile];
+    s.tracedMs += computeMs;
   }
   s.lastProgress = now;
   removeOutstanding(server, tile);
@@ -140,7 +145,6 @@ TileDispatcher::Delivery TileDispatcher::deliver(std::size_t server, std::size_t
   if (t.done) return d;
   t.done = true;
   ++delivered_;
-  s.deliveredCost += costs_[tile];
   d.first = true;
   d.cancelOn = t.holders;
   for (const std::size_t other : d.cancelOn) removeOutstanding(other, tile);
@@ -176,13 +180,12 @@ std::vector<std::size_t> TileDispatcher::stalled(double now) const {
   return out;
 }
 
-void TileDispatcher::finish(double now) {
+void TileDispatcher::finish() {
   for (std::size_t s = 0; s < servers_.size(); ++s) {
     const Server& server = servers_[s];
-    const double elapsed = now - server.joinedAt;
-    if (!server.joined || server.lost || server.deliveredCost <= 0.0 || elapsed <= 0.0) continue;
+    if (!server.joined || server.lost || server.tracedMs <= 0.0) continue;
     ServerPace& pace = paces_[s];
-    const double measured = server.deliveredCost / elapsed;
+    const double measured = rate(s);
     pace.costPerMs = pace.costPerMs > 0.0 ? kPaceWeight * measured + (1.0 - kPaceWeight) * pace.costPerMs : measured;
   }
 }

@@ -11,14 +11,14 @@ namespace glint {
 // frame. Cost is in the dispatcher's cost units (see TileDispatcher).
 struct ServerPace {
   int threads = 1;
-  double costPerMs = 0.0;  // measured throughput; 0 until the first frame it served
+  double costPerMs = 0.0;  // measured throughput, all threads; 0 until the first frame it served
   double rttMs = -1.0;     // smallest seen (latency - compute) of a tile; < 0 unknown
 };
 
 // When a server counts as stalled, and how far ahead of it to keep work.
 struct DispatchSettings {
   double stallTimeoutMs = 2000.0;  // tiles outstanding, nothing delivered for this long: lost
-  double leadMs = 25.0;            // work queued beyond one round trip, covers result batching
+  double leadMs = 10.0;            // work queued beyond one round trip (chosen in docs/distributed.md)
   int initialTilesPerThread = 2;   // window before the server's pace is known
 };
 
@@ -70,7 +70,7 @@ class TileDispatcher {
   std::size_t duplicated() const { return duplicated_; }
   bool wasReissued(std::size_t tile) const { return tiles_[tile].reissued; }
   // At the frame's end: folds this frame's measured pace into the paces.
-  void finish(double now);
+  void finish();
 
  private:
   struct Sent {
@@ -80,10 +80,10 @@ class TileDispatcher {
   struct Server {
     bool joined = false;
     bool lost = false;
-    double joinedAt = 0.0;
     double lastProgress = 0.0;  // last delivery, or when work was sent to an empty window
     double outstandingCost = 0.0;
-    double deliveredCost = 0.0;
+    double tracedCost = 0.0;  // of every result it delivered, copies that lost included
+    double tracedMs = 0.0;    // the tracing time it reported for them
     std::deque<Sent> outstanding;  // in the order sent
   };
   struct Tile {
@@ -100,10 +100,13 @@ class TileDispatcher {
   };
 
   bool hasRoom(std::size_t server) const;
-  double rate(std::size_t server, double now) const;
+  // Cost traced per ms: from this frame's results (their reported tracing
+  // time, so that time a server waited is not counted against it), else
+  // what earlier frames measured; 0 when nothing is known.
+  double rate(std::size_t server) const;
   // The server whose outstanding work ends last (other than `except`) and its
   // oldest tile with one copy; false when there is none.
-  bool pickDuplicate(std::size_t except, double now, std::size_t& tile) const;
+  bool pickDuplicate(std::size_t except, std::size_t& tile) const;
   void send(std::size_t server, std::size_t tile, double now, std::vector<Assignment>& out);
   void removeOutstanding(std::size_t server, std::size_t tile);
 

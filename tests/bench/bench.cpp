@@ -26,6 +26,7 @@
 #include "server/log.h"
 #include "server/background_server.h"
 #include "tests/bench/bench_scenes.h"
+#include "tests/bench/distributed_section.h"
 #include "tests/bench/load_section.h"
 
 namespace glint::bench {
@@ -37,7 +38,7 @@ struct Options {
   bool povray = true;
   int runs = 7;
   int tileSize = 64;
-  std::vector<std::string> sections = {"bvh", "room", "accuracy", "protocol", "hybrid", "load"};
+  std::vector<std::string> sections = {"bvh", "room", "accuracy", "protocol", "hybrid", "load", "distributed"};
   bool wants(const std::string& s) const { return std::find(sections.begin(), sections.end(), s) != sections.end(); }
 };
 
@@ -321,9 +322,9 @@ int main(int argc, char** argv) {
   bool noPovray = false;
   app.add_flag("--no-povray", noPovray, "Skip the POV-Ray comparison");
   app.add_option("--tile-size", o.tileSize, "Tile edge for the glintd comparison")->check(CLI::Range(8, 1024));
-  app.add_option("--sections", o.sections, "Sections to run: bvh, room, accuracy, protocol, hybrid, load (default: all)")
+  app.add_option("--sections", o.sections, "Sections to run: bvh, room, accuracy, protocol, hybrid, load, distributed (default: all)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"bvh", "room", "accuracy", "protocol", "hybrid", "load"}));
+      ->check(CLI::IsMember({"bvh", "room", "accuracy", "protocol", "hybrid", "load", "distributed"}));
   CLI11_PARSE(app, argc, argv);
   o.povray = !noPovray;
   if (o.quick) o.runs = 1;
@@ -341,6 +342,7 @@ int main(int argc, char** argv) {
     if (o.wants("protocol")) bench::protocolSection(o, room);
     if (o.wants("hybrid")) bench::hybridSection(o);
     if (o.wants("load")) bench::loadSection(o.scenes, o.quick);
+    if (o.wants("distributed")) bench::distributedSection(o.scenes, o.quick);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "glint-bench: %s\n", e.what());
     return 1;

@@ -32,8 +32,8 @@ class Simulation {
  public:
   Simulation(const std::vector<SimTile>& tiles, const std::vector<double>& estimates,
              const std::vector<SimServer>& servers, Policy policy, const DispatchSettings& settings,
-             std::vector<ServerPace>& paces)
-      : tiles_(tiles), servers_(servers), policy_(policy), dispatcher_(estimates, paces, settings),
+             std::vector<ServerPace>& paces, const SimClient& client)
+      : tiles_(tiles), servers_(servers), client_(client), policy_(policy), dispatcher_(estimates, paces, settings),
         state_(servers.size()) {
     result_.firstDeliveries.assign(tiles.size(), 0);
     result_.busyMs.assign(servers.size(), 0.0);
@@ -119,8 +119,11 @@ class Simulation {
     ServerState& st = state_[s];
     ++st.freeThreads;
     if (dead(s, t)) return;
-    st.linkFreeAt = std::max(st.linkFreeAt, t) + static_cast<double>(tiles_[tile].resultBytes) / servers_[s].bytesPerMs;
-    push(st.linkFreeAt + servers_[s].rttMs / 2, Kind::kResult, s, tile);
+    const auto bytes = static_cast<double>(tiles_[tile].resultBytes);
+    st.linkFreeAt = std::max(st.linkFreeAt, t) + bytes / servers_[s].bytesPerMs;
+    double sent = st.linkFreeAt;
+    if (client_.bytesPerMs > 0.0) sent = clientLinkFreeAt_ = std::max(clientLinkFreeAt_, sent) + bytes / client_.bytesPerMs;
+    push(sent + servers_[s].rttMs / 2, Kind::kResult, s, tile);
     startWork(s, t);
   }
 
@@ -154,11 +157,13 @@ class Simulation {
   void finish(double t) {
     result_.completed = true;
     result_.frameMs = t;
-    if (policy_ == Policy::kDispatcher) dispatcher_.finish(t);
+    if (policy_ == Policy::kDispatcher) dispatcher_.finish();
   }
 
   const std::vector<SimTile>& tiles_;
   const std::vector<SimServer>& servers_;
+  SimClient client_;
+  double clientLinkFreeAt_ = 0.0;
   Policy policy_;
   TileDispatcher dispatcher_;
   std::vector<ServerState> state_;
@@ -173,16 +178,20 @@ class Simulation {
 
 SimResult simulateFrame(const std::vector<SimTile>& tiles, const std::vector<double>& estimates,
                         const std::vector<SimServer>& servers, Policy policy, const DispatchSettings& settings,
-                        std::vector<ServerPace>& paces) {
-  return Simulation(tiles, estimates, servers, policy, settings, paces).run();
+                        std::vector<ServerPace>& paces, const SimClient& client) {
+  return Simulation(tiles, estimates, servers, policy, settings, paces, client).run();
 }
 
-double idealMs(const std::vector<SimTile>& tiles, const std::vector<SimServer>& servers) {
+double idealMs(const std::vector<SimTile>& tiles, const std::vector<SimServer>& servers, const SimClient& client) {
   double work = 0.0;
-  for (const SimTile& t : tiles) work += t.ms;
+  double bytes = 0.0;
+  for (const SimTile& t : tiles) {
+    work += t.ms;
+    bytes += static_cast<double>(t.resultBytes);
+  }
   double speed = 0.0;
   for (const SimServer& s : servers) speed += s.speed * s.threads;
-  return work / speed;
+  return std::max(work / speed, client.bytesPerMs > 0.0 ? bytes / client.bytesPerMs : 0.0);
 }
 
 }  // namespace glint::sim

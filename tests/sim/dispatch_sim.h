@@ -39,14 +39,20 @@ struct SimResult {
   std::vector<double> busyMs;        // per server: thread time spent tracing
 };
 
+// The client's own link, which every result crosses (0: unlimited).
+struct SimClient {
+  double bytesPerMs = 0.0;
+};
+
 // One frame in virtual time. `estimates` are the costs the dispatcher is
 // given (tile ms, or a model of them); `paces` carry over between frames.
 SimResult simulateFrame(const std::vector<SimTile>& tiles, const std::vector<double>& estimates,
                         const std::vector<SimServer>& servers, Policy policy, const DispatchSettings& settings,
-                        std::vector<ServerPace>& paces);
+                        std::vector<ServerPace>& paces, const SimClient& client = {});
 
 // Frame time if the work were shared perfectly: total tile time over the
-// servers' combined speed.
-double idealMs(const std::vector<SimTile>& tiles, const std::vector<SimServer>& servers);
+// servers' combined speed, or the client's link time for every result
+// where that is longer.
+double idealMs(const std::vector<SimTile>& tiles, const std::vector<SimServer>& servers, const SimClient& client = {});
 
 }  // namespace glint::sim
