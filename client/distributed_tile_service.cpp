@@ -40,7 +40,7 @@ DistributedTileService::DistributedTileService(std::vector<ServerAddress> server
     : paces_(servers.size()), bundle_(bundle), hash_(bundle.hash()), settings_(settings) {
   for (ServerAddress& address : servers) servers_.push_back({std::move(address), nullptr, false, 0, {}, {}});
   for (std::size_t i = 0; i < servers_.size(); ++i) connect(i);
-  while (serversUp() == 0) {
+  while (settings.awaitOne && serversUp() == 0) {
     if (sceneError_) throw InputError(*sceneError_);
     throwIfHopeless();
     io_.run_one();

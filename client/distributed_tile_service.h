@@ -21,6 +21,9 @@ namespace glint {
 struct DistributedSettings {
   std::chrono::milliseconds stallTimeout{2000};  // --stall-timeout
   LinkTimeouts timeouts;
+  // The constructor waits for one server to be ready (and throws when none
+  // can be); glint view does not, and shows the raster frame meanwhile.
+  bool awaitOne = true;
 };
 
 // The tile interface over one or many glintd: each server gets the scene by
@@ -33,8 +36,8 @@ struct DistributedSettings {
 class DistributedTileService : public TileService, private LinkListener {
  public:
   // Connects to every server at once and returns when one is ready to
-  // serve. Throws InputError when none can: one line per server saying why,
-  // or the scene's error (the same on every server).
+  // serve (settings.awaitOne). Throws InputError when none can: one line per
+  // server saying why, or the scene's error (the same on every server).
   DistributedTileService(std::vector<ServerAddress> servers, const proto::SceneBundle& bundle,
                          const DistributedSettings& settings = {});
   ~DistributedTileService() override;

@@ -13,6 +13,7 @@ TileBackend::TileBackend(const Options& options, proto::LoadedBundle loaded) : l
     }
     DistributedSettings settings;
     settings.stallTimeout = std::chrono::milliseconds(static_cast<long>(options.stallTimeoutS * 1000.0));
+    settings.awaitOne = options.awaitServer;
     auto service = std::make_unique<DistributedTileService>(resolveServers(options.servers), loaded_.bundle, settings);
     distributed_ = service.get();
     service_ = std::move(service);

@@ -26,6 +26,7 @@ class TileBackend {
     int threads = 0;                   // in process; 0: every hardware thread
     std::optional<BvhBuilder> bvh;
     double stallTimeoutS = 2.0;        // --stall-timeout
+    bool awaitServer = true;           // wait for a server to be ready (view does not)
   };
 
   // Prepares the scene or connects and uploads it; throws InputError.

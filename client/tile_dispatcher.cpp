@@ -46,7 +46,7 @@ bool TileDispatcher::hasRoom(std::size_t server) const {
   const Server& s = servers_[server];
   const ServerPace& pace = paces_[server];
   const auto threads = static_cast<std::size_t>(std::max(1, pace.threads));
-  if (s.outstanding.size() < threads) return true;
+  if (s.outstanding.size() < threads || servers_.size() == 1) return true;  // one server: nothing to balance
   if (pace.costPerMs <= 0.0 || pace.rttMs < 0.0) {
     return s.outstanding.size() < threads * static_cast<std::size_t>(settings_.initialTilesPerThread);
   }

@@ -31,6 +31,8 @@ struct DispatchSettings {
 //   milliseconds); only ratios between tiles and servers matter.
 // - A server is kept fed with a window of outstanding work sized from its
 //   pace: throughput times (round trip + lead), at least one tile per thread.
+//   A lone server gets the whole frame at once: there is nothing to balance,
+//   and glintd then writes results back in few large batches.
 // - With no unassigned tile left, a server with idle threads takes a copy of
 //   the oldest outstanding tile of the server that will finish last; the
 //   first result wins and the other copy is to be cancelled.

@@ -13,7 +13,9 @@
 
 #include "client/gl_api.h"
 #include "client/hybrid_frame.h"
+#include "client/distributed_tile_service.h"
 #include "client/image_rows.h"
+#include "client/provenance.h"
 #include "client/raster_scene.h"
 #include "client/tile_backend.h"
 #include "common/error.h"
@@ -28,6 +30,7 @@ struct Controls {
   CameraSpec camera;
   MaskRule rule = MaskRule::kAuto;
   bool overlay = false;
+  bool provenance = false;
   bool dragging = false;
   bool panning = false;
   double lastX = 0.0;
@@ -87,20 +90,89 @@ void installCallbacks(GLFWwindow* window) {
       c.rule = c.rule == MaskRule::kAuto ? MaskRule::kAll : c.rule == MaskRule::kAll ? MaskRule::kNone : MaskRule::kAuto;
     }
     if (key == GLFW_KEY_O) c.overlay = !c.overlay;
+    if (key == GLFW_KEY_P) c.provenance = !c.provenance;
     c.changed = true;
   });
 }
 
-// Tints the traced pixels (the mask) red over the frame.
-void drawOverlay(const gl::Api& gl, const HybridResult& r, int width, int height) {
+// The traced pixels (the mask) tinted red.
+std::vector<std::uint8_t> maskOverlay(const HybridResult& r) {
   std::vector<std::uint8_t> rgb = r.image.rgb;
   for (std::size_t i = 0; i < r.mask.size(); ++i) {
     if (r.mask[i]) rgb[3 * i] = static_cast<std::uint8_t>(std::min(255, rgb[3 * i] / 2 + 128));
   }
+  return rgb;
+}
+
+// Draws a top-down RGB image over the window.
+void drawImage(const gl::Api& gl, std::vector<std::uint8_t> rgb, int width, int height) {
   flipRows(rgb, width, height, 3);
   gl.Disable(GL_STENCIL_TEST);
   gl.WindowPos2i(0, 0);
   gl.DrawPixels(width, height, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+}
+
+// Stands in for the servers while none is left: every traced pixel comes
+// back magenta, so that the raster frame shows what is missing.
+class MissingTiles : public TileService {
+ public:
+  void render(const FrameSettings&, std::span<const TileJob> jobs,
+              const std::function<void(std::size_t, TileOutput&&)>& done) override {
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+      const std::size_t pixels = jobs[i].mask.empty() ? jobs[i].rect.pixelCount() : countMasked(jobs[i].rect, jobs[i].mask);
+      TileOutput out;
+      for (std::size_t p = 0; p < pixels; ++p) out.rgb.insert(out.rgb.end(), {255, 0, 255});
+      done(i, std::move(out));
+    }
+  }
+  int parallelism() const override { return 1; }
+};
+
+// "in process", "servers 2/3 up", or that none is and the view retries.
+std::string whereLabel(TileBackend& backend, bool missing) {
+  DistributedTileService* d = backend.distributed();
+  if (!d) return backend.where();
+  if (missing) return "no server left (missing tiles magenta), retrying";
+  return "servers " + std::to_string(d->serversUp()) + "/" + std::to_string(d->serverCount()) + " up";
+}
+
+// One frame of the view: the hybrid frame through the backend's service
+// or, when no server is left, the raster frame with the traced pixels
+// marked (`reported`: the last error printed, so that a retry that fails the
+// same way says nothing new); then the overlays and the title. Returns
+// whether tiles are missing.
+bool showFrame(GLFWwindow* window, const gl::Api& api, gl::RasterScene& raster, TileBackend& backend,
+               const Controls& controls, int tileSize, HybridResult& last, std::string& reported) {
+  FrameSettings frame = backend.scene().frame;
+  glfwGetFramebufferSize(window, &frame.width, &frame.height);
+  frame.camera = controls.camera;
+  MaskSettings mask = backend.scene().mask;
+  mask.rule = controls.rule;
+  bool missing = false;
+  try {
+    renderHybrid(api, raster, backend.service(), frame, mask, tileSize, last);
+    reported.clear();
+  } catch (const InputError& e) {
+    if (!backend.distributed()) throw;
+    if (reported != e.what()) std::fprintf(stderr, "glint view: %s\n", e.what());
+    reported = e.what();
+    MissingTiles none;
+    renderHybrid(api, raster, none, frame, mask, tileSize, last);
+    missing = true;
+  }
+  if (controls.overlay) drawImage(api, maskOverlay(last), frame.width, frame.height);
+  if (controls.provenance && backend.distributed() && !missing) {
+    drawImage(api, provenanceImage(last.image, backend.distributed()->lastFrame()).rgb, frame.width, frame.height);
+  }
+  glfwSwapBuffers(window);
+  char title[320];
+  std::snprintf(title, sizeof title,
+                "glint view  |  mask %s%s  |  frame %.0f ms: raster %.0f, read %.0f, RT %.0f, compose %.0f  |  %s",
+                std::string(enumWord(controls.rule)).c_str(), controls.overlay ? " (shown)" : "", last.times.totalMs,
+                last.times.rasterMs, last.times.readbackMs, last.times.traceMs, last.times.composeMs,
+                whereLabel(backend, missing).c_str());
+  glfwSetWindowTitle(window, title);
+  return missing;
 }
 
 }  // namespace
@@ -129,8 +201,7 @@ void runView(const ViewOptions& options) {
   glfwSwapInterval(0);
   const gl::Api api = gl::loadApi([](const char* name) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); });
 
-  TileBackend backend({options.servers, options.threads, options.bvh, options.stallTimeoutS}, std::move(loaded));
-  TileService& service = backend.service();
+  TileBackend backend({options.servers, options.threads, options.bvh, options.stallTimeoutS, false}, std::move(loaded));
   const Scene& scene = backend.scene();
   gl::RasterScene raster(api, scene);
 
@@ -140,26 +211,16 @@ void runView(const ViewOptions& options) {
   glfwSetWindowUserPointer(window, &controls);
   installCallbacks(window);
 
+  constexpr double kRetrySeconds = 1.0;  // with no server left, a new frame this often
   int frames = 0;
+  double retryAt = 0.0;
   HybridResult last;  // the latest frame; reused by the next
+  std::string reported;
   while (!glfwWindowShouldClose(window)) {
-    if (controls.changed || options.frames > 0) {
+    if (controls.changed || options.frames > 0 || (retryAt > 0.0 && glfwGetTime() >= retryAt)) {
       controls.changed = false;
-      FrameSettings frame = scene.frame;
-      glfwGetFramebufferSize(window, &frame.width, &frame.height);
-      frame.camera = controls.camera;
-      MaskSettings mask = scene.mask;
-      mask.rule = controls.rule;
-      renderHybrid(api, raster, service, frame, mask, options.tileSize, last);
-      if (controls.overlay) drawOverlay(api, last, frame.width, frame.height);
-      glfwSwapBuffers(window);
-      char title[256];
-      std::snprintf(title, sizeof title,
-                    "glint view  |  mask %s%s  |  frame %.0f ms: raster %.0f, read %.0f, RT %.0f, compose %.0f  |  %s",
-                    std::string(enumWord(controls.rule)).c_str(), controls.overlay ? " (shown)" : "", last.times.totalMs,
-                    last.times.rasterMs, last.times.readbackMs, last.times.traceMs, last.times.composeMs,
-                    backend.where().c_str());
-      glfwSetWindowTitle(window, title);
+      const bool missing = showFrame(window, api, raster, backend, controls, options.tileSize, last, reported);
+      retryAt = missing ? glfwGetTime() + kRetrySeconds : 0.0;
       if (options.frames > 0 && ++frames >= options.frames) break;
     }
     glfwWaitEventsTimeout(0.1);

@@ -192,14 +192,16 @@ void BasicConnection<Stream>::cancel(std::uint32_t frameId, std::span<const std:
   {
     std::lock_guard lock(outboxMutex_);
     untraced_ -= static_cast<int>(dropped);
-    take = !wakePosted_ && untraced_ == 0 && !outbox_.empty();
+    take = !wakePosted_ && untraced_ < context_.scheduler.threads() && !outbox_.empty();
   }
   if (take) takeOutbox();
 }
 
 // Called on pool threads. Results wait in the outbox until it holds
-// kFlushBytes or the client's last submitted tile is done; then one wake-up
-// of the I/O thread takes them all into one gathered write. Each wake-up
+// kFlushBytes or none of the client's tiles is left waiting for a thread
+// (fewer untraced than threads: the client's window has run dry, and it needs
+// the results to send more before the threads idle); then one wake-up of
+// the I/O thread takes them all into one gathered write. Each wake-up
 // preempts a tracing thread where client and server share the cores; the
 // writes saved and the flush size chosen are measured in docs/protocol.md
 // and docs/performance.md.
@@ -212,7 +214,7 @@ void BasicConnection<Stream>::deliver(std::vector<std::uint8_t> result) {
     outboxBytes_ += result.size();
     outbox_.push_back(std::move(result));
     --untraced_;
-    wake = !wakePosted_ && (untraced_ == 0 || outboxBytes_ >= kFlushBytes);
+    wake = !wakePosted_ && (untraced_ < context_.scheduler.threads() || outboxBytes_ >= kFlushBytes);
     wakePosted_ = wakePosted_ || wake;
   }
   if (!wake) return;

@@ -11,9 +11,22 @@
 
 #include <gtest/gtest.h>
 
+#include "common/image_io.h"
+#include "common/scene_budget.h"
+#include "tests/server/glintd_process.h"
+
 namespace {
 
 namespace fs = std::filesystem;
+using glint::Image;
+
+// A PNG the program wrote, decoded.
+Image decodePng(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  glint::SceneBudget budget;
+  return glint::decodeImage(bytes, path, budget);
+}
 
 struct Result {
   int status;
@@ -109,6 +122,33 @@ TEST_F(Cli, ViewShowsTheSameFrameAsRender) {
   const std::string renderBytes((std::istreambuf_iterator<char>(b)), std::istreambuf_iterator<char>());
   EXPECT_FALSE(viewBytes.empty());
   EXPECT_EQ(viewBytes, renderBytes);
+}
+
+// Through two glintd, the view shows the same frame; with no server at all it
+// keeps showing the raster frame, the pixels that needed tracing magenta, and
+// says why.
+TEST_F(Cli, ViewThroughServersAndWithoutThem) {
+  if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed";
+  glint::server::test::GlintdProcess a({"--threads", "1"}), b({"--threads", "1"});
+  const std::string args = scene("room.json") + " --size 160x120";
+  const Result view = glint("view " + args + " --frames 2 --screenshot " + path("view.png") + " --server " +
+                                a.address() + "," + b.address(),
+                            "xvfb-run -a ");
+  ASSERT_EQ(view.status, 0) << view.output;
+  const Result render = glint("render " + args + " -o " + path("render.png") + " -q");
+  ASSERT_EQ(render.status, 0) << render.output;
+  EXPECT_EQ(decodePng(path("view.png")).rgb, decodePng(path("render.png")).rgb);
+
+  const Result alone = glint("view " + args + " --frames 2 --screenshot " + path("alone.png") + " --server 127.0.0.1:1",
+                             "xvfb-run -a ");
+  ASSERT_EQ(alone.status, 0) << alone.output;
+  EXPECT_NE(alone.output.find("no glintd can serve"), std::string::npos) << alone.output;
+  const Image missing = decodePng(path("alone.png"));
+  std::size_t magenta = 0;
+  for (std::size_t i = 0; i + 2 < missing.rgb.size(); i += 3) {
+    magenta += missing.rgb[i] == 255 && missing.rgb[i + 1] == 0 && missing.rgb[i + 2] == 255 ? 1 : 0;
+  }
+  EXPECT_GT(magenta, 1000u);  // the mirror, the sphere and the floor of the room's auto mask
 }
 
 TEST_F(Cli, ViewWithoutADisplaySaysSo) {
