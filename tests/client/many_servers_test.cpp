@@ -167,6 +167,29 @@ TEST(ManyServers, GarbageAndAnUnreachableAddressAmongGoodServers) {
   EXPECT_NE(report.servers[2].why.find("cannot connect"), std::string::npos) << report.servers[2].why;
 }
 
+// A scene every server refuses (here: over their --max-scene-mb) fails the
+// render with the server's message naming the place, not as lost servers.
+TEST(ManyServers, ASceneErrorFailsTheRenderWithItsPlace) {
+  const std::vector<std::string> small{"--max-scene-mb", "32", "--cache-mb", "64", "--max-memory-mb", "256"};
+  GlintdProcess a(small), b(small);
+  const proto::SceneBundle bundle{R"({"glint": 1, "image": {"width": 4, "height": 4},
+      "camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0]},
+      "textures": {"a": {"type": "image", "file": "flat.png"}, "b": {"type": "image", "file": "flat.png"},
+                   "c": {"type": "image", "file": "flat.png"}},
+      "materials": {"m": {"texture": "a"}},
+      "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})",
+                                  {{"flat.png", test::flatPng(2048, 2048)}}};  // 12 MiB of texels each
+  try {
+    DistributedTileService service(resolveServers({a.address(), b.address()}), bundle);
+    FAIL() << "a scene over the servers' limit was taken";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(": BadScene: textures.c.file: the scene would hold 36.0 MiB once built"), std::string::npos)
+        << what;
+    EXPECT_EQ(what.find("no glintd can serve"), std::string::npos) << what;
+  }
+}
+
 // No server at all: the error names each one and why, and no file is written.
 TEST(ManyServers, EveryServerUnreachableWritesNothing) {
   const std::string out = (std::filesystem::temp_directory_path() / "glint-no-servers.png").string();

@@ -25,7 +25,7 @@ cleanup() {
   for pid in "${pids[@]}"; do kill -9 "$pid" 2>/dev/null || true; done
   wait 2>/dev/null || true
   for ns in "$client" "$tag-s0" "$tag-s1" "$tag-s2"; do ip netns del "$ns" 2>/dev/null || true; done
-  rm -rf "$work"
+  rm -rf "$work" "/etc/netns/$client"
 }
 trap cleanup EXIT
 ip netns add "$client" 2> /dev/null || skip "ip netns add failed (no permission or no kernel support)"
@@ -57,6 +57,12 @@ for i in 0 1 2; do
   grep -q "listening on" "$work/glintd$i.log" || { cat "$work/glintd$i.log"; echo "glintd $i did not start" >&2; exit 1; }
 done
 
+# The client knows the three by one name with three addresses, as a
+# Kubernetes headless Service or a DNS round robin would give it (ip netns
+# exec puts /etc/netns/NAME/hosts over /etc/hosts).
+mkdir -p "/etc/netns/$client"
+for address in "${addresses[@]}"; do echo "${address%:*} glint-farm"; done > "/etc/netns/$client/hosts"
+
 scene="$scenes/room.json"
 frames=6
 "$glint" render "$scene" -o "$work/reference.png" --quiet
@@ -64,14 +70,14 @@ frames=6
 (sleep 0.4; kill -9 "${pids[1]}") &
 killer=$!
 ip netns exec "$client" "$glint" render "$scene" -o "$work/farm.png" --frames "$frames" --stall-timeout 1 \
-  --server "$(IFS=,; echo "${addresses[*]}")" --stats "$work/stats.json" --provenance-out "$work/provenance.png"
+  --server glint-farm:7878 --stats "$work/stats.json" --provenance-out "$work/provenance.png"
 wait "$killer"
 wait "${pids[1]}" 2> /dev/null || true
 
 cmp "$work/reference.png" "$work/farm.png" || { echo "the frame through three hosts differs from in process" >&2; exit 1; }
 grep -q '"state":"lost"' "$work/stats.json" || { echo "the killed glintd is not reported lost" >&2; exit 1; }
 for i in 0 2; do
-  grep -q "\"address\":\"${addresses[$i]}\",\"busy_ms\":[^,]*,\"bytes_in\":[1-9]" "$work/stats.json" \
-    || { echo "server ${addresses[$i]} delivered nothing" >&2; exit 1; }
+  grep -q "\"address\":\"glint-farm:7878 (${addresses[$i]%:*})\",\"busy_ms\":[^,]*,\"bytes_in\":[1-9]" "$work/stats.json" \
+    || { echo "server ${addresses[$i]} (one of glint-farm's addresses) delivered nothing" >&2; exit 1; }
 done
 echo "netns_farm: $frames frames through 3 namespaced glintd on 1 Gbit links, one killed: identical to in process"

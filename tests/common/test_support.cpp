@@ -2,11 +2,14 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 
 #include <glm/geometric.hpp>
 
 #include "common/file_source.h"
+#include "common/image_io.h"
 #include "common/renderer.h"
 #include "common/scene_load.h"
 #include "common/thread_pool.h"
@@ -92,6 +95,19 @@ MeshInput icosphere(int levels, const glm::vec3& centre, float radius) {
   for (const glm::vec3& p : v) mesh.positions.push_back(centre + radius * p);
   mesh.indices = std::move(f);
   return mesh;
+}
+
+std::string flatPng(int width, int height) {
+  FrameImage image;
+  image.width = width;
+  image.height = height;
+  image.rgb.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3, 200);
+  const std::filesystem::path path = std::filesystem::temp_directory_path() / "glint-flat.png";
+  writePng(path, image);
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::filesystem::remove(path);
+  return bytes;
 }
 
 std::string bmp(int width, int height, bool pixels) {

@@ -31,6 +31,9 @@ std::string sourcePath(const std::string& relative);
 // false, only its 54-byte header.
 std::string bmp(int width, int height, bool pixels);
 
+// The bytes of a PNG of one colour: small to send, large once decoded.
+std::string flatPng(int width, int height);
+
 // RGB of pixel (x, y) of an image.
 struct Rgb {
   int r, g, b;

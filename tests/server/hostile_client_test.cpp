@@ -118,20 +118,6 @@ TEST(HostileClient, ClientsOverTheLimitGetBusyAtHello) {
   EXPECT_NE(text.find("maximum of 1 clients"), std::string::npos) << text;
 }
 
-// The bytes of a PNG of one colour: small to send, large once decoded.
-std::string flatPng(int width, int height) {
-  FrameImage image;
-  image.width = width;
-  image.height = height;
-  image.rgb.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3, 200);
-  const std::filesystem::path path = std::filesystem::temp_directory_path() / "glint-flat.png";
-  writePng(path, image);
-  std::ifstream in(path, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::filesystem::remove(path);
-  return bytes;
-}
-
 // Decoded size is not upload size: one PNG named four times used to be
 // decoded four times, to floats, with no limit. Now each image's size is
 // counted from its header against --max-scene-mb before it is decoded.
@@ -143,7 +129,7 @@ TEST(HostileClient, SceneThatDecodesTooLargeIsRefusedNamingTheLimit) {
                    "c": {"type": "image", "file": "flat.png"}, "d": {"type": "image", "file": "flat.png"}},
       "materials": {"m": {"texture": "a"}},
       "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})",
-                            {{"flat.png", flatPng(2048, 2048)}}};  // 12 MiB of texels each
+                            {{"flat.png", glint::test::flatPng(2048, 2048)}}};  // 12 MiB of texels each
   const long before = glintd.peakResidentKb();
   RawClient c(glintd.port());
   ASSERT_TRUE(c.hello());

@@ -1,0 +1,50 @@
+// --server values to servers: lists, repeats, names, duplicates merged, and
+// clear errors for what cannot be a server.
+#include "client/server_list.h"
+
+#include <gtest/gtest.h>
+
+#include "common/error.h"
+
+namespace glint {
+namespace {
+
+std::string errorOf(const std::vector<std::string>& values) {
+  try {
+    resolveServers(values);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(ServerList, ListsAndRepeatsGiveOneServerPerAddressInOrder) {
+  const auto servers = resolveServers({"127.0.0.1:7001,127.0.0.2:7002", "[::1]:7003", "localhost:7004"});
+  ASSERT_EQ(servers.size(), 4u);
+  EXPECT_EQ(servers[0].name, "127.0.0.1:7001");
+  EXPECT_EQ(servers[1].endpoint, asio::ip::tcp::endpoint(asio::ip::make_address("127.0.0.2"), 7002));
+  EXPECT_EQ(servers[2].endpoint, asio::ip::tcp::endpoint(asio::ip::make_address("::1"), 7003));
+  // localhost is its IPv4 address only: one server, not also a ::1 that glintd may not listen on.
+  EXPECT_EQ(servers[3].endpoint, asio::ip::tcp::endpoint(asio::ip::make_address("127.0.0.1"), 7004));
+  EXPECT_EQ(servers[3].name, "localhost:7004");
+}
+
+TEST(ServerList, DuplicatesAreMerged) {
+  const auto servers = resolveServers({"127.0.0.1:7001,localhost:7001", "127.0.0.1:7001,,127.0.0.1:7002"});
+  ASSERT_EQ(servers.size(), 2u);
+  EXPECT_EQ(servers[0].name, "127.0.0.1:7001");
+  EXPECT_EQ(servers[1].name, "127.0.0.1:7002");
+}
+
+TEST(ServerList, WhatCannotBeAServerIsNamed) {
+  EXPECT_NE(errorOf({"nowhere"}).find("--server nowhere: expected HOST:PORT"), std::string::npos);
+  EXPECT_NE(errorOf({"127.0.0.1:70000"}).find("--server 127.0.0.1:70000: expected HOST:PORT"), std::string::npos);
+  EXPECT_NE(errorOf({"127.0.0.1:"}).find("expected HOST:PORT"), std::string::npos);
+  EXPECT_NE(errorOf({"no-such-host.invalid:7878"}).find("--server no-such-host.invalid:7878: cannot resolve"),
+            std::string::npos)
+      << errorOf({"no-such-host.invalid:7878"});
+  EXPECT_NE(errorOf({","}).find("--server: no address given"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace glint
