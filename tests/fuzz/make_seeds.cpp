@@ -58,6 +58,7 @@ Bytes session(const proto::SceneBundle& bundle, FrameSettings frame) {
   return join({proto::encodeHello(1 << 20, 0, "seed"), proto::encodeSceneQuery(hash),
                proto::encodeSceneUpload(hash, bundle), proto::encodeFrameSetup(1, hash, frame),
                proto::encodeTileRequest(1, 0, {0, 0, 8, 8}, {}), proto::encodeTileRequest(1, 1, {8, 0, 8, 8}, mask),
+               proto::encodeCancel(1, std::vector<std::uint32_t>{1}), proto::encodeCancel(1, {}),
                proto::encodeGoodbye()});
 }
 
@@ -73,6 +74,8 @@ void framingSeeds(const proto::SceneBundle& bundle, const FrameSettings& frame) 
   write("framing", "tile-result", proto::encodeTileResult(3, 4, Bytes(12, 7), {1, 2, 3, 4, 5, 6}, 99));
   write("framing", "error", proto::encodeError(wire::ErrorCode::BadTile, "tile 4: outside", 3, 4));
   write("framing", "goodbye", proto::encodeGoodbye());
+  write("framing", "cancel", proto::encodeCancel(3, std::vector<std::uint32_t>{4, 5}));
+  write("framing", "cancel-frame", proto::encodeCancel(3, {}));
   // Regressions (issue 9): a body type without its body, for every type.
   for (const wire::Body type : proto::test::allBodyTypes()) {
     write("framing", std::string("bodyless-") + wire::EnumNameBody(type), proto::test::bodylessFrame(type));
