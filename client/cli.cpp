@@ -59,10 +59,12 @@ void addServerOptions(CLI::App* app, std::vector<std::string>& servers, double& 
                   "Trace through the glintd at HOST:PORT (e.g. 127.0.0.1:7878); several: A:P,B:P or the option "
                   "repeated; a name with several addresses is one server each. The image is byte-identical to the "
                   "in-process one whatever the servers do")
+      ->type_name("HOST:PORT[,...]")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   app->add_option("--stall-timeout", stallTimeoutS,
                   "Seconds a server with tiles outstanding may deliver nothing before its tiles go to the others")
+      ->type_name("SECONDS")
       ->check(CLI::Range(0.05, 3600.0))
       ->default_val(2.0);
 }

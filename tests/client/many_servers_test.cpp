@@ -5,6 +5,7 @@
 #include <signal.h>
 
 #include <filesystem>
+#include <thread>
 
 #include <gtest/gtest.h>
 
@@ -109,7 +110,8 @@ TEST(ManyServers, AServerKilledMidFrameIsReplacedByTheOthers) {
 }
 
 // A stopped server holds its tiles without a word; once the stall timeout
-// passes (the frame is long enough: 4800 tiles) they go to the others.
+// passes (the frame is long enough: 4800 tiles) they go to the others. Woken
+// again, it is taken back on a frame after its backoff (1 s).
 TEST(ManyServers, AStoppedServerStallsAndItsTilesGoElsewhere) {
   Room room;
   room.frame.width = 640;
@@ -126,6 +128,12 @@ TEST(ManyServers, AStoppedServerStallsAndItsTilesGoElsewhere) {
   EXPECT_EQ(stopped.state, ServerState::kLost);
   EXPECT_NE(stopped.why.find("stalled"), std::string::npos) << stopped.why;
   EXPECT_GT(service.lastFrame().reissuedTiles, 0u);
+
+  std::this_thread::sleep_for(std::chrono::milliseconds(1100));
+  EXPECT_EQ(renderFrame(service, room.frame, smallTiles()).image.rgb, image.rgb);
+  const ServerReport& back = service.lastFrame().servers[1];
+  EXPECT_EQ(back.state, ServerState::kOk) << back.why;
+  EXPECT_GT(back.tiles, 0u);
 }
 
 // A peer that greets properly, claims the scene, and answers its first tile
