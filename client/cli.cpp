@@ -53,20 +53,28 @@ CLI::Option* addEnumOption(CLI::App* app, const std::string& name, std::optional
       ->check(CLI::IsMember(enumWordList<Enum>()));
 }
 
-// --server (repeatable, comma-separated) and --stall-timeout, for render and view.
-void addServerOptions(CLI::App* app, std::vector<std::string>& servers, double& stallTimeoutS) {
-  app->add_option("--server", servers,
+// --server (repeatable, comma-separated), --stall-timeout and TLS, for render
+// and view.
+void addServerOptions(CLI::App* app, RemoteOptions& remote) {
+  app->add_option("--server", remote.servers,
                   "Trace through the glintd at HOST:PORT (e.g. 127.0.0.1:7878); several: A:P,B:P or the option "
                   "repeated; a name with several addresses is one server each. The image is byte-identical to the "
                   "in-process one whatever the servers do")
       ->type_name("HOST:PORT[,...]")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  app->add_option("--stall-timeout", stallTimeoutS,
+  app->add_option("--stall-timeout", remote.stallTimeoutS,
                   "Seconds a server with tiles outstanding may deliver nothing before its tiles go to the others")
       ->type_name("SECONDS")
       ->check(CLI::Range(0.05, 3600.0))
       ->default_val(2.0);
+  app->add_option("--tls-ca", remote.tls.ca,
+                  "Talk to the servers over TLS 1.3: the CA certificate (PEM) their certificates must chain to; each "
+                  "must name the address dialled")
+      ->envname("GLINT_TLS_CA");
+  app->add_option("--tls-cert", remote.tls.cert, "This client's certificate (PEM), for servers that demand one")
+      ->envname("GLINT_TLS_CERT");
+  app->add_option("--tls-key", remote.tls.key, "The private key of --tls-cert (PEM)")->envname("GLINT_TLS_KEY");
 }
 
 // Declares `glint render`'s options; returns what runs once they are parsed.
@@ -102,7 +110,7 @@ std::function<void()> declareRender(CLI::App* render) {
       ->check(CLI::Range(0.0f, 1.0f));
   render->add_option("--size", *size, "Image size WIDTHxHEIGHT (the camera's fov_y is kept)");
   addEnumOption(render, "--bvh", o.bvh, "BVH builder in process (default: sah; qsplit is the thesis's)");
-  addServerOptions(render, o.servers, o.stallTimeoutS);
+  addServerOptions(render, o.remote);
   render->add_option("--provenance-out", o.provenanceOut,
                      "With --server: also write the frame with each tile tinted by the server that traced it "
                      "(tiles re-issued from a lost server outlined; the legend is printed)");
@@ -126,7 +134,7 @@ std::function<void()> declareView(CLI::App* view) {
   auto size = std::make_shared<std::string>();
   ViewOptions& o = *options;
   view->add_option("scene", o.scene, "Scene file (.json)")->required()->check(CLI::ExistingFile);
-  addServerOptions(view, o.servers, o.stallTimeoutS);
+  addServerOptions(view, o.remote);
   addEnumOption(view, "--mask", o.mask, "Initial mask rule (default: the scene's)");
   view->add_option("--threads", o.threads, "Tracing threads; 0 = one per hardware thread")->check(CLI::Range(0, 1024));
   addEnumOption(view, "--bvh", o.bvh, "BVH builder in process (default: sah; qsplit is the thesis's)");

@@ -38,6 +38,12 @@ struct DistributedTileService::Frame {
 DistributedTileService::DistributedTileService(std::vector<ServerAddress> servers, const proto::SceneBundle& bundle,
                                                const DistributedSettings& settings)
     : paces_(servers.size()), bundle_(bundle), hash_(bundle.hash()), settings_(settings) {
+  if (settings.tls.any()) {
+    if (settings.tls.ca.empty()) {
+      throw InputError("--tls-cert and --tls-key need --tls-ca: the CA that signed the servers' certificates");
+    }
+    tls_.emplace(proto::clientTlsContext(settings.tls));
+  }
   for (ServerAddress& address : servers) servers_.push_back({std::move(address), nullptr, false, 0, {}, {}});
   for (std::size_t i = 0; i < servers_.size(); ++i) connect(i);
   while (settings.awaitOne && serversUp() == 0) {
@@ -71,8 +77,9 @@ void DistributedTileService::connect(std::size_t index) {
   Server& s = servers_[index];
   if (s.link) s.link->detach();
   s.everReady = false;
-  s.link = std::make_shared<ServerLink>(io_, index, s.address.name, s.address.endpoint, bundle_, hash_,
-                                        settings_.timeouts);
+  std::unique_ptr<LinkStream> stream = tls_ ? makeTlsStream(io_, *tls_, s.address.host) : makePlainStream(io_);
+  s.link = std::make_shared<ServerLink>(io_, std::move(stream), index, s.address.name, s.address.endpoint, bundle_,
+                                        hash_, settings_.timeouts);
   s.link->start(*this);
 }
 

@@ -15,12 +15,14 @@
 #include "client/tile_dispatcher.h"
 #include "common/tile_service.h"
 #include "proto/scene_bundle.h"
+#include "proto/tls.h"
 
 namespace glint {
 
 struct DistributedSettings {
   std::chrono::milliseconds stallTimeout{2000};  // --stall-timeout
   LinkTimeouts timeouts;
+  proto::TlsFiles tls;  // --tls-ca, --tls-cert, --tls-key: every server over TLS 1.3
   // The constructor waits for one server to be ready (and throws when none
   // can be); glint view does not, and shows the raster frame meanwhile.
   bool awaitOne = true;
@@ -91,6 +93,7 @@ class DistributedTileService : public TileService, private LinkListener {
   const proto::SceneBundle& bundle_;
   proto::SceneHash hash_;
   DistributedSettings settings_;
+  std::optional<asio::ssl::context> tls_;
   std::chrono::steady_clock::time_point epoch_ = std::chrono::steady_clock::now();
   std::uint32_t frameId_ = 0;
   Frame* frame_ = nullptr;

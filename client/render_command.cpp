@@ -125,10 +125,10 @@ void runRender(const RenderOptions& options) {
 
   // In process (the default) or through a glintd: the same tiles either way.
   const Clock::time_point prepareStart = Clock::now();
-  if (!options.provenanceOut.empty() && options.servers.empty()) {
+  if (!options.provenanceOut.empty() && options.remote.servers.empty()) {
     throw InputError("--provenance-out " + options.provenanceOut + ": shows which server traced each tile; give --server");
   }
-  TileBackend backend({options.servers, options.threads, options.bvh, options.stallTimeoutS}, std::move(loaded));
+  TileBackend backend({options.remote, options.threads, options.bvh, true}, std::move(loaded));
   TileService& service = backend.service();
   const Scene& scene = backend.scene();
   const double prepareMs = msSince(prepareStart);
@@ -162,7 +162,7 @@ void runRender(const RenderOptions& options) {
                     .rays = r.rays,
                     .plan = &plan,
                     .droppedTriangles = dropped,
-                    .remote = !options.servers.empty(),
+                    .remote = !options.remote.servers.empty(),
                     .loadMs = loadMs,
                     .prepareMs = prepareMs,
                     .traceMs = r.times.traceMs,

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "client/tile_backend.h"
 #include "common/bvh.h"
 #include "common/scene.h"
 
@@ -27,9 +28,8 @@ struct RenderOptions {
   std::optional<int> height;
   std::optional<std::uint32_t> seed;
   std::optional<BvhBuilder> bvh;  // in process only; unset: SAH
-  std::vector<std::string> servers;  // --server HOST:PORT[,...] (repeatable); none renders in process
-  double stallTimeoutS = 2.0;        // a server silent this long with tiles outstanding is lost
-  std::string provenanceOut;         // PNG of who traced which tile, "" none
+  RemoteOptions remote;       // --server ... (none renders in process), --stall-timeout, --tls-*
+  std::string provenanceOut;  // PNG of who traced which tile, "" none
   std::string statsPath;  // "" none, "-" stdout
   int frames = 1;          // frames rendered (the last is written); > 1 prints medians
   bool quiet = false;

@@ -22,10 +22,10 @@ std::size_t pixelBytes(const TileJob& job) {
 
 }  // namespace
 
-ServerLink::ServerLink(asio::io_context& io, std::size_t index, std::string name,
+ServerLink::ServerLink(asio::io_context& io, std::unique_ptr<LinkStream> stream, std::size_t index, std::string name,
                        const asio::ip::tcp::endpoint& endpoint, const proto::SceneBundle& bundle,
                        const proto::SceneHash& hash, const LinkTimeouts& timeouts)
-    : socket_(io),
+    : stream_(std::move(stream)),
       timer_(io),
       index_(index),
       name_(std::move(name)),
@@ -37,7 +37,7 @@ ServerLink::ServerLink(asio::io_context& io, std::size_t index, std::string name
 void ServerLink::start(LinkListener& listener) {
   listener_ = &listener;
   armTimer(timeouts_.connect, "connecting");
-  socket_.async_connect(endpoint_, [self = shared_from_this()](const asio::error_code& e) { self->onConnected(e); });
+  stream_->connect(endpoint_, [self = shared_from_this()](const std::string& failure) { self->onConnected(failure); });
 }
 
 void ServerLink::detach() {
@@ -54,14 +54,12 @@ void ServerLink::armTimer(std::chrono::milliseconds timeout, const char* waiting
   });
 }
 
-void ServerLink::onConnected(const asio::error_code& error) {
+void ServerLink::onConnected(const std::string& failure) {
   if (state_ != State::kConnecting) return;
-  if (error) {
-    fail(LinkFailure::Kind::kUnreachable, "cannot connect (" + error.message() + "); is glintd running there?");
+  if (!failure.empty()) {
+    fail(LinkFailure::Kind::kUnreachable, failure);
     return;
   }
-  asio::error_code ignored;
-  socket_.set_option(asio::ip::tcp::no_delay(true), ignored);
   state_ = State::kHello;
   armTimer(timeouts_.connect, "Hello");
   write(proto::encodeHello(static_cast<std::uint32_t>(maxMessageBytes_), 0, "glint 0.1"));
@@ -71,9 +69,8 @@ void ServerLink::onConnected(const asio::error_code& error) {
 void ServerLink::fail(LinkFailure::Kind kind, const std::string& what) {
   if (state_ == State::kFailed || state_ == State::kClosed) return;
   state_ = State::kFailed;
-  asio::error_code ignored;
   timer_.cancel();
-  socket_.close(ignored);
+  stream_->close();
   if (listener_) listener_->linkFailed(*this, {kind, what});
 }
 
@@ -92,21 +89,18 @@ void ServerLink::write(std::vector<std::uint8_t> frame) {
 
 // One write in flight, gathering every message queued meanwhile.
 void ServerLink::writeNext() {
-  if (writes_.empty() || !socket_.is_open()) return;
+  if (writes_.empty() || !stream_->isOpen()) return;
   inFlight_ = writes_.size();
   std::vector<asio::const_buffer> buffers;
   for (const auto& frame : writes_) buffers.push_back(asio::buffer(frame));
-  asio::async_write(socket_, buffers, [self = shared_from_this()](const asio::error_code& error, std::size_t n) {
+  stream_->write(buffers, [self = shared_from_this()](const asio::error_code& error, std::size_t n) {
     self->sent_ += n;
     for (std::size_t i = 0; i < self->inFlight_; ++i) self->writes_.pop_front();
     self->inFlight_ = 0;
     if (self->state_ == State::kClosed) {
-      if (self->writes_.empty()) {
-        asio::error_code ignored;
-        self->socket_.close(ignored);
-      }
+      if (self->writes_.empty()) self->stream_->close();
     } else if (error) {
-      self->fail(LinkFailure::Kind::kClosed, "sending failed (" + error.message() + ")");
+      self->fail(LinkFailure::Kind::kClosed, "sending failed: " + self->stream_->describe(error));
       return;
     }
     self->writeNext();
@@ -116,19 +110,26 @@ void ServerLink::writeNext() {
 void ServerLink::readMore() {
   const std::size_t had = buffer_.size();
   buffer_.resize(had + kReadChunkBytes);
-  socket_.async_read_some(asio::buffer(buffer_.data() + had, kReadChunkBytes),
-                          [self = shared_from_this(), had](const asio::error_code& error, std::size_t n) {
-                            self->buffer_.resize(had + n);
-                            self->onRead(error, n);
-                          });
+  stream_->readSome(asio::buffer(buffer_.data() + had, kReadChunkBytes),
+                    [self = shared_from_this(), had](const asio::error_code& error, std::size_t n) {
+                      self->buffer_.resize(had + n);
+                      self->onRead(error, n);
+                    });
 }
 
 // Decodes every whole message that arrived, in order; keeps a partial one.
 void ServerLink::onRead(const asio::error_code& error, std::size_t n) {
   if (state_ == State::kFailed || state_ == State::kClosed) return;
   if (error) {
-    fail(LinkFailure::Kind::kClosed,
-         error == asio::error::eof ? "closed the connection" : "connection lost (" + error.message() + ")");
+    // Before the server's Hello, a close is a refusal: of our certificate
+    // (TLS), of a client that speaks plain TCP to a TLS server, or of our Hello.
+    const bool greeting = state_ == State::kHello;
+    std::string why = stream_->describe(error);
+    if (greeting && why == "closed the connection") {
+      why = "closed the connection before answering Hello (does it want TLS? then give --tls-ca, --tls-cert and "
+            "--tls-key)";
+    }
+    fail(greeting ? LinkFailure::Kind::kRefused : LinkFailure::Kind::kClosed, why);
     return;
   }
   received_ += n;

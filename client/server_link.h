@@ -11,6 +11,7 @@
 
 #include <asio.hpp>
 
+#include "client/link_stream.h"
 #include "common/scene.h"
 #include "common/tile_service.h"
 #include "proto/framing.h"
@@ -59,8 +60,10 @@ class LinkListener {
 // shared_ptr so that handlers in flight outlive a link its owner dropped.
 class ServerLink : public std::enable_shared_from_this<ServerLink> {
  public:
-  ServerLink(asio::io_context& io, std::size_t index, std::string name, const asio::ip::tcp::endpoint& endpoint,
-             const proto::SceneBundle& bundle, const proto::SceneHash& hash, const LinkTimeouts& timeouts);
+  // `stream` is plain TCP or TLS (client/link_stream.h).
+  ServerLink(asio::io_context& io, std::unique_ptr<LinkStream> stream, std::size_t index, std::string name,
+             const asio::ip::tcp::endpoint& endpoint, const proto::SceneBundle& bundle, const proto::SceneHash& hash,
+             const LinkTimeouts& timeouts);
   ServerLink(const ServerLink&) = delete;
   ServerLink& operator=(const ServerLink&) = delete;
 
@@ -88,7 +91,7 @@ class ServerLink : public std::enable_shared_from_this<ServerLink> {
  private:
   enum class State { kConnecting, kHello, kQuery, kUpload, kReady, kFailed, kClosed };
 
-  void onConnected(const asio::error_code& error);
+  void onConnected(const std::string& failure);
   void armTimer(std::chrono::milliseconds timeout, const char* waitingFor);
   void write(std::vector<std::uint8_t> frame);
   void writeNext();
@@ -101,7 +104,7 @@ class ServerLink : public std::enable_shared_from_this<ServerLink> {
   void onError(const wire::Error& error);
   void becomeReady();
 
-  asio::ip::tcp::socket socket_;
+  std::unique_ptr<LinkStream> stream_;
   asio::steady_timer timer_;
   std::size_t index_;
   std::string name_;

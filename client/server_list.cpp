@@ -33,7 +33,7 @@ std::vector<ServerAddress> resolveOne(asio::ip::tcp::resolver& resolver, const s
   if (error) results = resolver.resolve(host, port, error);
   if (error) throw InputError("--server " + value + ": cannot resolve '" + host + "' (" + error.message() + ")");
   std::vector<ServerAddress> out;
-  for (const auto& entry : results) out.push_back({value, entry.endpoint()});
+  for (const auto& entry : results) out.push_back({value, host, entry.endpoint()});
   if (out.size() > 1) {
     for (ServerAddress& a : out) a.name = value + " (" + a.endpoint.address().to_string() + ")";
   }

@@ -10,6 +10,7 @@ namespace glint {
 // One glintd to render through: how the user named it, and where it is.
 struct ServerAddress {
   std::string name;  // "10.0.0.2:7878", or "render.farm:7878 (10.0.0.2)" for one of a name's addresses
+  std::string host;  // as dialled, "10.0.0.2" or "render.farm": a TLS server's certificate must name it
   asio::ip::tcp::endpoint endpoint;
 };
 

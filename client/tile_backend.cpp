@@ -6,15 +6,20 @@
 namespace glint {
 
 TileBackend::TileBackend(const Options& options, proto::LoadedBundle loaded) : loaded_(std::move(loaded)) {
-  if (!options.servers.empty()) {
+  const RemoteOptions& remote = options.remote;
+  if (remote.servers.empty() && remote.tls.any()) {
+    throw InputError("--tls-ca, --tls-cert and --tls-key secure the connections to glintd; give --server");
+  }
+  if (!remote.servers.empty()) {
     if (options.bvh) {
       throw InputError("--bvh: a glintd builds the BVH of the scenes it holds itself (SAH); --bvh applies to "
                        "in-process rendering");
     }
     DistributedSettings settings;
-    settings.stallTimeout = std::chrono::milliseconds(static_cast<long>(options.stallTimeoutS * 1000.0));
+    settings.stallTimeout = std::chrono::milliseconds(static_cast<long>(remote.stallTimeoutS * 1000.0));
     settings.awaitOne = options.awaitServer;
-    auto service = std::make_unique<DistributedTileService>(resolveServers(options.servers), loaded_.bundle, settings);
+    settings.tls = remote.tls;
+    auto service = std::make_unique<DistributedTileService>(resolveServers(remote.servers), loaded_.bundle, settings);
     distributed_ = service.get();
     service_ = std::move(service);
     return;

@@ -9,6 +9,7 @@
 #include "common/thread_pool.h"
 #include "common/tile_service.h"
 #include "proto/scene_bundle.h"
+#include "proto/tls.h"
 
 namespace glint {
 
@@ -19,14 +20,20 @@ class DistributedTileService;
 // through one or many glintd (which build their own BVH, so --bvh is refused
 // there). render, view and the benchmark all get their service here.
 // Owns what the service needs; the scene stays readable for the raster pass.
+// The options that send tiles to glintd (render and view share them).
+struct RemoteOptions {
+  std::vector<std::string> servers;  // --server values (HOST:PORT[,...]); none: in process
+  double stallTimeoutS = 2.0;        // --stall-timeout
+  proto::TlsFiles tls;               // --tls-ca, --tls-cert, --tls-key
+};
+
 class TileBackend {
  public:
   struct Options {
-    std::vector<std::string> servers;  // --server values (HOST:PORT[,...]); none: in process
-    int threads = 0;                   // in process; 0: every hardware thread
+    RemoteOptions remote;
+    int threads = 0;  // in process; 0: every hardware thread
     std::optional<BvhBuilder> bvh;
-    double stallTimeoutS = 2.0;        // --stall-timeout
-    bool awaitServer = true;           // wait for a server to be ready (view does not)
+    bool awaitServer = true;  // wait for a server to be ready (view does not)
   };
 
   // Prepares the scene or connects and uploads it; throws InputError.

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "client/tile_backend.h"
 #include "common/bvh.h"
 #include "common/scene.h"
 
@@ -12,8 +13,7 @@ namespace glint {
 // Options of `glint view`.
 struct ViewOptions {
   std::string scene;
-  std::vector<std::string> servers;  // --server HOST:PORT[,...] (repeatable); none traces in process
-  double stallTimeoutS = 2.0;
+  RemoteOptions remote;        // --server ... (none traces in process), --stall-timeout, --tls-*
   std::optional<MaskRule> mask;  // unset: the scene's
   int threads = 0;
   std::optional<BvhBuilder> bvh;  // in process only; unset: SAH

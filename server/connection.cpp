@@ -3,6 +3,7 @@
 #include <unordered_set>
 
 #include "common/timing.h"
+#include "proto/tls.h"
 #include "server/log.h"
 
 namespace glint::server {
@@ -43,7 +44,29 @@ BasicConnection<Stream>::BasicConnection(Stream stream, ServerContext& context, 
 template <typename Stream>
 void BasicConnection<Stream>::start() {
   logLine(session_.peer() + ": connected");
-  readHeader();
+  if constexpr (std::is_same_v<Stream, TlsStream>) {
+    handshake();
+  } else {
+    readHeader();
+  }
+}
+
+// Before Hello comes the TLS handshake, under the same timeout and in the
+// same waiting pool: a peer that starts one and stalls holds little, briefly.
+template <typename Stream>
+void BasicConnection<Stream>::handshake() {
+  if constexpr (std::is_same_v<Stream, TlsStream>) {
+    armTimer(context_.options.handshakeTimeout, "TLS handshake");
+    socket_.async_handshake(asio::ssl::stream_base::server,
+                            [self = this->shared_from_this()](const asio::error_code& e) {
+                              if (!e) {
+                                self->readHeader();
+                                return;
+                              }
+                              const long verify = SSL_get_verify_result(self->socket_.native_handle());
+                              self->close("TLS handshake failed: " + proto::describeTlsFailure(e, verify, false));
+                            });
+  }
 }
 
 template <typename Stream>
@@ -259,8 +282,16 @@ void BasicConnection<Stream>::writeNext() {
   lastWrite_ = Clock::now();
   inFlight_ = writes_.size();
   std::vector<asio::const_buffer> buffers;
-  buffers.reserve(inFlight_);
-  for (const auto& frame : writes_) buffers.push_back(asio::buffer(frame));
+  if constexpr (std::is_same_v<Stream, TlsStream>) {
+    // A TLS stream writes one buffer at a time (a record and a system call
+    // each): the messages are joined first.
+    flat_.clear();
+    for (const auto& frame : writes_) flat_.insert(flat_.end(), frame.begin(), frame.end());
+    buffers.push_back(asio::buffer(flat_));
+  } else {
+    buffers.reserve(inFlight_);
+    for (const auto& frame : writes_) buffers.push_back(asio::buffer(frame));
+  }
   asio::async_write(socket_, buffers, [self = this->shared_from_this()](const asio::error_code& error, std::size_t) {
     if (error) {
       self->close(error.message());
@@ -290,5 +321,6 @@ void BasicConnection<Stream>::close(const std::string& why) {
 }
 
 template class BasicConnection<asio::ip::tcp::socket>;
+template class BasicConnection<TlsStream>;
 
 }  // namespace glint::server

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <asio.hpp>
+#include <asio/ssl.hpp>
 
 #include "proto/framing.h"
 #include "server/connection_registry.h"
@@ -48,6 +49,7 @@ class BasicConnection : public std::enable_shared_from_this<BasicConnection<Stre
   void trace(TileWork work) override;
   void cancel(std::uint32_t frameId, std::span<const std::uint32_t> tileIds) override;
 
+  void handshake();  // TLS streams only
   void readHeader();
   void readBody(std::uint32_t length);
   void readMore(std::uint32_t length);
@@ -67,6 +69,7 @@ class BasicConnection : public std::enable_shared_from_this<BasicConnection<Stre
   std::array<std::uint8_t, proto::kHeaderBytes> header_{};
   std::vector<std::uint8_t> body_;
   std::deque<std::vector<std::uint8_t>> writes_;
+  std::vector<std::uint8_t> flat_;  // TLS: the queued messages in one buffer, one record run per write
   std::size_t queuedBytes_ = 0;
   std::size_t inFlight_ = 0;  // messages of writes_ in the current write
   bool writing_ = false;
@@ -82,8 +85,11 @@ class BasicConnection : public std::enable_shared_from_this<BasicConnection<Stre
   bool wakePosted_ = false;  // the I/O thread is already asked to take the outbox
 };
 
-// glintd's connections today: plain TCP.
+// glintd's connections: plain TCP (loopback, or --insecure), or TLS over TCP.
 using Connection = BasicConnection<asio::ip::tcp::socket>;
+using TlsStream = asio::ssl::stream<asio::ip::tcp::socket>;
+using TlsConnection = BasicConnection<TlsStream>;
 extern template class BasicConnection<asio::ip::tcp::socket>;
+extern template class BasicConnection<TlsStream>;
 
 }  // namespace glint::server

@@ -68,6 +68,15 @@ void declareOptions(CLI::App& app, glint::server::ServerOptions& o, bool& quiet)
   addSeconds(app, "--handshake-timeout", o.handshakeTimeout, "Seconds a new connection has to say Hello");
   addSeconds(app, "--idle-timeout", o.idleTimeout, "Seconds a connection may sit with nothing to do");
   addSeconds(app, "--read-timeout", o.readTimeout, "Seconds to finish a message, or to read results");
+  app.add_option("--tls-cert", o.tls.cert, "This server's certificate (PEM) for TLS 1.3; with --tls-key and "
+                 "--tls-client-ca every connection is TLS")
+      ->envname("GLINTD_TLS_CERT");
+  app.add_option("--tls-key", o.tls.key, "The private key of --tls-cert (PEM)")->envname("GLINTD_TLS_KEY");
+  app.add_option("--tls-client-ca", o.tls.ca,
+                 "CA certificate (PEM) that clients' certificates must chain to; others are refused")
+      ->envname("GLINTD_TLS_CLIENT_CA");
+  app.add_flag("--insecure", o.insecure,
+               "Listen on a non-loopback address without TLS (anyone who reaches it can use glintd)");
   app.add_flag("-q,--quiet", quiet, "No log lines");
 }
 

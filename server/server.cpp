@@ -22,7 +22,25 @@ const ServerOptions& checked(const ServerOptions& o) {
     throw InputError("--max-memory-mb " + mb(o.maxMemoryBytes) + " is below --cache-mb + --max-scene-mb (" +
                      mb(o.cacheBytes + o.maxSceneBytes) + ")");
   }
+  if (o.tls.any() && (o.tls.ca.empty() || o.tls.cert.empty() || o.tls.key.empty())) {
+    throw InputError("TLS needs all three of --tls-cert, --tls-key and --tls-client-ca (deploy/glint-certs makes them)");
+  }
   return o;
+}
+
+// Without TLS anyone who reaches the port may use glintd, read its clients'
+// pixels and push their scenes out of the cache: only loopback, unless the
+// user insists.
+void checkExposure(const ServerOptions& o, const asio::ip::tcp::endpoint& endpoint) {
+  if (o.tls.any() || endpoint.address().is_loopback()) return;
+  if (!o.insecure) {
+    throw InputError("--listen " + o.listen +
+                     ": not a loopback address, and without TLS anyone who reaches it can use glintd and read its "
+                     "clients' pixels; give --tls-cert, --tls-key and --tls-client-ca (docs/deploy.md), or "
+                     "--insecure if that is really meant");
+  }
+  logLine("warning: --insecure: listening on " + o.listen +
+          " without TLS: anyone who reaches it can use glintd and read its clients' pixels");
 }
 
 }  // namespace
@@ -38,6 +56,8 @@ Server::Server(const ServerOptions& options)
       acceptRetry_(io_),
       signals_(io_) {
   const asio::ip::tcp::endpoint endpoint = proto::parseEndpoint(options_.listen, "--listen");
+  checkExposure(options_, endpoint);
+  if (options_.tls.any()) tls_.emplace(proto::serverTlsContext(options_.tls));
   asio::error_code ec;
   acceptor_.open(endpoint.protocol(), ec);
   if (!ec) acceptor_.set_option(asio::ip::tcp::acceptor::reuse_address(true), ec);
@@ -64,11 +84,21 @@ void Server::accept() {
     if (error == asio::error::operation_aborted) return;  // stopping
     if (error) return acceptLater(error);
     const std::uint64_t id = nextId_++;
-    auto connection = std::make_shared<Connection>(std::move(socket), context_, id);
-    registry_.addWaiting(id, connection);
-    connection->start();
+    if (tls_) {
+      admit(std::make_shared<TlsConnection>(TlsStream(std::move(socket), *tls_), context_, id), id);
+    } else {
+      admit(std::make_shared<Connection>(std::move(socket), context_, id), id);
+    }
     accept();
   });
+}
+
+// A new connection waits for its Hello (and first its TLS handshake) in the
+// registry's waiting pool.
+template <typename Connection>
+void Server::admit(std::shared_ptr<Connection> connection, std::uint64_t id) {
+  registry_.addWaiting(id, connection);
+  connection->start();
 }
 
 void Server::acceptLater(const asio::error_code& error) {

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 #include <asio.hpp>
 
@@ -44,6 +45,8 @@ class Server {
 
  private:
   void accept();
+  template <typename Connection>
+  void admit(std::shared_ptr<Connection> connection, std::uint64_t id);
   // Accepting failed for want of resources (EMFILE): make room, try again soon.
   void acceptLater(const asio::error_code& error);
 
@@ -54,6 +57,7 @@ class Server {
   ConnectionRegistry registry_;
   MemoryGauge buildMemory_;
   ServerContext context_;
+  std::optional<asio::ssl::context> tls_;  // with --tls-cert: every connection is TLS
   asio::ip::tcp::acceptor acceptor_;
   asio::steady_timer acceptRetry_;
   asio::signal_set signals_;

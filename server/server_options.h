@@ -5,6 +5,7 @@
 #include <string>
 
 #include "proto/framing.h"
+#include "proto/tls.h"
 
 namespace glint::server {
 
@@ -35,6 +36,11 @@ struct ServerOptions {
   // Results a client leaves unread beyond this many bytes close its connection.
   std::size_t maxQueuedBytes = std::size_t{256} << 20;
   bool handleSignals = true;  // SIGINT and SIGTERM stop the server
+  // Mutual TLS: this server's certificate and key, and the CA that signs its
+  // clients' certificates (all three, or none).
+  proto::TlsFiles tls;
+  // Without TLS glintd listens on loopback only, unless told this.
+  bool insecure = false;
 };
 
 }  // namespace glint::server

@@ -206,7 +206,7 @@ TEST(ManyServers, EveryServerUnreachableWritesNothing) {
   options.scene = test::sourcePath("scenes/room.json");
   options.output = out;
   options.mask = MaskRule::kAll;
-  options.servers = {"127.0.0.1:1,127.0.0.1:2", "127.0.0.1:1"};
+  options.remote.servers = {"127.0.0.1:1,127.0.0.1:2", "127.0.0.1:1"};
   options.quiet = true;
   try {
     runRender(options);
