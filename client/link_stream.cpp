@@ -1,6 +1,7 @@
 #include "client/link_stream.h"
 
 #include <openssl/ssl.h>
+#include <openssl/x509v3.h>
 
 #include "proto/tls.h"
 
@@ -44,11 +45,18 @@ class PlainStream : public LinkStream {
 
 class TlsStream : public LinkStream {
  public:
+  // OpenSSL checks the certificate against the address or name dialled, so
+  // that a mismatch is reported as one (X509_V_ERR_IP_ADDRESS_MISMATCH ...).
   TlsStream(asio::io_context& io, asio::ssl::context& tls, const std::string& host) : stream_(io, tls) {
-    stream_.set_verify_callback(asio::ssl::host_name_verification(host));
+    SSL* ssl = stream_.native_handle();
     asio::error_code notAnAddress;
     asio::ip::make_address(host, notAnAddress);
-    if (notAnAddress) SSL_set_tlsext_host_name(stream_.native_handle(), host.c_str());  // SNI, for names only
+    if (notAnAddress) {
+      SSL_set1_host(ssl, host.c_str());
+      SSL_set_tlsext_host_name(ssl, host.c_str());  // SNI, for names only
+    } else {
+      X509_VERIFY_PARAM_set1_ip_asc(SSL_get0_param(ssl), host.c_str());
+    }
   }
   void connect(const asio::ip::tcp::endpoint& endpoint, std::function<void(const std::string&)> done) override {
     stream_.lowest_layer().async_connect(endpoint, [this, done](const asio::error_code& e) {

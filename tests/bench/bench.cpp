@@ -1,6 +1,8 @@
 // glint-bench: prints what the ray-tracing core costs. Numbers, never
 // assertions: medians over repeated runs, and ratios against peers measured
 // in the same run (QSplit vs SAH, POV-Ray 3.7 vs Glint).
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -14,6 +16,7 @@
 #include <CLI/CLI.hpp>
 
 #include "common/bvh.h"
+#include "common/error.h"
 #include "common/frame.h"
 #include "common/heap_tuning.h"
 #include "client/hybrid_frame.h"
@@ -201,17 +204,40 @@ server::ServerOptions loopbackServer() {
   return o;
 }
 
-// The cost of going through glintd: the same frames in process and through a
-// server on loopback (in this process, its own 2 threads), medians of 20+.
+// Certificates for the TLS rows, made by deploy/glint-certs in a temporary
+// folder (removed with the object).
+struct BenchCertificates {
+  explicit BenchCertificates(const std::string& scenes)
+      : dir(std::filesystem::temp_directory_path() / ("glint-bench-tls-" + std::to_string(::getpid()))) {
+    const std::string certs = (std::filesystem::path(scenes) / ".." / "deploy" / "glint-certs").string();
+    const std::string d = dir.string();
+    const std::string command = certs + " " + d + " ca && " + certs + " " + d + " server glintd 127.0.0.1 && " +
+                                certs + " " + d + " client bench";
+    if (std::system((command + " > /dev/null").c_str()) != 0) throw InputError("cannot make certificates: " + command);
+  }
+  ~BenchCertificates() { std::filesystem::remove_all(dir); }
+  std::string file(const char* name) const { return (dir / name).string(); }
+  std::filesystem::path dir;
+};
+
+// The cost of going through glintd: the same frames in process, through a
+// server on loopback (in this process, its own 2 threads) over TCP, and
+// through another over TLS 1.3; medians of 20+.
 void protocolSection(const Options& o, const Scene& room) {
   const int frames = o.quick ? 2 : 21;
   const proto::LoadedBundle loaded = proto::loadSceneBundle(std::filesystem::path(o.scenes) / "room.json");
+  const BenchCertificates certs(o.scenes);
   server::BackgroundServer glintd(loopbackServer());
-  const std::string address = glintd.address();
+  server::ServerOptions tlsOptions = loopbackServer();
+  tlsOptions.tls = {certs.file("ca.pem"), certs.file("glintd.pem"), certs.file("glintd.key")};
+  server::BackgroundServer glintdTls(tlsOptions);
+  DistributedSettings tlsClient;
+  tlsClient.tls = {certs.file("ca.pem"), certs.file("bench.pem"), certs.file("bench.key")};
   std::printf("\n## Through glintd on loopback vs in process (2 threads each, %d-pixel tiles, %d frames)\n\n",
               o.tileSize, frames);
-  std::printf("| frame | in process ms | through glintd ms | overhead ms (median of pairs) | bytes received | masked pixels x 3 | bytes sent |\n");
-  std::printf("|---|---|---|---|---|---|---|\n");
+  std::printf("| frame | in process ms | through glintd ms | overhead ms (median of pairs) | over TLS 1.3 ms | TLS "
+              "over TCP ms (median of pairs) | bytes received | masked pixels x 3 | bytes sent |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|\n");
   // The room as the thesis renders it, and the same view of an empty scene,
   // where tracing costs almost nothing and the difference is the protocol.
   Scene empty = room;
@@ -230,24 +256,27 @@ void protocolSection(const Options& o, const Scene& room) {
   for (const Case& c : {Case{"the room", &room, &loaded.bundle}, Case{"empty scene (protocol only)", &empty, &emptyBundle}}) {
     const PreparedScene prepared(*c.scene, BvhSettings{});
     LocalTileService local(prepared, pool);
-    DistributedTileService remote(resolveServers({address}), *c.bundle);
+    DistributedTileService remote(resolveServers({glintd.address()}), *c.bundle);
+    DistributedTileService secure(resolveServers({glintdTls.address()}), *c.bundle, tlsClient);
     const FrameSettings frame = c.scene->frame;
-    // Frames alternate between the two paths and the overhead is the median
-    // of the pairs' differences: slow drifts of the machine cancel out.
-    std::vector<double> localTimes, remoteTimes, differences;
+    // Frames alternate between the paths and each overhead is the median of
+    // the pairs' differences: slow drifts of the machine cancel out.
+    std::vector<double> localTimes, remoteTimes, tlsTimes, differences, tlsDifferences;
     FrameOptions frameOptions;
     frameOptions.tileSize = o.tileSize;
     double received = 0.0, sent = 0.0;
     for (int i = 0; i < frames; ++i) {
       localTimes.push_back(medianMs(1, [&] { renderFrame(local, frame, frameOptions); }));
       remoteTimes.push_back(medianMs(1, [&] { renderFrame(remote, frame, frameOptions); }));
+      tlsTimes.push_back(medianMs(1, [&] { renderFrame(secure, frame, frameOptions); }));
       differences.push_back(remoteTimes.back() - localTimes.back());
+      tlsDifferences.push_back(tlsTimes.back() - remoteTimes.back());
       received += static_cast<double>(remote.lastFrame().servers[0].bytesIn) / frames;
       sent += static_cast<double>(remote.lastFrame().servers[0].bytesOut) / frames;
     }
-    const double localMs = median(localTimes), remoteMs = median(remoteTimes);
-    std::printf("| %s | %.1f | %.1f | %.2f | %.0f | %d | %.0f |\n", c.name, localMs, remoteMs, median(differences),
-                received, frame.width * frame.height * 3, sent);
+    std::printf("| %s | %.1f | %.1f | %.2f | %.1f | %.2f | %.0f | %d | %.0f |\n", c.name, median(localTimes),
+                median(remoteTimes), median(differences), median(tlsTimes), median(tlsDifferences), received,
+                frame.width * frame.height * 3, sent);
   }
 }
 

@@ -2,9 +2,11 @@
 # Several hosts on one machine: four network namespaces (a client and three
 # servers) joined by veth pairs on 198.18.0.0/24 (the range set aside for
 # network benchmarks), every link limited to 1 Gbit/s with tc tbf. A glintd
-# runs in each server namespace; the client renders the thesis's scene 1
-# through all three while one glintd is killed, and every frame must equal the
-# in-process frame byte for byte. Traffic stays inside the namespaces.
+# runs in each server namespace, over mutual TLS with certificates made by
+# deploy/glint-certs; the client renders the thesis's scene 1 through all
+# three, known by one name with three addresses, while one glintd is killed,
+# and every frame must equal the in-process frame byte for byte. Traffic
+# stays inside the namespaces.
 # Usage: netns_farm.sh GLINT GLINTD SCENES_DIR
 # Exit 77 (CTest: skipped) where network namespaces cannot be made.
 set -euo pipefail
@@ -31,6 +33,12 @@ trap cleanup EXIT
 ip netns add "$client" 2> /dev/null || skip "ip netns add failed (no permission or no kernel support)"
 ip -n "$client" link set lo up
 
+certs="$work/certs"
+glint_certs="$(dirname "$0")/../../deploy/glint-certs"
+"$glint_certs" "$certs" ca > /dev/null
+"$glint_certs" "$certs" server glintd 198.18.0.2 198.18.0.6 198.18.0.10 glint-farm > /dev/null
+"$glint_certs" "$certs" client render > /dev/null
+
 # Server i sits at 198.18.0.(4i+2), the client's end of its link at .(4i+1).
 addresses=()
 for i in 0 1 2; do
@@ -45,7 +53,8 @@ for i in 0 1 2; do
   ip netns exec "$client" tc qdisc add dev "c$i" root tbf rate 1gbit burst 256kb latency 10ms
   ip netns exec "$ns" tc qdisc add dev eth0 root tbf rate 1gbit burst 256kb latency 10ms
   address="198.18.0.$((4 * i + 2)):7878"
-  ip netns exec "$ns" "$glintd" --listen "$address" --threads 1 --quiet > "$work/glintd$i.log" 2>&1 &
+  ip netns exec "$ns" "$glintd" --listen "$address" --threads 1 --quiet --tls-cert "$certs/glintd.pem" \
+    --tls-key "$certs/glintd.key" --tls-client-ca "$certs/ca.pem" > "$work/glintd$i.log" 2>&1 &
   pids+=($!)
   addresses+=("$address")
 done
@@ -70,7 +79,8 @@ frames=6
 (sleep 0.4; kill -9 "${pids[1]}") &
 killer=$!
 ip netns exec "$client" "$glint" render "$scene" -o "$work/farm.png" --frames "$frames" --stall-timeout 1 \
-  --server glint-farm:7878 --stats "$work/stats.json" --provenance-out "$work/provenance.png"
+  --server glint-farm:7878 --stats "$work/stats.json" --provenance-out "$work/provenance.png" \
+  --tls-ca "$certs/ca.pem" --tls-cert "$certs/render.pem" --tls-key "$certs/render.key"
 wait "$killer"
 wait "${pids[1]}" 2> /dev/null || true
 
@@ -80,4 +90,4 @@ for i in 0 2; do
   grep -q "\"address\":\"glint-farm:7878 (${addresses[$i]%:*})\",\"busy_ms\":[^,]*,\"bytes_in\":[1-9]" "$work/stats.json" \
     || { echo "server ${addresses[$i]} (one of glint-farm's addresses) delivered nothing" >&2; exit 1; }
 done
-echo "netns_farm: $frames frames through 3 namespaced glintd on 1 Gbit links, one killed: identical to in process"
+echo "netns_farm: $frames frames through 3 namespaced glintd (mutual TLS, 1 Gbit links), one killed: identical to in process"
