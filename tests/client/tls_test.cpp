@@ -11,7 +11,7 @@
 #include "client/distributed_tile_service.h"
 #include "common/error.h"
 #include "common/frame.h"
-#include "proto/message_stream.h"
+#include "tests/proto/message_stream.h"
 #include "server/log.h"
 #include "server/server.h"
 #include "tests/common/test_support.h"

@@ -1,6 +1,6 @@
 // The client's blocking stream against a raw peer on loopback: a promise of
 // bytes to come (SO_RCVLOWAT) never loses or delays a message.
-#include "proto/message_stream.h"
+#include "tests/proto/message_stream.h"
 
 #include <chrono>
 #include <thread>

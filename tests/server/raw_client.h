@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "proto/message_stream.h"
+#include "tests/proto/message_stream.h"
 #include "proto/messages.h"
 
 namespace glint::server::test {

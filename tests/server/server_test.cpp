@@ -14,7 +14,7 @@
 #include "client/distributed_tile_service.h"
 #include "common/error.h"
 #include "common/frame.h"
-#include "proto/message_stream.h"
+#include "tests/proto/message_stream.h"
 #include "proto/messages.h"
 #include "server/log.h"
 #include "server/background_server.h"

@@ -1,4 +1,4 @@
-#include "proto/message_stream.h"
+#include "tests/proto/message_stream.h"
 
 #include <algorithm>
 #include <cstdint>

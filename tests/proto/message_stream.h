@@ -23,8 +23,8 @@ class StreamError : public std::runtime_error {
   Kind kind_;
 };
 
-// The client side of a framed connection, blocking with a timeout on every
-// operation (the glint client and the tests; the server is asynchronous).
+// A test's side of a framed connection, blocking with a timeout on every
+// operation (tests that play a raw client; glint and glintd are asynchronous).
 class MessageStream {
  public:
   // Connects; throws StreamError when it cannot within the timeout.
