@@ -10,6 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "client/accuracy_command.h"
 #include "client/render_command.h"
 #include "client/view_command.h"
 #include "common/error.h"
@@ -148,6 +149,39 @@ std::function<void()> declareView(CLI::App* view) {
   };
 }
 
+constexpr const char* kAccuracyHelp =
+    "Show what accuracy costs in time: render a converged reference of the scene, then the scene with one "
+    "setting varied at a time (--vary KEY=V1,V2,...; KEY: samples, pattern, filter, max_depth, min_weight, "
+    "mask_threshold; none: a default sweep of every key), and write each setting's time and error against the "
+    "reference (accuracy.csv), its images and error images, a plot and report.md to DIR.";
+
+// Declares `glint accuracy`'s options; returns what runs once they are parsed.
+std::function<void()> declareAccuracy(CLI::App* accuracy) {
+  auto options = std::make_shared<AccuracyOptions>();
+  auto size = std::make_shared<std::string>();
+  AccuracyOptions& o = *options;
+  accuracy->add_option("scene", o.scene, "Scene file (.json)")->required()->check(CLI::ExistingFile);
+  accuracy->add_option("-o,--output", o.outDir, "Folder for the report, the CSV and the images")->required();
+  accuracy->add_option("--vary", o.vary, "KEY=V1,V2,...: one series (repeatable)")
+      ->type_name("KEY=V1,V2,...")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  accuracy->add_option("--reference-samples", o.referenceSamples, "Jittered samples per pixel of the reference (even)")
+      ->check(CLI::Range(2, FrameLimits::kMaxSamples))
+      ->default_val(256);
+  accuracy->add_option("--frames", o.frames, "Frames per setting; the median time is reported")
+      ->check(CLI::Range(1, 1000))
+      ->default_val(3);
+  accuracy->add_option("--size", *size, "Image size WIDTHxHEIGHT (default: the scene's)");
+  accuracy->add_option("--threads", o.threads, "Render threads; 0 = one per hardware thread")
+      ->check(CLI::Range(0, 1024))
+      ->default_val(0);
+  return [options, size] {
+    if (!size->empty()) parseSize(*size, options->width, options->height);
+    runAccuracy(*options);
+  };
+}
+
 // glint's commands: a name, its help, and the function that declares its
 // options. A new command is one more row.
 struct CommandSpec {
@@ -158,6 +192,7 @@ struct CommandSpec {
 constexpr CommandSpec kCommands[] = {
     {"render", kRenderHelp, declareRender},
     {"view", kViewHelp, declareView},
+    {"accuracy", kAccuracyHelp, declareAccuracy},
 };
 
 }  // namespace

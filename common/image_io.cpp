@@ -108,17 +108,11 @@ Image decodeImage(std::string_view bytes, const std::string& place, SceneBudget&
   return image;
 }
 
-void writePng(const std::filesystem::path& path, const FrameImage& image) {
-  std::vector<unsigned char> png;
-  const auto append = [](void* context, void* data, int size) {
-    auto* out = static_cast<std::vector<unsigned char>*>(context);
-    const auto* bytes = static_cast<const unsigned char*>(data);
-    out->insert(out->end(), bytes, bytes + size);
-  };
-  if (!stbi_write_png_to_func(append, &png, image.width, image.height, 3, image.rgb.data(),
-                              image.width * 3)) {
-    throw InputError(path.string() + ": PNG encoding failed");
-  }
+namespace {
+
+// Writes bytes to `path` through a temporary file renamed over it once
+// complete, so that a failed or interrupted write leaves no half-written file.
+void writeAtomically(const std::filesystem::path& path, const unsigned char* data, std::size_t size) {
   std::filesystem::path tmp = path;
   tmp += ".partial";
   {
@@ -127,7 +121,7 @@ void writePng(const std::filesystem::path& path, const FrameImage& image) {
       throw InputError(path.string() + ": cannot write (" + std::strerror(errno) +
                        "); check that the folder exists and is writable");
     }
-    out.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
+    out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
     out.close();
     if (!out) {
       std::error_code ignored;
@@ -139,8 +133,35 @@ void writePng(const std::filesystem::path& path, const FrameImage& image) {
   std::filesystem::rename(tmp, path, ec);
   if (ec) {
     std::filesystem::remove(tmp, ec);
-    throw InputError(path.string() + ": cannot move the finished image into place (" + ec.message() + ")");
+    throw InputError(path.string() + ": cannot move the finished file into place (" + ec.message() + ")");
   }
+}
+
+}  // namespace
+
+void writePng(const std::filesystem::path& path, const FrameImage& image) {
+  std::vector<unsigned char> png;
+  const auto append = [](void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<unsigned char>*>(context);
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    out->insert(out->end(), bytes, bytes + size);
+  };
+  if (!stbi_write_png_to_func(append, &png, image.width, image.height, 3, image.rgb.data(),
+                              image.width * 3)) {
+    throw InputError(path.string() + ": PNG encoding failed");
+  }
+  writeAtomically(path, png.data(), png.size());
+}
+
+void writePfm(const std::filesystem::path& path, const LinearImage& image) {
+  const std::string header = "PF\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n-1.0\n";
+  std::vector<unsigned char> pfm(header.begin(), header.end());
+  const std::size_t rowFloats = static_cast<std::size_t>(image.width) * 3;
+  for (int y = image.height - 1; y >= 0; --y) {  // PFM rows run bottom-up
+    const auto* row = reinterpret_cast<const unsigned char*>(&image.rgb[static_cast<std::size_t>(y) * rowFloats]);
+    pfm.insert(pfm.end(), row, row + rowFloats * sizeof(float));  // little-endian, as "-1.0" says
+  }
+  writeAtomically(path, pfm.data(), pfm.size());
 }
 
 }  // namespace glint

@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "common/frame.h"
+#include "common/linear_image.h"
 #include "common/scene_budget.h"
 #include "common/texture.h"
 
@@ -22,5 +23,9 @@ Image decodeImage(std::string_view bytes, const std::string& place, SceneBudget&
 // beside `path`, renamed over it only once complete, so a failed or
 // interrupted write never leaves a half-written image.
 void writePng(const std::filesystem::path& path, const FrameImage& image);
+
+// Writes linear colour as a Portable Float Map (PF, little-endian, rows
+// bottom-up as the format has them), atomically like writePng.
+void writePfm(const std::filesystem::path& path, const LinearImage& image);
 
 }  // namespace glint

@@ -1,0 +1,181 @@
+#include "client/accuracy_command.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "client/accuracy_report.h"
+#include "client/accuracy_sweep.h"
+#include "client/hybrid_frame.h"
+#include "client/offscreen_context.h"
+#include "client/raster_scene.h"
+#include "common/error.h"
+#include "common/frame_limits.h"
+#include "common/image_io.h"
+#include "common/linear_image.h"
+#include "common/load_limits.h"
+#include "common/timing.h"
+#include "proto/scene_bundle.h"
+
+namespace glint {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The reference: deep recursion, no weight cut-off, jittered samples.
+constexpr int kReferenceDepth = 16;
+
+struct Sweep {
+  const PreparedScene& prepared;
+  ThreadPool& pool;
+  int frames;
+  std::unique_ptr<gl::OffscreenContext> context;  // made for the first hybrid row
+  std::unique_ptr<gl::RasterScene> raster;
+};
+
+// Every setting checked as the frame would check it, before anything renders.
+void checkSetting(const std::string& place, FrameSettings frame) {
+  const std::string samples = place + " (samples " + std::to_string(frame.sampling.samples) + ")";
+  checkFrame(frame, LoadLimits{}.maxImagePixels,
+             {.size = "--size", .camera = "camera.", .samples = samples.c_str(), .seed = place.c_str(),
+              .maxDepth = place.c_str(), .minWeight = place.c_str()});
+}
+
+FrameSettings referenceFrame(FrameSettings frame, int samples, std::uint32_t seed) {
+  frame.sampling.pattern = SamplePattern::kJittered;
+  frame.sampling.samples = samples;
+  frame.sampling.seed = seed;
+  frame.tracing.maxDepth = kReferenceDepth;
+  frame.tracing.minWeight = 0.0f;
+  return frame;
+}
+
+FrameImage toBytes(const LinearImage& image) {
+  FrameImage out{image.width, image.height, std::vector<std::uint8_t>(image.rgb.size())};
+  for (std::size_t i = 0; i < image.rgb.size(); ++i) out.rgb[i] = toByte(image.rgb[i]);
+  return out;
+}
+
+// A full-trace row: the frame `frames` times, the median time, the last image.
+LinearImage traceRow(Sweep& sweep, const FrameSettings& frame, AccuracyRow& row) {
+  const Renderer renderer(sweep.prepared, frame);
+  std::vector<double> times;
+  LinearImage image;
+  for (int f = 0; f < sweep.frames; ++f) {
+    row.rays = {};
+    const auto start = Clock::now();
+    image = renderLinear(renderer, sweep.pool, row.rays);
+    times.push_back(msSince(start));
+  }
+  row.timeMs = median(times);
+  return image;
+}
+
+// A hybrid row (mask_threshold): OpenGL draws, the tracer fills the mask.
+LinearImage hybridRow(Sweep& sweep, const FrameSettings& frame, const MaskSettings& mask, AccuracyRow& row) {
+  if (!sweep.context) {
+    sweep.context = std::make_unique<gl::OffscreenContext>(frame.width, frame.height);
+    sweep.raster = std::make_unique<gl::RasterScene>(sweep.context->api(), sweep.prepared.scene());
+  }
+  LocalTileService service(sweep.prepared, sweep.pool);
+  std::vector<double> times;
+  HybridResult result;
+  for (int f = 0; f < sweep.frames + 1; ++f) {  // the first compiles the shaders
+    renderHybrid(sweep.context->api(), *sweep.raster, service, frame, mask, 64, result);
+    if (f > 0) times.push_back(result.times.totalMs);
+  }
+  row.timeMs = median(times);
+  row.rays = result.rays;
+  return fromBytes(result.image);
+}
+
+void writeRowImages(const fs::path& dir, const AccuracyRow& row, const LinearImage& image,
+                    const LinearImage& reference) {
+  const std::string stem = row.name + "-" + row.value;
+  writePfm(dir / (stem + ".pfm"), image);
+  writePng(dir / row.image, toBytes(image));
+  writePng(dir / (stem + "-error.png"), errorImage(pixelErrors(image, reference), image.width, image.height));
+}
+
+AccuracyReference renderReference(Sweep& sweep, const FrameSettings& frame, int samples, const fs::path& dir,
+                                  LinearImage& reference) {
+  const auto start = Clock::now();
+  RayStats ignored;
+  std::fprintf(stderr, "reference: 2 x %d jittered samples, max depth %d ...\n", samples / 2, kReferenceDepth);
+  const Renderer a(sweep.prepared, referenceFrame(frame, samples / 2, frame.sampling.seed));
+  const Renderer b(sweep.prepared, referenceFrame(frame, samples / 2, frame.sampling.seed + 1));
+  const LinearImage halfA = renderLinear(a, sweep.pool, ignored);
+  const LinearImage halfB = renderLinear(b, sweep.pool, ignored);
+  reference = average(halfA, halfB);
+  // Each half errs by about sqrt(2) times the whole; their difference by 2 times.
+  AccuracyReference r{samples, kReferenceDepth, compareImages(halfA, halfB).rmse / 2.0, msSince(start)};
+  writePfm(dir / "reference.pfm", reference);
+  writePng(dir / "reference.png", toBytes(reference));
+  return r;
+}
+
+std::vector<Series> sweepOf(const AccuracyOptions& o, const Scene& scene) {
+  std::vector<Series> series;
+  for (const std::string& v : o.vary) series.push_back(parseVary(v));
+  if (series.empty()) series = defaultSweep();
+  for (const Series& s : series) {
+    for (const std::string& value : s.values) {
+      FrameSettings frame = scene.frame;
+      MaskSettings mask = scene.mask;
+      applySetting(s.key, value, frame, mask);
+      checkSetting("--vary " + std::string(enumWord(s.key)) + "=" + value, frame);
+    }
+  }
+  if (o.referenceSamples % 2 != 0) {
+    throw InputError("--reference-samples " + std::to_string(o.referenceSamples) +
+                     ": must be even (two half-sample references estimate its own error)");
+  }
+  return series;
+}
+
+}  // namespace
+
+void runAccuracy(const AccuracyOptions& o) {
+  proto::LoadedBundle loaded = proto::loadSceneBundle(o.scene);
+  Scene& scene = loaded.scene;
+  if (o.width) scene.frame.width = *o.width;
+  if (o.height) scene.frame.height = *o.height;
+  const std::vector<Series> series = sweepOf(o, scene);
+  const fs::path dir(o.outDir);
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir)) throw InputError("-o " + o.outDir + ": cannot make the folder (" + ec.message() + ")");
+
+  const PreparedScene prepared(scene, BvhSettings{});
+  ThreadPool pool(resolveThreadCount(o.threads));
+  Sweep sweep{prepared, pool, o.frames, nullptr, nullptr};
+  LinearImage reference;
+  const AccuracyReference ref = renderReference(sweep, scene.frame, o.referenceSamples, dir, reference);
+
+  std::size_t total = 0, done = 0;
+  for (const Series& s : series) total += s.values.size();
+  std::vector<AccuracyRow> rows;
+  for (const Series& s : series) {
+    for (const std::string& value : s.values) {
+      FrameSettings frame = scene.frame;
+      MaskSettings mask = scene.mask;
+      applySetting(s.key, value, frame, mask);
+      AccuracyRow row{std::string(enumWord(s.key)), value, value == currentValue(s.key, scene.frame, scene.mask),
+                      0.0, {}, {}, std::string(enumWord(s.key)) + "-" + value + ".png"};
+      const LinearImage image =
+          s.key == AccuracyKey::kMaskThreshold ? hybridRow(sweep, frame, mask, row) : traceRow(sweep, frame, row);
+      row.error = compareImages(image, reference);
+      writeRowImages(dir, row, image, reference);
+      std::fprintf(stderr, "[%zu/%zu] %s = %s: %.1f ms, RMSE %.5f\n", ++done, total, row.name.c_str(),
+                   row.value.c_str(), row.timeMs, row.error.rmse);
+      rows.push_back(std::move(row));
+    }
+  }
+  writeCsv(dir, rows);
+  const bool plotted = writePlot(dir, rows, ref.ownRmse);
+  writeReport(dir, o.scene, ref, rows, plotted);
+  std::fprintf(stderr, "wrote %s/report.md, accuracy.csv%s and the images\n", o.outDir.c_str(),
+               plotted ? ", accuracy.png" : " (no accuracy.png: gnuplot is not installed; apt-get install gnuplot-nox)");
+}
+
+}  // namespace glint

@@ -1,0 +1,27 @@
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace glint {
+
+// Options of `glint accuracy`.
+struct AccuracyOptions {
+  std::string scene;
+  std::string outDir;
+  std::vector<std::string> vary;  // "KEY=V1,V2,..." each; none: the default sweep
+  int referenceSamples = 256;
+  int frames = 3;  // frames per row; the median time is reported
+  std::optional<int> width;
+  std::optional<int> height;
+  int threads = 0;
+};
+
+// Renders a reference and every setting of the sweep, measures each row's
+// error against the reference and its time, and writes accuracy.csv, the
+// images (PFM and PNG), the error images, the plot and report.md to outDir
+// (docs/accuracy.md). Throws InputError for bad input, before rendering.
+void runAccuracy(const AccuracyOptions& options);
+
+}  // namespace glint

@@ -1,0 +1,136 @@
+#include "client/accuracy_sweep.h"
+
+#include <charconv>
+#include <cmath>
+#include <sstream>
+
+#include "common/error.h"
+#include "common/frame_limits.h"
+
+namespace glint {
+namespace {
+
+// What a key takes, for errors and checks.
+std::string allowed(AccuracyKey key) {
+  switch (key) {
+    case AccuracyKey::kSamples:
+      return "whole numbers in [1, " + std::to_string(FrameLimits::kMaxSamples) + "]";
+    case AccuracyKey::kPattern:
+      return "one of " + enumWordsJoined<SamplePattern>();
+    case AccuracyKey::kFilter:
+      return "one of " + enumWordsJoined<FilterType>();
+    case AccuracyKey::kMaxDepth:
+      return "whole numbers in [1, " + std::to_string(FrameLimits::kMaxDepth) + "]";
+    case AccuracyKey::kMinWeight:
+    case AccuracyKey::kMaskThreshold:
+      return "numbers in [0, 1]";
+  }
+  return "";
+}
+
+bool parseNumber(const std::string& text, double& out) {
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, out);
+  return ec == std::errc() && ptr == end;
+}
+
+bool takes(AccuracyKey key, const std::string& value) {
+  double number = 0.0;
+  switch (key) {
+    case AccuracyKey::kPattern:
+      return enumFromWord<SamplePattern>(value).has_value();
+    case AccuracyKey::kFilter:
+      return enumFromWord<FilterType>(value).has_value();
+    case AccuracyKey::kSamples:
+      return parseNumber(value, number) && number == std::floor(number) && number >= 1 &&
+             number <= FrameLimits::kMaxSamples;
+    case AccuracyKey::kMaxDepth:
+      return parseNumber(value, number) && number == std::floor(number) && number >= 1 &&
+             number <= FrameLimits::kMaxDepth;
+    case AccuracyKey::kMinWeight:
+    case AccuracyKey::kMaskThreshold:
+      return parseNumber(value, number) && number >= 0.0 && number <= 1.0;
+  }
+  return false;
+}
+
+std::string formatNumber(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+Series parseVary(const std::string& text) {
+  const auto equals = text.find('=');
+  const std::string keyWord = text.substr(0, equals);
+  const auto key = enumFromWord<AccuracyKey>(keyWord);
+  if (equals == std::string::npos || !key) {
+    throw InputError("--vary " + text + ": expected KEY=V1,V2,... with KEY one of " + enumWordsJoined<AccuracyKey>());
+  }
+  Series series{*key, {}};
+  std::stringstream list(text.substr(equals + 1));
+  std::string value;
+  while (std::getline(list, value, ',')) {
+    if (!takes(*key, value)) {
+      throw InputError("--vary " + text + ": " + keyWord + " does not take '" + value + "'; it takes " + allowed(*key));
+    }
+    series.values.push_back(value);
+  }
+  if (series.values.empty()) throw InputError("--vary " + text + ": no values; " + keyWord + " takes " + allowed(*key));
+  return series;
+}
+
+std::vector<Series> defaultSweep() {
+  return {{AccuracyKey::kSamples, {"1", "4", "16", "64"}},
+          {AccuracyKey::kPattern, {"regular", "jittered"}},
+          {AccuracyKey::kFilter, {"box", "tent", "gaussian", "mitchell"}},
+          {AccuracyKey::kMaxDepth, {"1", "2", "3", "5", "8"}},
+          {AccuracyKey::kMinWeight, {"0.1", "0.01", "0.001", "0"}},
+          {AccuracyKey::kMaskThreshold, {"0", "0.1", "0.2", "0.5", "1"}}};
+}
+
+void applySetting(AccuracyKey key, const std::string& value, FrameSettings& frame, MaskSettings& mask) {
+  switch (key) {
+    case AccuracyKey::kSamples:
+      frame.sampling.samples = std::stoi(value);
+      return;
+    case AccuracyKey::kPattern:
+      frame.sampling.pattern = *enumFromWord<SamplePattern>(value);
+      return;
+    case AccuracyKey::kFilter:
+      frame.sampling.filter = *enumFromWord<FilterType>(value);
+      return;
+    case AccuracyKey::kMaxDepth:
+      frame.tracing.maxDepth = std::stoi(value);
+      return;
+    case AccuracyKey::kMinWeight:
+      frame.tracing.minWeight = std::stof(value);
+      return;
+    case AccuracyKey::kMaskThreshold:
+      mask.rule = MaskRule::kAuto;
+      mask.minReflectivity = std::stof(value);
+      return;
+  }
+}
+
+std::string currentValue(AccuracyKey key, const FrameSettings& frame, const MaskSettings& mask) {
+  switch (key) {
+    case AccuracyKey::kSamples:
+      return std::to_string(frame.sampling.samples);
+    case AccuracyKey::kPattern:
+      return std::string(enumWord(frame.sampling.pattern));
+    case AccuracyKey::kFilter:
+      return std::string(enumWord(frame.sampling.filter));
+    case AccuracyKey::kMaxDepth:
+      return std::to_string(frame.tracing.maxDepth);
+    case AccuracyKey::kMinWeight:
+      return formatNumber(frame.tracing.minWeight);
+    case AccuracyKey::kMaskThreshold:
+      return formatNumber(mask.minReflectivity);
+  }
+  return "";
+}
+
+}  // namespace glint

@@ -1,0 +1,50 @@
+#pragma once
+
+#include <array>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "common/enum_words.h"
+#include "common/scene.h"
+
+namespace glint {
+
+// The settings `glint accuracy` can vary.
+enum class AccuracyKey { kSamples, kPattern, kFilter, kMaxDepth, kMinWeight, kMaskThreshold };
+
+template <>
+struct EnumWords<AccuracyKey> {
+  static constexpr std::array<std::pair<AccuracyKey, std::string_view>, 6> kWords{
+      {{AccuracyKey::kSamples, "samples"},
+       {AccuracyKey::kPattern, "pattern"},
+       {AccuracyKey::kFilter, "filter"},
+       {AccuracyKey::kMaxDepth, "max_depth"},
+       {AccuracyKey::kMinWeight, "min_weight"},
+       {AccuracyKey::kMaskThreshold, "mask_threshold"}}};
+};
+
+// One series of a sweep: one key, the values it takes in turn, every other
+// setting the scene's own.
+struct Series {
+  AccuracyKey key;
+  std::vector<std::string> values;
+};
+
+// "--vary KEY=V1,V2,...": throws InputError naming the key and the values it
+// takes when the key is unknown or a value is not one of them.
+Series parseVary(const std::string& text);
+
+// Every key, around the thesis's settings (what `--vary` not given sweeps).
+std::vector<Series> defaultSweep();
+
+// Sets `value` of `key` in a frame and mask (mask_threshold: the auto rule's
+// reflectivity threshold; the frame becomes hybrid). Values are as parseVary
+// checked them.
+void applySetting(AccuracyKey key, const std::string& value, FrameSettings& frame, MaskSettings& mask);
+
+// The scene's own value of `key`, written as the sweep writes values.
+std::string currentValue(AccuracyKey key, const FrameSettings& frame, const MaskSettings& mask);
+
+}  // namespace glint
