@@ -1,0 +1,168 @@
+// glint accuracy: the error metrics against errors worked out by hand, the
+// --vary checks, and a small sweep whose error must fall with samples the
+// way sampling theory says.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "client/accuracy_command.h"
+#include "client/accuracy_report.h"
+#include "client/accuracy_sweep.h"
+#include "common/error.h"
+#include "common/image_metrics.h"
+#include "tests/common/test_support.h"
+
+namespace glint {
+namespace {
+
+namespace fs = std::filesystem;
+
+LinearImage image(std::vector<float> rgb, int width) {
+  return {width, static_cast<int>(rgb.size() / 3 / static_cast<std::size_t>(width)), std::move(rgb)};
+}
+
+TEST(ImageMetrics, ErrorsWorkedOutByHand) {
+  const LinearImage reference = image({0, 0, 0, 0, 0, 0, 0.5f, 0.5f, 0.5f}, 3);
+  // Pixel 0: one channel off by 0.5; pixel 1: one channel off by 2/255; pixel 2 exact.
+  const LinearImage test = image({0.5f, 0, 0, 0, 2.0f / 255.0f, 0, 0.5f, 0.5f, 0.5f}, 3);
+  const ImageError e = compareImages(test, reference);
+  const double squares = 0.25 + (2.0 / 255.0) * (2.0 / 255.0);
+  EXPECT_NEAR(e.rmse, std::sqrt(squares / 9.0), 1e-7);
+  EXPECT_NEAR(e.psnrDb, 20.0 * std::log10(1.0 / std::sqrt(squares / 9.0)), 1e-5);
+  EXPECT_FLOAT_EQ(static_cast<float>(e.maxError), 0.5f);
+  EXPECT_NEAR(e.over1, 2.0 / 3.0, 1e-12);  // pixels 0 and 1
+  EXPECT_NEAR(e.over8, 1.0 / 3.0, 1e-12);  // pixel 0 only
+  const ImageError same = compareImages(reference, reference);
+  EXPECT_EQ(same.rmse, 0.0);
+  EXPECT_TRUE(std::isinf(same.psnrDb));
+  EXPECT_THROW(compareImages(image({0, 0, 0}, 1), reference), InputError);
+}
+
+TEST(ImageMetrics, ErrorImageRampIsFixed) {
+  const FrameImage ramp = errorImage({0.0f, 1.0f / 255.0f, 8.0f / 255.0f, 1.0f}, 4, 1);
+  EXPECT_EQ(std::vector<std::uint8_t>(ramp.rgb.begin(), ramp.rgb.begin() + 3), (std::vector<std::uint8_t>{0, 0, 0}));
+  EXPECT_EQ(std::vector<std::uint8_t>(ramp.rgb.begin() + 3, ramp.rgb.begin() + 6),
+            (std::vector<std::uint8_t>{0, 0, 255}));
+  EXPECT_EQ(std::vector<std::uint8_t>(ramp.rgb.begin() + 6, ramp.rgb.begin() + 9),
+            (std::vector<std::uint8_t>{255, 230, 0}));
+  EXPECT_EQ(std::vector<std::uint8_t>(ramp.rgb.begin() + 9, ramp.rgb.end()), (std::vector<std::uint8_t>{255, 0, 0}));
+}
+
+std::string varyError(const std::string& text) {
+  try {
+    parseVary(text);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(taken)";
+}
+
+TEST(AccuracySweep, BadVaryValuesNameTheKeyAndWhatItTakes) {
+  EXPECT_NE(varyError("colour=1").find("KEY one of samples, pattern, filter, max_depth, min_weight, mask_threshold"),
+            std::string::npos);
+  EXPECT_NE(varyError("samples=4,0").find("samples does not take '0'; it takes whole numbers in [1, 4096]"),
+            std::string::npos);
+  EXPECT_NE(varyError("filter=lanczos").find("it takes one of box, tent, gaussian, mitchell"), std::string::npos);
+  EXPECT_NE(varyError("min_weight=2").find("it takes numbers in [0, 1]"), std::string::npos);
+  EXPECT_NE(varyError("max_depth=").find("no values"), std::string::npos);
+  EXPECT_EQ(parseVary("pattern=regular,jittered").values, (std::vector<std::string>{"regular", "jittered"}));
+}
+
+struct CsvRow {
+  std::string value;
+  double timeMs;
+  double rmse;
+};
+
+std::vector<CsvRow> readCsv(const fs::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);  // header
+  std::vector<CsvRow> rows;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream s(line);
+    for (std::string cell; std::getline(s, cell, ',');) cells.push_back(cell);
+    rows.push_back({cells.at(1), std::stod(cells.at(3)), std::stod(cells.at(9))});
+  }
+  return rows;
+}
+
+double referenceError(const fs::path& report) {
+  std::ifstream in(report);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto at = text.find("is RMSE ");
+  return at == std::string::npos ? -1.0 : std::stod(text.substr(at + 8));
+}
+
+// From 16 to 64 jittered samples the error against the reference falls by
+// more than 1.4x and less than 4x (plain Monte Carlo: 2x), the time rises,
+// and the reference's own error is below the 64-sample row's.
+TEST(Accuracy, ErrorFallsWithSamplesOnASmallScene) {
+  const fs::path dir = fs::temp_directory_path() / ("glint-accuracy-" + std::to_string(::getpid()));
+  AccuracyOptions o;
+  o.scene = test::sourcePath("scenes/glass.json");
+  o.outDir = dir.string();
+  o.vary = {"samples=16,64", "pattern=jittered"};
+  o.referenceSamples = 512;
+  o.frames = 1;
+  o.width = 64;
+  o.height = 48;
+  runAccuracy(o);
+  const std::vector<CsvRow> rows = readCsv(dir / "accuracy.csv");
+  ASSERT_EQ(rows.size(), 3u);
+  const double ratio = rows[0].rmse / rows[1].rmse;
+  EXPECT_GT(ratio, 1.4) << rows[0].rmse << " at 16 samples, " << rows[1].rmse << " at 64";
+  EXPECT_LT(ratio, 4.0) << rows[0].rmse << " at 16 samples, " << rows[1].rmse << " at 64";
+  EXPECT_GT(rows[1].timeMs, rows[0].timeMs);
+  const double own = referenceError(dir / "report.md");
+  EXPECT_GT(own, 0.0);
+  EXPECT_LT(own, rows[1].rmse);
+  // Every row's linear values are there to recompute the numbers from.
+  const auto pfmBytes = fs::file_size(dir / "samples-64.pfm");
+  EXPECT_EQ(pfmBytes, std::string("PF\n64 48\n-1.0\n").size() + 64u * 48u * 3u * sizeof(float));
+  EXPECT_TRUE(fs::exists(dir / "samples-64-error.png"));
+  EXPECT_TRUE(fs::exists(dir / "reference.pfm"));
+  fs::remove_all(dir);
+}
+
+TEST(Accuracy, BadInputIsRefusedBeforeRendering) {
+  const fs::path dir = fs::temp_directory_path() / ("glint-accuracy-bad-" + std::to_string(::getpid()));
+  // The glass scene with regular sampling: square sample counts only.
+  const fs::path scene = fs::temp_directory_path() / ("glint-accuracy-regular-" + std::to_string(::getpid()) + ".json");
+  {
+    std::ifstream in(test::sourcePath("scenes/glass.json"));
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.replace(text.find("\"jittered\""), 10, "\"regular\"");
+    std::ofstream(scene) << text;
+  }
+  AccuracyOptions o;
+  o.scene = scene.string();
+  o.outDir = dir.string();
+  o.width = 32;
+  o.height = 24;
+  o.vary = {"samples=4,3"};
+  try {
+    runAccuracy(o);
+    FAIL() << "rendered a sweep with 3 regular samples";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--vary samples=3"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir));
+  o.vary = {"samples=4"};
+  o.referenceSamples = 255;
+  try {
+    runAccuracy(o);
+    FAIL() << "took an odd reference sample count";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--reference-samples 255: must be even"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir));
+  fs::remove(scene);
+}
+
+}  // namespace
+}  // namespace glint
