@@ -9,6 +9,8 @@ DEPS := cmake g++ make pkg-config libglm-dev nlohmann-json3-dev libtinyobjloader
         libglfw3-dev libgl1-mesa-dri xvfb xauth openssl iproute2
 # The benchmark also compares against POV-Ray 3.7.
 BENCH_DEPS := povray
+# `make accuracy` plots with gnuplot.
+ACCURACY_DEPS := gnuplot-nox
 # The fuzzers are built with clang and its libFuzzer.
 FUZZ_DEPS := clang libclang-rt-14-dev
 FUZZ_BUILD ?= build-fuzz
@@ -16,7 +18,7 @@ FUZZ_SECONDS ?= 60
 
 SUDO := $(shell [ "$$(id -u)" -eq 0 ] || echo sudo)
 
-.PHONY: all deps bench-deps fuzz-deps configure build test demo bench fuzz fuzz-seeds clean
+.PHONY: all deps bench-deps accuracy-deps fuzz-deps configure build test demo bench accuracy fuzz fuzz-seeds clean
 
 all: build
 
@@ -51,6 +53,16 @@ demo: build
 
 bench: bench-deps build
 	$(BUILD)/bin/glint-bench --scenes scenes
+
+accuracy-deps: deps
+	$(call install_missing,$(ACCURACY_DEPS))
+
+# The default accuracy sweep on the thesis's scenes 1 and 2: out/accuracy/,
+# and docs/accuracy.md with its plots in docs/images/.
+accuracy: accuracy-deps build
+	$(BUILD)/bin/glint accuracy scenes/room.json -o out/accuracy/room
+	$(BUILD)/bin/glint accuracy scenes/room-gl-floor.json -o out/accuracy/room-gl-floor
+	tests/bench/accuracy_doc.sh out/accuracy docs room room-gl-floor
 
 fuzz-deps: deps
 	$(call install_missing,$(FUZZ_DEPS))

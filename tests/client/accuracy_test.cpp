@@ -1,6 +1,8 @@
 // glint accuracy: the error metrics against errors worked out by hand, the
 // --vary checks, and a small sweep whose error must fall with samples the
 // way sampling theory says.
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>

@@ -3,6 +3,8 @@
 // wrong party refused with an error that says what is wrong, the server
 // serving on after each; a stalled handshake dropped; no plain TCP beyond
 // loopback unless asked for.
+#include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
 
