@@ -84,7 +84,7 @@ Series parseVary(const std::string& text) {
 
 std::vector<Series> defaultSweep() {
   return {{AccuracyKey::kSamples, {"1", "4", "16", "64"}},
-          {AccuracyKey::kPattern, {"regular", "jittered"}},
+          {AccuracyKey::kPattern, {"regular", "jittered", "adaptive"}},
           {AccuracyKey::kFilter, {"box", "tent", "gaussian", "mitchell"}},
           {AccuracyKey::kMaxDepth, {"1", "2", "3", "5", "8"}},
           {AccuracyKey::kMinWeight, {"0.1", "0.01", "0.001", "0"}},

@@ -101,7 +101,11 @@ std::function<void()> declareRender(CLI::App* render) {
       ->default_val(64);
   render->add_option("--samples", o.samples, "Samples per pixel (regular: 1, 2, 4, 9, 16 ...)")
       ->check(CLI::Range(1, FrameLimits::kMaxSamples));
-  addEnumOption(render, "--pattern", o.pattern, "Sample pattern (default: the scene's)");
+  addEnumOption(render, "--pattern", o.pattern,
+                "Sample pattern (default: the scene's); adaptive: one sample per pixel, all where it differs from a "
+                "neighbour");
+  render->add_option("--adaptive-threshold", o.adaptiveThreshold,
+                     "Under --pattern adaptive: a channel difference above this (linear, default 1/64) refines");
   addEnumOption(render, "--filter", o.filter, "Pixel filter (default: the scene's)");
   render->add_option("--seed", o.seed, "Seed of the jitter (same seed, same image)")
       ->check(CLI::Range(0u, FrameLimits::kMaxSeed));

@@ -97,6 +97,7 @@ void applyOverrides(const RenderOptions& o, Scene& scene) {
   if (o.width) scene.frame.width = *o.width;
   if (o.height) scene.frame.height = *o.height;
   if (o.pattern) scene.frame.sampling.pattern = *o.pattern;
+  if (o.adaptiveThreshold) scene.frame.sampling.adaptiveThreshold = *o.adaptiveThreshold;
   if (o.samples) scene.frame.sampling.samples = *o.samples;
   if (o.filter) scene.frame.sampling.filter = *o.filter;
   if (o.seed) scene.frame.sampling.seed = *o.seed;
@@ -109,7 +110,8 @@ void applyOverrides(const RenderOptions& o, Scene& scene) {
               .samples = samples.c_str(),
               .seed = "--seed",
               .maxDepth = "--max-depth",
-              .minWeight = "--min-weight"});
+              .minWeight = "--min-weight",
+              .adaptiveThreshold = "--adaptive-threshold"});
   if (o.mask) scene.mask.rule = *o.mask;
   if (o.maskThreshold) scene.mask.minReflectivity = *o.maskThreshold;
 }

@@ -21,6 +21,7 @@ struct RenderOptions {
   int tileSize = 64;
   std::optional<int> samples;
   std::optional<SamplePattern> pattern;
+  std::optional<float> adaptiveThreshold;
   std::optional<FilterType> filter;
   std::optional<int> maxDepth;
   std::optional<float> minWeight;

@@ -65,7 +65,7 @@ EffectPlan EffectPlan::derive(const Scene& scene, const FrameSettings& frame) {
   for (const MaterialEffects& e : plan.materials) anyDirect = anyDirect || e.direct;
   plan.shadows = anyLight && anyDirect && !selfShadowFree(scene.geometry);
   plan.antialiasing =
-      frame.sampling.samples > 1 || frame.sampling.pattern == SamplePattern::kJittered;
+      frame.sampling.samples > 1 || frame.sampling.pattern != SamplePattern::kRegular;
   return plan;
 }
 

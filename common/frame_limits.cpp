@@ -28,7 +28,7 @@ std::optional<FrameProblem> frameProblem(const FrameSettings& f, std::size_t max
   }
   if (!validSampleCount(f.sampling.pattern, f.sampling.samples)) {
     return FrameProblem{FrameField::kSamples, "the regular pattern takes 1, 2 or a square number (4, 9, 16, ...) "
-                                              "of samples; the jittered pattern takes any number"};
+                                              "of samples; the jittered and adaptive patterns take any number"};
   }
   if (f.sampling.seed > L::kMaxSeed) return FrameProblem{FrameField::kSeed, range(0, L::kMaxSeed)};
   if (f.tracing.maxDepth < 1 || f.tracing.maxDepth > L::kMaxDepth) {
@@ -36,6 +36,9 @@ std::optional<FrameProblem> frameProblem(const FrameSettings& f, std::size_t max
   }
   if (!(f.tracing.minWeight >= 0.0f && f.tracing.minWeight <= 1.0f)) {
     return FrameProblem{FrameField::kMinWeight, "must be in [0, 1]"};
+  }
+  if (!(f.sampling.adaptiveThreshold > 0.0f && f.sampling.adaptiveThreshold <= 1.0f)) {
+    return FrameProblem{FrameField::kAdaptiveThreshold, "must be in (0, 1]"};
   }
   return std::nullopt;
 }
@@ -56,6 +59,8 @@ void checkFrame(const FrameSettings& frame, std::size_t maxPixels, const FrameFi
       throw InputError(std::string(names.maxDepth) + ": " + p->what);
     case FrameField::kMinWeight:
       throw InputError(std::string(names.minWeight) + ": " + p->what);
+    case FrameField::kAdaptiveThreshold:
+      throw InputError(std::string(names.adaptiveThreshold) + ": " + p->what);
   }
 }
 

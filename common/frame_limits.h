@@ -22,7 +22,7 @@ struct FrameLimits {
 // Which setting a problem is about, so that each caller names it its own way
 // (the scene file's "sampling.samples", the wire's "frame_setup.samples", the
 // command line's "--samples").
-enum class FrameField { kSize, kCamera, kSamples, kMaxDepth, kMinWeight, kSeed };
+enum class FrameField { kSize, kCamera, kSamples, kMaxDepth, kMinWeight, kSeed, kAdaptiveThreshold };
 
 struct FrameProblem {
   FrameField field;
@@ -40,6 +40,7 @@ struct FrameFieldNames {
   const char* seed;
   const char* maxDepth;
   const char* minWeight;
+  const char* adaptiveThreshold;
 };
 
 // Throws InputError("<name>: <what>") for the first problem, if any.

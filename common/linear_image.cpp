@@ -6,19 +6,27 @@
 namespace glint {
 
 LinearImage renderLinear(const Renderer& renderer, ThreadPool& pool, RayStats& stats) {
+  constexpr int kTileSize = 64;  // as glint render's tiles, so that the adaptive pattern's borders cost the same
   const FrameSettings& frame = renderer.frame();
   LinearImage image{frame.width, frame.height,
                     std::vector<float>(static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height) * 3)};
+  const std::vector<TileRect> tiles = tileGrid(frame.width, frame.height, kTileSize);
   std::mutex statsMutex;
-  pool.parallelFor(static_cast<std::size_t>(frame.height), [&](std::size_t y) {
-    RayStats rowStats;
-    for (int x = 0; x < frame.width; ++x) {
-      const glm::vec3 c = renderer.pixel(x, static_cast<int>(y), rowStats);
-      float* p = &image.rgb[(y * static_cast<std::size_t>(frame.width) + static_cast<std::size_t>(x)) * 3];
-      for (int k = 0; k < 3; ++k) p[k] = std::clamp(c[k], 0.0f, 1.0f);
+  pool.parallelFor(tiles.size(), [&](std::size_t t) {
+    const TileRect& r = tiles[t];
+    RayStats tileStats;
+    std::vector<glm::vec3> linear;
+    renderer.renderTileLinear(r, {}, linear, tileStats);
+    std::size_t i = 0;
+    for (int y = r.y; y < r.y + r.height; ++y) {
+      for (int x = r.x; x < r.x + r.width; ++x, ++i) {
+        float* p = &image.rgb[(static_cast<std::size_t>(y) * static_cast<std::size_t>(frame.width) +
+                               static_cast<std::size_t>(x)) * 3];
+        for (int k = 0; k < 3; ++k) p[k] = std::clamp(linear[i][k], 0.0f, 1.0f);
+      }
     }
     std::lock_guard lock(statsMutex);
-    stats += rowStats;
+    stats += tileStats;
   });
   return image;
 }

@@ -36,8 +36,13 @@ class Renderer {
   // order, 3 bytes per pixel.
   void renderTile(const TileRect& rect, std::span<const std::uint8_t> mask,
                   std::vector<std::uint8_t>& rgb, RayStats& stats) const;
+  // The same pixels as linear colour (before clamping and rounding).
+  void renderTileLinear(const TileRect& rect, std::span<const std::uint8_t> mask, std::vector<glm::vec3>& out,
+                        RayStats& stats) const;
 
-  // Linear colour of pixel (x, y): the filtered average of its samples.
+  // Linear colour of pixel (x, y): the filtered average of its samples
+  // (regular and jittered patterns; the adaptive one needs its neighbours:
+  // renderTileLinear).
   glm::vec3 pixel(int x, int y, RayStats& stats) const;
 
   const Scene& scene() const { return prepared_.scene(); }
@@ -46,6 +51,18 @@ class Renderer {
   const Camera& camera() const { return camera_; }
 
  private:
+  // A pixel's samples so far: their filter-weighted and plain sums.
+  struct PixelSamples {
+    glm::vec3 sum{0.0f};
+    glm::vec3 unweighted{0.0f};
+    float weightSum = 0.0f;
+    int finite = 0;
+  };
+  void addSample(int x, int y, int sample, PixelSamples& p, RayStats& stats) const;
+  glm::vec3 resolve(const PixelSamples& p) const;
+  void renderAdaptive(const TileRect& rect, std::span<const std::uint8_t> mask, std::vector<glm::vec3>& out,
+                      RayStats& stats) const;
+
   const PreparedScene& prepared_;
   FrameSettings frame_;
   EffectPlan plan_;

@@ -38,7 +38,7 @@ float hashUniform(std::uint32_t seed, int px, int py, int sample, int dimension)
 
 bool validSampleCount(SamplePattern pattern, int samples) {
   if (samples < 1) return false;
-  if (pattern == SamplePattern::kJittered || samples == 2) return true;
+  if (pattern != SamplePattern::kRegular || samples == 2) return true;
   const int k = static_cast<int>(std::lround(std::sqrt(samples)));
   return k * k == samples;
 }

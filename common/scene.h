@@ -13,14 +13,16 @@
 
 namespace glint {
 
-enum class SamplePattern { kRegular, kJittered };
+// kAdaptive: one sample per pixel, then the jittered pattern's full count
+// where the pixel differs from a neighbour by more than adaptiveThreshold.
+enum class SamplePattern { kRegular, kJittered, kAdaptive };
 enum class FilterType { kBox, kTent, kGaussian, kMitchell };
 enum class MaskRule { kAuto, kAll, kNone };
 
 template <>
 struct EnumWords<SamplePattern> {
-  static constexpr std::array<std::pair<SamplePattern, std::string_view>, 2> kWords{
-      {{SamplePattern::kRegular, "regular"}, {SamplePattern::kJittered, "jittered"}}};
+  static constexpr std::array<std::pair<SamplePattern, std::string_view>, 3> kWords{
+      {{SamplePattern::kRegular, "regular"}, {SamplePattern::kJittered, "jittered"}, {SamplePattern::kAdaptive, "adaptive"}}};
 };
 template <>
 struct EnumWords<FilterType> {
@@ -40,6 +42,7 @@ struct SamplingSettings {
   int samples = 1;
   FilterType filter = FilterType::kBox;
   std::uint32_t seed = 0;
+  float adaptiveThreshold = 1.0f / 64.0f;  // per channel, linear; adaptive pattern only
 };
 
 struct TracingSettings {

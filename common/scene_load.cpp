@@ -86,7 +86,7 @@ class SceneLoader {
   }
 
   void readSampling(const JsonReader& r) {
-    r.allowKeys({"pattern", "samples", "filter", "seed"});
+    r.allowKeys({"pattern", "samples", "filter", "seed", "adaptive_threshold"});
     SamplingSettings& s = scene_.frame.sampling;
     if (auto p = r.find("pattern")) {
       s.pattern = choice<SamplePattern>(*p);
@@ -96,6 +96,7 @@ class SceneLoader {
       s.filter = choice<FilterType>(*f);
     }
     if (auto seed = r.find("seed")) s.seed = static_cast<std::uint32_t>(seed->integer(0, FrameLimits::kMaxSeed));
+    if (auto t = r.find("adaptive_threshold")) s.adaptiveThreshold = t->number(0.0f, 1.0f, true);
   }
 
   // The frame's settings together (the size against the pixel limit, the
@@ -108,7 +109,8 @@ class SceneLoader {
                        .samples = "sampling.samples",
                        .seed = "sampling.seed",
                        .maxDepth = "tracing.max_depth",
-                       .minWeight = "tracing.min_weight"});
+                       .minWeight = "tracing.min_weight",
+                       .adaptiveThreshold = "sampling.adaptive_threshold"});
   }
 
   void readTracing(const JsonReader& r) {

@@ -75,9 +75,10 @@ std::vector<std::uint8_t> encodeFrameSetup(std::uint32_t frameId, const SceneHas
   const wire::Vec3 eye = toWire(f.camera.eye), lookAt = toWire(f.camera.lookAt), up = toWire(f.camera.up);
   const auto setup = wire::CreateFrameSetup(
       b, frameId, hashVector, static_cast<std::uint32_t>(f.width), static_cast<std::uint32_t>(f.height), &eye,
-      &lookAt, &up, f.camera.fovY, f.sampling.pattern == SamplePattern::kJittered,
+      &lookAt, &up, f.camera.fovY, f.sampling.pattern != SamplePattern::kRegular,
       static_cast<std::uint32_t>(f.sampling.samples), static_cast<std::uint8_t>(f.sampling.filter), f.sampling.seed,
-      static_cast<std::uint32_t>(f.tracing.maxDepth), f.tracing.minWeight);
+      static_cast<std::uint32_t>(f.tracing.maxDepth), f.tracing.minWeight,
+      f.sampling.pattern == SamplePattern::kAdaptive, f.sampling.adaptiveThreshold);
   return finish(b, setup, wire::Body::FrameSetup);
 }
 
@@ -147,7 +148,10 @@ FrameSettings decodeFrameSettings(const wire::FrameSetup& s, std::size_t maxPixe
   f.camera.lookAt = fromWire(s.look_at(), "look_at");
   f.camera.up = fromWire(s.up(), "up");
   f.camera.fovY = s.fov_y();
-  f.sampling.pattern = s.jittered() ? SamplePattern::kJittered : SamplePattern::kRegular;
+  f.sampling.pattern = s.adaptive()   ? SamplePattern::kAdaptive
+                       : s.jittered() ? SamplePattern::kJittered
+                                      : SamplePattern::kRegular;
+  f.sampling.adaptiveThreshold = s.adaptive() ? s.adaptive_threshold() : f.sampling.adaptiveThreshold;
   f.sampling.samples = toInt(s.samples());
   if (s.filter() > static_cast<std::uint8_t>(FilterType::kMitchell)) throw InputError("frame_setup.filter: unknown");
   f.sampling.filter = static_cast<FilterType>(s.filter());
@@ -160,7 +164,8 @@ FrameSettings decodeFrameSettings(const wire::FrameSetup& s, std::size_t maxPixe
               .samples = "frame_setup.samples",
               .seed = "frame_setup.seed",
               .maxDepth = "frame_setup.max_depth",
-              .minWeight = "frame_setup.min_weight"});
+              .minWeight = "frame_setup.min_weight",
+              .adaptiveThreshold = "frame_setup.adaptive_threshold"});
   return f;
 }
 

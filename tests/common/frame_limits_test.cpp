@@ -49,7 +49,8 @@ TEST(FrameLimits, CheckFrameUsesTheCallersNames) {
                               .samples = "--samples",
                               .seed = "--seed",
                               .maxDepth = "--max-depth",
-                              .minWeight = "--min-weight"};
+                              .minWeight = "--min-weight",
+                              .adaptiveThreshold = "--adaptive-threshold"};
   FrameSettings f = goodFrame();
   f.tracing.maxDepth = 65;
   try {

@@ -99,6 +99,29 @@ TEST(Messages, FrameSetupRoundTrips) {
     EXPECT_EQ(back.tracing.maxDepth, f.tracing.maxDepth);
     EXPECT_EQ(back.tracing.minWeight, f.tracing.minWeight);
   }
+  for (const SamplePattern pattern : {SamplePattern::kRegular, SamplePattern::kJittered, SamplePattern::kAdaptive}) {
+    FrameSettings f = someFrame();
+    f.sampling.pattern = pattern;
+    f.sampling.samples = 4;
+    f.sampling.adaptiveThreshold = 0.125f;
+    const FrameSettings back = decodeFrameSettings(*decode(encodeFrameSetup(1, h, f)).body_as_FrameSetup(), 1 << 28);
+    EXPECT_EQ(back.sampling.pattern, pattern);
+    if (pattern == SamplePattern::kAdaptive) {
+      EXPECT_EQ(back.sampling.adaptiveThreshold, 0.125f);
+    }
+  }
+  {  // a threshold out of range is named
+    FrameSettings f = someFrame();
+    f.sampling.pattern = SamplePattern::kAdaptive;
+    f.sampling.adaptiveThreshold = 0.0f;
+    try {
+      decodeFrameSettings(*decode(encodeFrameSetup(1, h, f)).body_as_FrameSetup(), 1 << 28);
+      FAIL() << "took an adaptive threshold of 0";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("frame_setup.adaptive_threshold: must be in (0, 1]"), std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 TEST(Messages, TileRequestAndResultRoundTrip) {

@@ -82,6 +82,10 @@ TEST_F(ServerTest, FramesThroughTheServerEqualInProcessFrames) {
     const RoomFrame r = smallRoom(scene);
     EXPECT_EQ(remoteImage(server.address(), r).rgb, localImage(r).rgb) << scene;
   }
+  RoomFrame adaptive = smallRoom();
+  adaptive.frame.sampling.pattern = SamplePattern::kAdaptive;
+  adaptive.frame.sampling.samples = 9;
+  EXPECT_EQ(remoteImage(server.address(), adaptive).rgb, localImage(adaptive).rgb) << "adaptive";
 }
 
 TEST_F(ServerTest, MaskedTilesEqualInProcessTiles) {
