@@ -6,6 +6,7 @@
 
 #include "client/accuracy_report.h"
 #include "client/accuracy_sweep.h"
+#include "client/distributed_tile_service.h"
 #include "client/hybrid_frame.h"
 #include "client/offscreen_context.h"
 #include "client/raster_scene.h"
@@ -29,6 +30,7 @@ struct Sweep {
   const PreparedScene& prepared;
   ThreadPool& pool;
   int frames;
+  TileService* remote;  // --server: the rows' tiles go there
   std::unique_ptr<gl::OffscreenContext> context;  // made for the first hybrid row
   std::unique_ptr<gl::RasterScene> raster;
 };
@@ -64,7 +66,13 @@ LinearImage traceRow(Sweep& sweep, const FrameSettings& frame, AccuracyRow& row)
   for (int f = 0; f < sweep.frames; ++f) {
     row.rays = {};
     const auto start = Clock::now();
-    image = renderLinear(renderer, sweep.pool, row.rays);
+    if (sweep.remote) {
+      FrameResult r = renderFrame(*sweep.remote, frame, {});
+      row.rays = r.stats;
+      image = fromBytes(r.image);
+    } else {
+      image = renderLinear(renderer, sweep.pool, row.rays);
+    }
     times.push_back(msSince(start));
   }
   row.timeMs = median(times);
@@ -77,7 +85,8 @@ LinearImage hybridRow(Sweep& sweep, const FrameSettings& frame, const MaskSettin
     sweep.context = std::make_unique<gl::OffscreenContext>(frame.width, frame.height);
     sweep.raster = std::make_unique<gl::RasterScene>(sweep.context->api(), sweep.prepared.scene());
   }
-  LocalTileService service(sweep.prepared, sweep.pool);
+  LocalTileService local(sweep.prepared, sweep.pool);
+  TileService& service = sweep.remote ? *sweep.remote : local;
   std::vector<double> times;
   HybridResult result;
   for (int f = 0; f < sweep.frames + 1; ++f) {  // the first compiles the shaders
@@ -148,7 +157,14 @@ void runAccuracy(const AccuracyOptions& o) {
 
   const PreparedScene prepared(scene, BvhSettings{});
   ThreadPool pool(resolveThreadCount(o.threads));
-  Sweep sweep{prepared, pool, o.frames, nullptr, nullptr};
+  std::unique_ptr<DistributedTileService> remote;
+  if (!o.remote.servers.empty()) {
+    DistributedSettings settings;
+    settings.stallTimeout = std::chrono::milliseconds(static_cast<long>(o.remote.stallTimeoutS * 1000.0));
+    settings.tls = o.remote.tls;
+    remote = std::make_unique<DistributedTileService>(resolveServers(o.remote.servers), loaded.bundle, settings);
+  }
+  Sweep sweep{prepared, pool, o.frames, remote.get(), nullptr, nullptr};
   LinearImage reference;
   const AccuracyReference ref = renderReference(sweep, scene.frame, o.referenceSamples, dir, reference);
 

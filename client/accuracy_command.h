@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "client/tile_backend.h"
+
 namespace glint {
 
 // Options of `glint accuracy`.
@@ -16,6 +18,9 @@ struct AccuracyOptions {
   std::optional<int> width;
   std::optional<int> height;
   int threads = 0;
+  // --server ...: the rows are traced by glintd (their images are the 8-bit
+  // frames, so errors below 1/255 are not seen); the reference in process.
+  RemoteOptions remote;
 };
 
 // Renders a reference and every setting of the sweep, measures each row's

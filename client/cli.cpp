@@ -180,6 +180,7 @@ std::function<void()> declareAccuracy(CLI::App* accuracy) {
   accuracy->add_option("--threads", o.threads, "Render threads; 0 = one per hardware thread")
       ->check(CLI::Range(0, 1024))
       ->default_val(0);
+  addServerOptions(accuracy, o.remote);
   return [options, size] {
     if (!size->empty()) parseSize(*size, options->width, options->height);
     runAccuracy(*options);
