@@ -158,12 +158,7 @@ void runAccuracy(const AccuracyOptions& o) {
   const PreparedScene prepared(scene, BvhSettings{});
   ThreadPool pool(resolveThreadCount(o.threads));
   std::unique_ptr<DistributedTileService> remote;
-  if (!o.remote.servers.empty()) {
-    DistributedSettings settings;
-    settings.stallTimeout = std::chrono::milliseconds(static_cast<long>(o.remote.stallTimeoutS * 1000.0));
-    settings.tls = o.remote.tls;
-    remote = std::make_unique<DistributedTileService>(resolveServers(o.remote.servers), loaded.bundle, settings);
-  }
+  if (!o.remote.servers.empty()) remote = connectServers(o.remote, loaded.bundle);
   Sweep sweep{prepared, pool, o.frames, remote.get(), nullptr, nullptr};
   LinearImage reference;
   const AccuracyReference ref = renderReference(sweep, scene.frame, o.referenceSamples, dir, reference);

@@ -5,6 +5,15 @@
 
 namespace glint {
 
+std::unique_ptr<DistributedTileService> connectServers(const RemoteOptions& remote, const proto::SceneBundle& bundle,
+                                                       bool awaitServer) {
+  DistributedSettings settings;
+  settings.stallTimeout = std::chrono::milliseconds(static_cast<long>(remote.stallTimeoutS * 1000.0));
+  settings.awaitOne = awaitServer;
+  settings.tls = remote.tls;
+  return std::make_unique<DistributedTileService>(resolveServers(remote.servers), bundle, settings);
+}
+
 TileBackend::TileBackend(const Options& options, proto::LoadedBundle loaded) : loaded_(std::move(loaded)) {
   const RemoteOptions& remote = options.remote;
   if (remote.servers.empty() && remote.tls.any()) {
@@ -15,11 +24,7 @@ TileBackend::TileBackend(const Options& options, proto::LoadedBundle loaded) : l
       throw InputError("--bvh: a glintd builds the BVH of the scenes it holds itself (SAH); --bvh applies to "
                        "in-process rendering");
     }
-    DistributedSettings settings;
-    settings.stallTimeout = std::chrono::milliseconds(static_cast<long>(remote.stallTimeoutS * 1000.0));
-    settings.awaitOne = options.awaitServer;
-    settings.tls = remote.tls;
-    auto service = std::make_unique<DistributedTileService>(resolveServers(remote.servers), loaded_.bundle, settings);
+    auto service = connectServers(remote, loaded_.bundle, options.awaitServer);
     distributed_ = service.get();
     service_ = std::move(service);
     return;

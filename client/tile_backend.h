@@ -27,6 +27,11 @@ struct RemoteOptions {
   proto::TlsFiles tls;               // --tls-ca, --tls-cert, --tls-key
 };
 
+// The service over the servers the options name (resolved, TLS as given),
+// bound to `bundle`; `awaitServer` as DistributedSettings::awaitOne.
+std::unique_ptr<DistributedTileService> connectServers(const RemoteOptions& remote, const proto::SceneBundle& bundle,
+                                                       bool awaitServer = true);
+
 class TileBackend {
  public:
   struct Options {
