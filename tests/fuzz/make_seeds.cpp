@@ -70,6 +70,10 @@ void framingSeeds(const proto::SceneBundle& bundle, const FrameSettings& frame) 
   write("framing", "scene-upload", proto::encodeSceneUpload(hash, bundle));
   write("framing", "scene-ready", proto::encodeSceneReady(hash, 1.5f));
   write("framing", "frame-setup", proto::encodeFrameSetup(3, hash, frame));
+  FrameSettings adaptive = frame;
+  adaptive.sampling.pattern = SamplePattern::kAdaptive;
+  adaptive.sampling.samples = 16;
+  write("framing", "frame-setup-adaptive", proto::encodeFrameSetup(4, hash, adaptive));
   write("framing", "tile-request", proto::encodeTileRequest(3, 4, {8, 8, 8, 8}, Bytes(8, 0xff)));
   write("framing", "tile-result", proto::encodeTileResult(3, 4, Bytes(12, 7), {1, 2, 3, 4, 5, 6}, 99));
   write("framing", "error", proto::encodeError(wire::ErrorCode::BadTile, "tile 4: outside", 3, 4));
