@@ -4,7 +4,9 @@
 #include <exception>
 #include <functional>
 #include <memory>
+#include <cmath>
 #include <regex>
+#include <sstream>
 #include <utility>
 #include <vector>
 
@@ -13,6 +15,7 @@
 #include "client/accuracy_command.h"
 #include "client/render_command.h"
 #include "client/view_command.h"
+#include "common/build_identity.h"
 #include "common/error.h"
 #include "common/frame_limits.h"
 
@@ -28,19 +31,60 @@ constexpr const char* kViewHelp =
     "zooms; M cycles the mask rule (auto, all, none), O shows the mask, Q or Escape closes.";
 
 void parseSize(const std::string& text, std::optional<int>& width, std::optional<int>& height) {
-  static const std::regex pattern(R"((\d{1,5})x(\d{1,5}))");
+  static const std::regex pattern(R"((\d+)x(\d+))");
   std::smatch m;
   if (!std::regex_match(text, m, pattern)) {
     throw InputError("--size " + text + ": expected WIDTHxHEIGHT, e.g. 640x480");
   }
-  const int w = std::stoi(m[1]);
-  const int h = std::stoi(m[2]);
+  // Digits beyond what an edge can be are out of range, not malformed.
+  const auto edge = [](const std::string& digits) {
+    return digits.size() > 6 ? FrameLimits::kMaxEdge + 1 : std::stoi(digits);
+  };
+  const int w = edge(m[1]);
+  const int h = edge(m[2]);
   if (w < 1 || h < 1 || w > FrameLimits::kMaxEdge || h > FrameLimits::kMaxEdge) {
     throw InputError("--size " + text + ": width and height must be in [1, " + std::to_string(FrameLimits::kMaxEdge) +
                      "]");
   }
   width = w;
   height = h;
+}
+
+// "X,Y,Z" -> a point or direction; InputError naming the option otherwise.
+glm::vec3 parseVec3(const std::string& option, const std::string& text) {
+  static const std::regex number(R"(\s*([-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?)\s*)");
+  std::stringstream list(text);
+  std::vector<float> values;
+  for (std::string item; std::getline(list, item, ',');) {
+    std::smatch m;
+    if (!std::regex_match(item, m, number)) break;
+    values.push_back(std::stof(m[1]));
+  }
+  if (values.size() != 3 || !std::isfinite(values[0]) || !std::isfinite(values[1]) || !std::isfinite(values[2])) {
+    throw InputError(option + " " + text + ": expected X,Y,Z, e.g. 0,1.6,5");
+  }
+  return {values[0], values[1], values[2]};
+}
+
+// --eye, --look-at, --up, --fov: the scene's camera, overridden.
+void addCameraOptions(CLI::App* app, RenderOptions& o) {
+  const auto vec = [app](const char* name, std::optional<glm::vec3>& target, const char* help) {
+    app->add_option_function<std::string>(
+           name,
+           [name, &target](const std::string& text) {
+             try {
+               target = parseVec3(name, text);
+             } catch (const InputError& e) {
+               throw CLI::ValidationError(e.what());  // a usage error, reported as CLI11 reports its own
+             }
+           },
+           help)
+        ->type_name("X,Y,Z");
+  };
+  vec("--eye", o.eye, "The camera's position (default: the scene's)");
+  vec("--look-at", o.lookAt, "The point the camera looks at");
+  vec("--up", o.up, "The camera's up direction");
+  app->add_option("--fov", o.fovY, "Vertical field of view in degrees")->check(CLI::Range(0.001f, 179.0f));
 }
 
 // An option that takes one of an enum's words (common/enum_words.h); the
@@ -114,6 +158,7 @@ std::function<void()> declareRender(CLI::App* render) {
   render->add_option("--min-weight", o.minWeight, "Rays whose path weight falls below this are not traced")
       ->check(CLI::Range(0.0f, 1.0f));
   render->add_option("--size", *size, "Image size WIDTHxHEIGHT (the camera's fov_y is kept)");
+  addCameraOptions(render, o);
   addEnumOption(render, "--bvh", o.bvh, "BVH builder in process (default: sah; qsplit is the thesis's)");
   addServerOptions(render, o.remote);
   render->add_option("--provenance-out", o.provenanceOut,
@@ -202,10 +247,12 @@ constexpr CommandSpec kCommands[] = {
 
 }  // namespace
 
+constexpr int kUsageError = 2;
+
 int runCli(int argc, char** argv) {
   CLI::App app{"glint: a hybrid OpenGL / ray-tracing renderer", "glint"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "glint 0.1.0");
+  app.set_version_flag("--version", "glint 0.1.0 (" + buildIdentity() + ")");
   std::vector<std::pair<CLI::App*, std::function<void()>>> commands;
   for (const CommandSpec& c : kCommands) {
     CLI::App* sub = app.add_subcommand(c.name, c.help);
@@ -214,7 +261,10 @@ int runCli(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version are not errors; a usage error exits with 2, as
+    // shells expect.
+    const int printed = app.exit(e);
+    return printed == 0 ? 0 : kUsageError;
   }
   try {
     for (const auto& [sub, run] : commands) {

@@ -1,6 +1,9 @@
 #include "client/render_command.h"
 
+#include <unistd.h>
+
 #include <chrono>
+#include <filesystem>
 #include <cstdio>
 #include <algorithm>
 #include <memory>
@@ -91,9 +94,40 @@ void printServers(const DistributionReport& report, bool legend) {
   if (legend) std::fprintf(stderr, "provenance: %s\n", provenanceLegend(report).c_str());
 }
 
+// An output is refused before anything renders: a PNG option must name a
+// .png file, and its folder must exist and be writable.
+void checkOutput(const char* option, const std::string& path, bool png) {
+  if (path.empty() || path == "-") return;
+  const std::filesystem::path p(path);
+  std::string extension = p.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
+  if (png && extension != ".png") {
+    throw InputError(std::string(option) + " " + path + ": glint writes PNG; give a file name ending in .png");
+  }
+  const std::filesystem::path folder = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
+  std::error_code ec;
+  if (!std::filesystem::is_directory(folder, ec)) {
+    throw InputError(std::string(option) + " " + path + ": the folder " + folder.string() + " does not exist");
+  }
+  if (::access(folder.c_str(), W_OK) != 0) {
+    throw InputError(std::string(option) + " " + path + ": the folder " + folder.string() + " is not writable");
+  }
+}
+
+void checkOutputs(const RenderOptions& o) {
+  checkOutput("-o", o.output, true);
+  checkOutput("--mask-out", o.maskOut, true);
+  checkOutput("--provenance-out", o.provenanceOut, true);
+  checkOutput("--stats", o.statsPath, false);
+}
+
 }  // namespace
 
 void applyOverrides(const RenderOptions& o, Scene& scene) {
+  if (o.eye) scene.frame.camera.eye = *o.eye;
+  if (o.lookAt) scene.frame.camera.lookAt = *o.lookAt;
+  if (o.up) scene.frame.camera.up = *o.up;
+  if (o.fovY) scene.frame.camera.fovY = *o.fovY;
   if (o.width) scene.frame.width = *o.width;
   if (o.height) scene.frame.height = *o.height;
   if (o.pattern) scene.frame.sampling.pattern = *o.pattern;
@@ -118,6 +152,7 @@ void applyOverrides(const RenderOptions& o, Scene& scene) {
 
 void runRender(const RenderOptions& options) {
   const Clock::time_point start = Clock::now();
+  checkOutputs(options);
   proto::LoadedBundle loaded = proto::loadSceneBundle(options.scene);
   applyOverrides(options, loaded.scene);
   const FrameSettings frame = loaded.scene.frame;

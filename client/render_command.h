@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 #include "client/tile_backend.h"
 #include "common/bvh.h"
 #include "common/scene.h"
@@ -25,6 +27,10 @@ struct RenderOptions {
   std::optional<FilterType> filter;
   std::optional<int> maxDepth;
   std::optional<float> minWeight;
+  std::optional<glm::vec3> eye;     // --eye, --look-at, --up: the camera's, overriding the scene's
+  std::optional<glm::vec3> lookAt;
+  std::optional<glm::vec3> up;
+  std::optional<float> fovY;        // --fov, degrees
   std::optional<int> width;
   std::optional<int> height;
   std::optional<std::uint32_t> seed;

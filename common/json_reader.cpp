@@ -71,15 +71,21 @@ class PathTracker {
   std::vector<Level> levels_;
 };
 
+// Scene files may carry // and /* */ comments (docs/scene-format.md).
+constexpr bool kIgnoreComments = true;
+
 // Where a value the parser refused lies: the text parsed again with a
 // PathTracker (only on that error, so that good scenes parse at full speed).
 std::string pathOfBadValue(std::string_view text) {
   PathTracker tracker;
   try {
     const nlohmann::json unused =
-        nlohmann::json::parse(text, [&tracker](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
-          return tracker.event(event, parsed);
-        });
+        nlohmann::json::parse(
+            text,
+            [&tracker](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+              return tracker.event(event, parsed);
+            },
+            true, kIgnoreComments);
   } catch (const nlohmann::json::exception&) {
     return tracker.path();
   }
@@ -90,7 +96,7 @@ std::string pathOfBadValue(std::string_view text) {
 
 nlohmann::json parseJson(std::string_view text) {
   try {
-    return nlohmann::json::parse(text);
+    return nlohmann::json::parse(text, nullptr, true, kIgnoreComments);
   } catch (const nlohmann::json::parse_error& e) {
     // e.what() reads "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
     const std::string what = e.what();

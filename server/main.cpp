@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "common/build_identity.h"
 #include "common/error.h"
 #include "common/heap_tuning.h"
 #include "server/log.h"
@@ -92,7 +93,13 @@ int main(int argc, char** argv) {
                "between clients. SIGINT or SIGTERM stops it cleanly.",
                "glintd"};
   declareOptions(app, o, quiet);
-  CLI11_PARSE(app, argc, argv);
+  app.set_version_flag("--version", "glintd 0.1.0 (" + glint::buildIdentity() + ")");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int printed = app.exit(e);  // --help and --version print and are not errors
+    return printed == 0 ? 0 : 2;      // a usage error, as shells expect
+  }
   setLogging(!quiet);
   raiseDescriptorLimit(o);
   try {

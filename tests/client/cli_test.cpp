@@ -151,6 +151,46 @@ TEST_F(Cli, ViewThroughServersAndWithoutThem) {
   EXPECT_GT(magenta, 1000u);  // the mirror, the sphere and the floor of the room's auto mask
 }
 
+// A usage error (an option that does not exist) exits with 2, other errors with 1.
+TEST_F(Cli, UsageErrorsExitWithTwo) {
+  EXPECT_EQ(glint("render " + scene("room.json") + " -o " + path("x.png") + " --smaples 4").status, 2);
+  EXPECT_EQ(glint("render " + scene("room.json") + " -o " + path("x.png") + " --eye 1,2").status, 2);
+  EXPECT_EQ(glint("render " + path("missing.json") + " -o " + path("x.png")).status, 2);  // CLI11's file check
+  EXPECT_EQ(glint("render " + scene("room.json") + " -o " + path("x.jpg")).status, 1);
+  const Result version = glint("--version");
+  EXPECT_EQ(version.status, 0);
+  EXPECT_NE(version.output.find("glint 0.1.0 (pixels-"), std::string::npos) << version.output;
+}
+
+// A scene with comments renders as the same scene without them; --eye,
+// --look-at, --up and --fov render as a scene file with that camera.
+TEST_F(Cli, CommentsAndCameraOverrides) {
+  std::ifstream in(scene("glass.json"));
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto write = [this](const std::string& name, const std::string& content) {
+    std::ofstream(path(name)) << content;
+    return path(name);
+  };
+  std::string commented = "// glass spheres\n/* with a comment block */\n" + text;
+  commented.insert(commented.find("\"camera\""), "/* the camera: */ ");
+  const std::string args = " --size 64x48 -q --mask all";
+  ASSERT_EQ(glint("render " + scene("glass.json") + " -o " + path("plain.png") + args).status, 0);
+  ASSERT_EQ(glint("render " + write("commented.json", commented) + " -o " + path("commented.png") + args).status, 0);
+  EXPECT_EQ(decodePng(path("commented.png")).rgb, decodePng(path("plain.png")).rgb);
+
+  std::string moved = text;
+  const std::string camera = R"("eye": [0, 1.4, 5], "look_at": [0, 0.9, 0], "up": [0, 1, 0], "fov_y": 45)";
+  ASSERT_NE(moved.find(camera), std::string::npos);
+  moved.replace(moved.find(camera), camera.size(), R"("eye": [1, 2, 4], "look_at": [0, 0.5, 0], "up": [0, 1, 0.1], "fov_y": 30)");
+  ASSERT_EQ(glint("render " + write("moved.json", moved) + " -o " + path("moved.png") + args).status, 0);
+  ASSERT_EQ(glint("render " + scene("glass.json") + " -o " + path("flag.png") + args +
+                  " --eye 1,2,4 --look-at 0,0.5,0 --up 0,1,0.1 --fov 30")
+                .status,
+            0);
+  EXPECT_EQ(decodePng(path("flag.png")).rgb, decodePng(path("moved.png")).rgb);
+  EXPECT_NE(decodePng(path("flag.png")).rgb, decodePng(path("plain.png")).rgb);
+}
+
 TEST_F(Cli, ViewWithoutADisplaySaysSo) {
   const Result run = glint("view " + scene("room.json") + " --frames 1", "env -u DISPLAY -u WAYLAND_DISPLAY ");
   EXPECT_EQ(run.status, 1);
@@ -180,6 +220,10 @@ TEST_F(Cli, BadValuesGiveClearErrorsAndWriteNothing) {
       {"render " + room + out + " --mask all --server 127.0.0.1:1", "server 127.0.0.1:1: unreachable, cannot connect"},
       {"render " + room + out + " --mask all --bvh qsplit --server 127.0.0.1:1", "--bvh: a glintd builds"},
       {"render " + room + out + " --mask all --server nowhere", "--server nowhere: expected HOST:PORT"},
+      {"render " + room + " -o " + path("x.jpg") + " --mask all", "-o " + path("x.jpg") + ": glint writes PNG"},
+      {"render " + room + out + " --mask all --mask-out " + path("nowhere/m.png"), "nowhere does not exist"},
+      {"render " + room + out + " --mask all --size 100000x100000", "width and height must be in [1, 65536]"},
+      {"render " + room + out + " --mask all --eye 1,2", "--eye 1,2: expected X,Y,Z"},
   };
   for (const Case& c : cases) {
     const Result run = glint(c.args);
