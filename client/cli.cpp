@@ -4,6 +4,7 @@
 #include <exception>
 #include <functional>
 #include <memory>
+#include <algorithm>
 #include <cmath>
 #include <regex>
 #include <sstream>
@@ -249,6 +250,51 @@ constexpr CommandSpec kCommands[] = {
 
 constexpr int kUsageError = 2;
 
+std::size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// For each --option the command does not have, the nearest one it has
+// ("--smaples": did you mean --samples?), printed before CLI11's message.
+void suggestOptions(CLI::App& app, int argc, char** argv) {
+  CLI::App* command = nullptr;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (!command) {
+      for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+        if (sub->get_name() == arg) command = sub;
+      }
+      continue;
+    }
+    if (arg.rfind("--", 0) != 0) continue;
+    const std::string name = arg.substr(2, arg.find('=') - 2);
+    if (command->get_option_no_throw("--" + name)) continue;
+    std::string best;
+    std::size_t bestDistance = 3;  // more edits than this is no misspelling
+    for (const CLI::Option* option : command->get_options()) {
+      for (const std::string& known : option->get_lnames()) {
+        const std::size_t d = editDistance(name, known);
+        if (d < bestDistance) {
+          bestDistance = d;
+          best = known;
+        }
+      }
+    }
+    if (!best.empty()) std::fprintf(stderr, "glint: --%s: did you mean --%s?\n", name.c_str(), best.c_str());
+  }
+}
+
 int runCli(int argc, char** argv) {
   CLI::App app{"glint: a hybrid OpenGL / ray-tracing renderer", "glint"};
   app.require_subcommand(1);
@@ -263,6 +309,7 @@ int runCli(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     // --help and --version are not errors; a usage error exits with 2, as
     // shells expect.
+    if (dynamic_cast<const CLI::ExtrasError*>(&e)) suggestOptions(app, argc, argv);
     const int printed = app.exit(e);
     return printed == 0 ? 0 : kUsageError;
   }

@@ -153,7 +153,9 @@ TEST_F(Cli, ViewThroughServersAndWithoutThem) {
 
 // A usage error (an option that does not exist) exits with 2, other errors with 1.
 TEST_F(Cli, UsageErrorsExitWithTwo) {
-  EXPECT_EQ(glint("render " + scene("room.json") + " -o " + path("x.png") + " --smaples 4").status, 2);
+  const Result misspelt = glint("render " + scene("room.json") + " -o " + path("x.png") + " --smaples 4");
+  EXPECT_EQ(misspelt.status, 2);
+  EXPECT_NE(misspelt.output.find("--smaples: did you mean --samples?"), std::string::npos) << misspelt.output;
   EXPECT_EQ(glint("render " + scene("room.json") + " -o " + path("x.png") + " --eye 1,2").status, 2);
   EXPECT_EQ(glint("render " + path("missing.json") + " -o " + path("x.png")).status, 2);  // CLI11's file check
   EXPECT_EQ(glint("render " + scene("room.json") + " -o " + path("x.jpg")).status, 1);
