@@ -5,6 +5,7 @@
 #include <functional>
 #include <memory>
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <regex>
 #include <sstream>
@@ -51,15 +52,20 @@ void parseSize(const std::string& text, std::optional<int>& width, std::optional
   height = h;
 }
 
-// "X,Y,Z" -> a point or direction; InputError naming the option otherwise.
+// "X,Y,Z" -> a point or direction; InputError naming the option otherwise
+// (a value a float cannot hold, 1e999, included).
 glm::vec3 parseVec3(const std::string& option, const std::string& text) {
-  static const std::regex number(R"(\s*([-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?)\s*)");
   std::stringstream list(text);
   std::vector<float> values;
   for (std::string item; std::getline(list, item, ',');) {
-    std::smatch m;
-    if (!std::regex_match(item, m, number)) break;
-    values.push_back(std::stof(m[1]));
+    const auto first = item.find_first_not_of(' '), last = item.find_last_not_of(' ');
+    if (first == std::string::npos) break;
+    const std::size_t start = item[first] == '+' ? first + 1 : first;  // from_chars takes no '+'
+    float v = 0.0f;
+    const char* end = item.data() + last + 1;
+    const auto [ptr, ec] = std::from_chars(item.data() + start, end, v);
+    if (ec != std::errc() || ptr != end) break;
+    values.push_back(v);
   }
   if (values.size() != 3 || !std::isfinite(values[0]) || !std::isfinite(values[1]) || !std::isfinite(values[2])) {
     throw InputError(option + " " + text + ": expected X,Y,Z, e.g. 0,1.6,5");

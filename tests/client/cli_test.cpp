@@ -226,6 +226,7 @@ TEST_F(Cli, BadValuesGiveClearErrorsAndWriteNothing) {
       {"render " + room + out + " --mask all --mask-out " + path("nowhere/m.png"), "nowhere does not exist"},
       {"render " + room + out + " --mask all --size 100000x100000", "width and height must be in [1, 65536]"},
       {"render " + room + out + " --mask all --eye 1,2", "--eye 1,2: expected X,Y,Z"},
+      {"render " + room + out + " --mask all --eye 1e999,0,0", "--eye 1e999,0,0: expected X,Y,Z"},
   };
   for (const Case& c : cases) {
     const Result run = glint(c.args);
