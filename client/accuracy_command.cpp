@@ -52,12 +52,6 @@ FrameSettings referenceFrame(FrameSettings frame, int samples, std::uint32_t see
   return frame;
 }
 
-FrameImage toBytes(const LinearImage& image) {
-  FrameImage out{image.width, image.height, std::vector<std::uint8_t>(image.rgb.size())};
-  for (std::size_t i = 0; i < image.rgb.size(); ++i) out.rgb[i] = toByte(image.rgb[i]);
-  return out;
-}
-
 // A full-trace row: the frame `frames` times, the median time, the last image.
 LinearImage traceRow(Sweep& sweep, const FrameSettings& frame, AccuracyRow& row) {
   const Renderer renderer(sweep.prepared, frame);
@@ -123,16 +117,20 @@ AccuracyReference renderReference(Sweep& sweep, const FrameSettings& frame, int 
   return r;
 }
 
+// The scene's frame and mask with one setting changed.
+std::pair<FrameSettings, MaskSettings> withSetting(const Scene& scene, AccuracyKey key, const std::string& value) {
+  std::pair<FrameSettings, MaskSettings> s{scene.frame, scene.mask};
+  applySetting(key, value, s.first, s.second);
+  return s;
+}
+
 std::vector<Series> sweepOf(const AccuracyOptions& o, const Scene& scene) {
   std::vector<Series> series;
   for (const std::string& v : o.vary) series.push_back(parseVary(v));
   if (series.empty()) series = defaultSweep();
   for (const Series& s : series) {
     for (const std::string& value : s.values) {
-      FrameSettings frame = scene.frame;
-      MaskSettings mask = scene.mask;
-      applySetting(s.key, value, frame, mask);
-      checkSetting("--vary " + std::string(enumWord(s.key)) + "=" + value, frame);
+      checkSetting("--vary " + std::string(enumWord(s.key)) + "=" + value, withSetting(scene, s.key, value).first);
     }
   }
   if (o.referenceSamples % 2 != 0) {
@@ -168,9 +166,7 @@ void runAccuracy(const AccuracyOptions& o) {
   std::vector<AccuracyRow> rows;
   for (const Series& s : series) {
     for (const std::string& value : s.values) {
-      FrameSettings frame = scene.frame;
-      MaskSettings mask = scene.mask;
-      applySetting(s.key, value, frame, mask);
+      const auto [frame, mask] = withSetting(scene, s.key, value);
       AccuracyRow row{std::string(enumWord(s.key)), value, value == currentValue(s.key, scene.frame, scene.mask),
                       0.0, {}, {}, std::string(enumWord(s.key)) + "-" + value + ".png"};
       const LinearImage image =

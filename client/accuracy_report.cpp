@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
-#include <map>
 
 #include "common/error.h"
 
@@ -48,6 +47,9 @@ std::vector<std::string> seriesNames(const std::vector<AccuracyRow>& rows) {
   }
   return names;
 }
+
+// Errors as plotted: a log axis cannot show 0 (a row equal to the reference).
+double onLogAxis(double rmse) { return std::max(rmse, 1e-6); }
 
 std::string fixed(double v, int digits) {
   char text[64];
@@ -101,27 +103,28 @@ bool writePlot(const std::filesystem::path& dir, const std::vector<AccuracyRow>&
     for (const std::string& name : names) {
       data << "# " << name << '\n';
       for (const AccuracyRow& r : rows) {
-        if (r.name == name) data << r.timeMs << ' ' << std::max(r.error.rmse, 1e-6) << ' ' << r.value << '\n';
+        if (r.name == name) data << r.timeMs << ' ' << onLogAxis(r.error.rmse) << ' ' << r.value << '\n';
       }
       data << "\n\n";
     }
     std::vector<std::pair<double, double>> points;
     for (std::size_t i = 0; i < rows.size(); ++i) {
-      if (front[i]) points.emplace_back(rows[i].timeMs, std::max(rows[i].error.rmse, 1e-6));
-      if (rows[i].sceneSetting) scene << rows[i].timeMs << ' ' << std::max(rows[i].error.rmse, 1e-6) << '\n';
+      if (front[i]) points.emplace_back(rows[i].timeMs, onLogAxis(rows[i].error.rmse));
+      if (rows[i].sceneSetting) scene << rows[i].timeMs << ' ' << onLogAxis(rows[i].error.rmse) << '\n';
     }
     std::sort(points.begin(), points.end());
     for (const auto& [t, e] : points) pareto << t << ' ' << e << '\n';
   }
   std::string titles;
   for (const std::string& n : names) titles += (titles.empty() ? "" : " ") + n;
+  const double referenceLine = onLogAxis(referenceRmse);
   std::ofstream script = create(dir / "accuracy.gp");
   script << "set terminal pngcairo size 1000,680 font 'sans,11' noenhanced\nset output 'accuracy.png'\n"
          << "set logscale xy\nset grid\nset key outside right\n"
-         << "set yrange [" << std::max(referenceRmse, 1e-6) * 0.5 << ":*]\n"
-         << "set arrow from graph 0, first " << std::max(referenceRmse, 1e-6) << " to graph 1, first "
-         << std::max(referenceRmse, 1e-6) << " nohead dt 3 lc rgb 'gray40'\n"
-         << "set label \"the reference's own error\" at graph 0.02, first " << std::max(referenceRmse, 1e-6) * 1.15
+         << "set yrange [" << referenceLine * 0.5 << ":*]\n"
+         << "set arrow from graph 0, first " << referenceLine << " to graph 1, first "
+         << referenceLine << " nohead dt 3 lc rgb 'gray40'\n"
+         << "set label \"the reference's own error\" at graph 0.02, first " << referenceLine * 1.15
          << " tc rgb 'gray40'\n"
          << "set xlabel 'frame time (ms, median)'\nset ylabel 'RMSE against the reference (linear, 0-1)'\n"
          << "set title 'What accuracy costs in time'\nnames = '" << titles << "'\n"

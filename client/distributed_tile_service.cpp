@@ -13,12 +13,8 @@ constexpr std::chrono::seconds kFirstRetry{1};         // a lost server is tried
 constexpr std::chrono::seconds kLongestRetry{30};
 constexpr std::chrono::seconds kGoodbyeGrace{1};       // for the Goodbyes to be written at the end
 
-std::size_t maskedPixels(const TileJob& job) {
-  return job.mask.empty() ? job.rect.pixelCount() : countMasked(job.rect, job.mask);
-}
-
 std::array<int, 5> tileKey(const TileJob& job) {
-  return {job.rect.x, job.rect.y, job.rect.width, job.rect.height, static_cast<int>(maskedPixels(job))};
+  return {job.rect.x, job.rect.y, job.rect.width, job.rect.height, static_cast<int>(tracedPixels(job))};
 }
 
 }  // namespace
@@ -184,7 +180,7 @@ std::vector<double> DistributedTileService::tileCosts(std::span<const TileJob> j
   for (const std::size_t j : sent) {
     const auto it = measured_.find(tileKey(jobs[j]));
     costs.push_back(it != measured_.end() && scale > 0.0 ? it->second.second * scale
-                                                          : static_cast<double>(maskedPixels(jobs[j])));
+                                                          : static_cast<double>(tracedPixels(jobs[j])));
   }
   return costs;
 }
@@ -194,7 +190,7 @@ void DistributedTileService::render(const FrameSettings& settings, std::span<con
   retryLost();
   std::vector<std::size_t> sent;
   for (std::size_t j = 0; j < jobs.size(); ++j) {
-    if (maskedPixels(jobs[j]) > 0) {
+    if (tracedPixels(jobs[j]) > 0) {
       sent.push_back(j);
     } else {
       done(j, TileOutput{});

@@ -16,10 +16,6 @@ constexpr std::uint32_t kFramesRemembered = 16;
 
 std::uint64_t key(std::uint32_t frameId, std::uint32_t tileId) { return std::uint64_t{frameId} << 32 | tileId; }
 
-std::size_t pixelBytes(const TileJob& job) {
-  return 3 * (job.mask.empty() ? job.rect.pixelCount() : countMasked(job.rect, job.mask));
-}
-
 }  // namespace
 
 ServerLink::ServerLink(asio::io_context& io, std::unique_ptr<LinkStream> stream, std::size_t index, std::string name,
@@ -217,7 +213,7 @@ void ServerLink::setupFrame(std::uint32_t frameId, const FrameSettings& frame) {
 }
 
 void ServerLink::request(std::uint32_t frameId, std::uint32_t tileId, const TileJob& job) {
-  pending_[key(frameId, tileId)] = pixelBytes(job);
+  pending_[key(frameId, tileId)] = 3 * tracedPixels(job);
   write(proto::encodeTileRequest(frameId, tileId, job.rect, job.mask));
 }
 

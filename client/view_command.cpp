@@ -119,9 +119,8 @@ class MissingTiles : public TileService {
   void render(const FrameSettings&, std::span<const TileJob> jobs,
               const std::function<void(std::size_t, TileOutput&&)>& done) override {
     for (std::size_t i = 0; i < jobs.size(); ++i) {
-      const std::size_t pixels = jobs[i].mask.empty() ? jobs[i].rect.pixelCount() : countMasked(jobs[i].rect, jobs[i].mask);
       TileOutput out;
-      for (std::size_t p = 0; p < pixels; ++p) out.rgb.insert(out.rgb.end(), {255, 0, 255});
+      for (std::size_t p = 0; p < tracedPixels(jobs[i]); ++p) out.rgb.insert(out.rgb.end(), {255, 0, 255});
       done(i, std::move(out));
     }
   }

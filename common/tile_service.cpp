@@ -13,6 +13,10 @@ void LocalTileService::render(const FrameSettings& frame, std::span<const TileJo
   renderTiles(renderer, pool_, jobs, done);
 }
 
+std::size_t tracedPixels(const TileJob& job) {
+  return job.mask.empty() ? job.rect.pixelCount() : countMasked(job.rect, job.mask);
+}
+
 void renderTiles(const Renderer& renderer, ThreadPool& pool, std::span<const TileJob> jobs,
                  const std::function<void(std::size_t, TileOutput&&)>& done) {
   std::mutex doneMutex;

@@ -19,6 +19,9 @@ struct TileJob {
   std::vector<std::uint8_t> mask;
 };
 
+// The pixels a job asks for: its masked ones, or all of its rectangle.
+std::size_t tracedPixels(const TileJob& job);
+
 // What comes back for a tile: RGB8 of its masked pixels in scan order.
 struct TileOutput {
   std::vector<std::uint8_t> rgb;
