@@ -10,9 +10,6 @@ namespace {
 
 constexpr std::size_t kReadChunkBytes = 64 * 1024;
 constexpr std::uint32_t kMaxThreadsBelieved = 4096;  // sizes the dispatcher's window, nothing more
-// A server forgets all but its last 16 frames (server/session.cpp); results
-// of older frames are no longer expected.
-constexpr std::uint32_t kFramesRemembered = 16;
 
 std::uint64_t key(std::uint32_t frameId, std::uint32_t tileId) { return std::uint64_t{frameId} << 32 | tileId; }
 
@@ -208,7 +205,9 @@ void ServerLink::onError(const wire::Error& error) {
 }
 
 void ServerLink::setupFrame(std::uint32_t frameId, const FrameSettings& frame) {
-  if (frameId > kFramesRemembered) std::erase_if(pending_, [&](const auto& p) { return p.first >> 32 <= frameId - kFramesRemembered; });
+  if (frameId > proto::kFramesRemembered) {  // results of frames the server forgot will not come
+    std::erase_if(pending_, [&](const auto& p) { return p.first >> 32 <= frameId - proto::kFramesRemembered; });
+  }
   write(proto::encodeFrameSetup(frameId, hash_, frame));
 }
 

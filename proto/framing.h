@@ -15,6 +15,9 @@ namespace glint::proto {
 constexpr std::uint32_t kProtocolVersion = 2;  // 2: Hello.build, Cancel
 constexpr std::size_t kHeaderBytes = 4;  // little-endian uint32 length
 constexpr std::size_t kDefaultMaxMessageBytes = std::size_t{64} << 20;
+// A server keeps the setup of a client's last 16 frames; tiles of older ones
+// are refused, and a client stops expecting their results.
+constexpr std::uint32_t kFramesRemembered = 16;
 
 // The length a frame header announces.
 std::uint32_t frameLength(std::span<const std::uint8_t, kHeaderBytes> header);

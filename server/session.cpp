@@ -9,7 +9,6 @@
 namespace glint::server {
 namespace {
 
-constexpr std::size_t kMaxFramesPerClient = 16;  // older frames are forgotten
 
 std::string shortHash(const proto::SceneHash& hash) { return proto::toHex(hash).substr(0, 12); }
 
@@ -139,7 +138,7 @@ void Session::onFrameSetup(const wire::FrameSetup& setup) {
     frame->renderer = std::make_unique<Renderer>(*scene, settings);
     frame->scene = std::move(scene);
     frames_[frameId] = std::move(frame);
-    while (frames_.size() > kMaxFramesPerClient) frames_.erase(frames_.begin());
+    while (frames_.size() > proto::kFramesRemembered) frames_.erase(frames_.begin());
   } catch (const InputError& e) {
     error(wire::ErrorCode::BadFrame, e.what(), false, frameId);
   }
