@@ -10,6 +10,7 @@
 #include "client/hybrid_frame.h"
 #include "client/offscreen_context.h"
 #include "client/raster_scene.h"
+#include "client/scene_warnings.h"
 #include "common/error.h"
 #include "common/frame_limits.h"
 #include "common/image_io.h"
@@ -40,7 +41,7 @@ void checkSetting(const std::string& place, FrameSettings frame) {
   const std::string samples = place + " (samples " + std::to_string(frame.sampling.samples) + ")";
   checkFrame(frame, LoadLimits{}.maxImagePixels,
              {.size = "--size", .camera = "camera.", .samples = samples.c_str(), .seed = place.c_str(),
-              .maxDepth = place.c_str(), .minWeight = place.c_str(), .adaptiveThreshold = place.c_str()});
+              .maxDepth = place.c_str(), .minWeight = place.c_str(), .adaptiveThreshold = place.c_str(), .exposure = "--exposure"});
 }
 
 FrameSettings referenceFrame(FrameSettings frame, int samples, std::uint32_t seed) {
@@ -65,7 +66,7 @@ LinearImage traceRow(Sweep& sweep, const FrameSettings& frame, AccuracyRow& row)
       row.rays = r.stats;
       image = fromBytes(r.image);
     } else {
-      image = renderLinear(renderer, sweep.pool, row.rays);
+      image = renderLinear(renderer, sweep.pool, row.rays, LinearRange::kClamped);
     }
     times.push_back(msSince(start));
   }
@@ -107,8 +108,8 @@ AccuracyReference renderReference(Sweep& sweep, const FrameSettings& frame, int 
   std::fprintf(stderr, "reference: 2 x %d jittered samples, max depth %d ...\n", samples / 2, kReferenceDepth);
   const Renderer a(sweep.prepared, referenceFrame(frame, samples / 2, frame.sampling.seed));
   const Renderer b(sweep.prepared, referenceFrame(frame, samples / 2, frame.sampling.seed + 1));
-  const LinearImage halfA = renderLinear(a, sweep.pool, ignored);
-  const LinearImage halfB = renderLinear(b, sweep.pool, ignored);
+  const LinearImage halfA = renderLinear(a, sweep.pool, ignored, LinearRange::kClamped);
+  const LinearImage halfB = renderLinear(b, sweep.pool, ignored, LinearRange::kClamped);
   reference = average(halfA, halfB);
   // Each half errs by about sqrt(2) times the whole; their difference by 2 times.
   AccuracyReference r{samples, kReferenceDepth, compareImages(halfA, halfB).rmse / 2.0, msSince(start)};
@@ -144,6 +145,7 @@ std::vector<Series> sweepOf(const AccuracyOptions& o, const Scene& scene) {
 
 void runAccuracy(const AccuracyOptions& o) {
   proto::LoadedBundle loaded = proto::loadSceneBundle(o.scene);
+  printSceneWarnings(o.scene, loaded.scene);
   Scene& scene = loaded.scene;
   if (o.width) scene.frame.width = *o.width;
   if (o.height) scene.frame.height = *o.height;

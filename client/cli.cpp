@@ -52,6 +52,18 @@ void parseSize(const std::string& text, std::optional<int>& width, std::optional
   height = h;
 }
 
+// "X0,Y0,X1,Y1" -> the window x0 <= x < x1, y0 <= y < y1 (y from the top).
+TileRect parseCrop(const std::string& text) {
+  static const std::regex pattern(R"((\d{1,6}),(\d{1,6}),(\d{1,6}),(\d{1,6}))");
+  std::smatch m;
+  if (!std::regex_match(text, m, pattern)) {
+    throw InputError("--crop " + text + ": expected X0,Y0,X1,Y1 (pixels, y from the top), e.g. 100,50,300,200");
+  }
+  const int x0 = std::stoi(m[1]), y0 = std::stoi(m[2]), x1 = std::stoi(m[3]), y1 = std::stoi(m[4]);
+  if (x1 <= x0 || y1 <= y0) throw InputError("--crop " + text + ": X1 must be above X0 and Y1 above Y0");
+  return {x0, y0, x1 - x0, y1 - y0};
+}
+
 // "X,Y,Z" -> a point or direction; InputError naming the option otherwise
 // (a value a float cannot hold, 1e999, included).
 glm::vec3 parseVec3(const std::string& option, const std::string& text) {
@@ -73,18 +85,23 @@ glm::vec3 parseVec3(const std::string& option, const std::string& text) {
   return {values[0], values[1], values[2]};
 }
 
+// The value `parse` reads from an option's text; its InputError becomes a
+// usage error, reported as CLI11 reports its own.
+template <typename Parse>
+auto asUsageError(const Parse& parse) {
+  try {
+    return parse();
+  } catch (const InputError& e) {
+    throw CLI::ValidationError(e.what());
+  }
+}
+
 // --eye, --look-at, --up, --fov: the scene's camera, overridden.
 void addCameraOptions(CLI::App* app, RenderOptions& o) {
   const auto vec = [app](const char* name, std::optional<glm::vec3>& target, const char* help) {
     app->add_option_function<std::string>(
            name,
-           [name, &target](const std::string& text) {
-             try {
-               target = parseVec3(name, text);
-             } catch (const InputError& e) {
-               throw CLI::ValidationError(e.what());  // a usage error, reported as CLI11 reports its own
-             }
-           },
+           [name, &target](const std::string& text) { target = asUsageError([&] { return parseVec3(name, text); }); },
            help)
         ->type_name("X,Y,Z");
   };
@@ -135,7 +152,9 @@ std::function<void()> declareRender(CLI::App* render) {
   auto size = std::make_shared<std::string>();
   RenderOptions& o = *options;
   render->add_option("scene", o.scene, "Scene file (.json)")->required()->check(CLI::ExistingFile);
-  render->add_option("-o,--output", o.output, "PNG file to write (written only when the render succeeds)")
+  render->add_option("-o,--output", o.output,
+                     "Image to write, its format by extension: .png (8-bit), .exr (half float, linear), .pfm (float, "
+                     "linear); written only when the render succeeds")
       ->required();
   addEnumOption(render, "--mask", o.mask,
                 "Which pixels are ray traced (default: the scene's): auto, objects whose materials need it, "
@@ -166,6 +185,17 @@ std::function<void()> declareRender(CLI::App* render) {
       ->check(CLI::Range(0.0f, 1.0f));
   render->add_option("--size", *size, "Image size WIDTHxHEIGHT (the camera's fov_y is kept)");
   addCameraOptions(render, o);
+  addEnumOption(render, "--encoding", o.encoding,
+                "8-bit values (PNG): linear (the thesis's frame buffer) or srgb (the sRGB transfer function); "
+                "default: the scene's image.encoding, else linear");
+  render->add_option("--exposure", o.exposure, "Scale the colour by 2^EV before encoding (default: the scene's, 0)")
+      ->type_name("EV")
+      ->check(CLI::Range(-FrameLimits::kMaxExposure, FrameLimits::kMaxExposure));
+  render->add_option_function<std::string>(
+            "--crop",
+            [&o](const std::string& text) { o.crop = asUsageError([&] { return parseCrop(text); }); },
+            "Render only pixels X0 <= x < X1, Y0 <= y < Y1 (y from the top) of the frame; the image is that window")
+      ->type_name("X0,Y0,X1,Y1");
   addEnumOption(render, "--bvh", o.bvh, "BVH builder in process (default: sah; qsplit is the thesis's)");
   addServerOptions(render, o.remote);
   render->add_option("--provenance-out", o.provenanceOut,

@@ -12,22 +12,24 @@
 namespace glint {
 namespace {
 
-// Reads the frame into `pixels` (resized, so that its buffer is kept from
-// one frame to the next) with rows top-down.
-void readPixels(const gl::Api& gl, int width, int height, GLenum format, int channels,
+// Reads a window of the frame (y from the top) into `pixels` (resized, so
+// that its buffer is kept from one frame to the next) with rows top-down.
+void readPixels(const gl::Api& gl, const TileRect& window, int frameHeight, GLenum format, int channels,
                 std::vector<std::uint8_t>& pixels) {
-  pixels.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * static_cast<std::size_t>(channels));
+  pixels.resize(window.pixelCount() * static_cast<std::size_t>(channels));
   gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
-  gl.ReadPixels(0, 0, width, height, format, GL_UNSIGNED_BYTE, pixels.data());
-  flipRows(pixels, width, height, channels);
+  gl.ReadPixels(window.x, frameHeight - window.y - window.height, window.width, window.height, format,
+                GL_UNSIGNED_BYTE, pixels.data());
+  flipRows(pixels, window.width, window.height, channels);
 }
 
 
-// The tiles with at least one masked pixel, each with its mask bits.
-std::vector<TileJob> maskedTiles(const std::vector<std::uint8_t>& mask, int w, int h, int tileSize,
+// The tiles of the window with at least one masked pixel, each with its
+// mask bits; w is the frame's width.
+std::vector<TileJob> maskedTiles(const std::vector<std::uint8_t>& mask, int w, const TileRect& window, int tileSize,
                                  std::size_t& maskedPixels) {
   std::vector<TileJob> jobs;
-  for (const TileRect& rect : tileGrid(w, h, std::max(1, tileSize))) {
+  for (const TileRect& rect : tileGrid(window, std::max(1, tileSize))) {
     TileJob job{rect, std::vector<std::uint8_t>(maskByteCount(rect), 0)};
     std::size_t count = 0;
     for (int y = 0; y < rect.height; ++y) {
@@ -82,9 +84,11 @@ double medianOf(const std::vector<HybridTimes>& frames, double HybridTimes::*ste
 }
 
 void renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& service, const FrameSettings& frame,
-                  const MaskSettings& mask, int tileSize, HybridResult& result) {
+                  const MaskSettings& mask, int tileSize, HybridResult& result, const std::optional<TileRect>& crop) {
   const Clock::time_point start = Clock::now();
   const int w = frame.width, h = frame.height;
+  const TileRect whole{0, 0, w, h};
+  const TileRect window = crop.value_or(whole);
   result.maskedPixels = 0;
   result.rays = RayStats{};
   result.times = HybridTimes{};
@@ -97,11 +101,11 @@ void renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
   if (mask.rule == MaskRule::kAll) {
     result.mask.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 1);
   } else {
-    readPixels(gl, w, h, GL_STENCIL_INDEX, 1, result.mask);
+    readPixels(gl, whole, h, GL_STENCIL_INDEX, 1, result.mask);
   }
   result.times.readbackMs = msSince(readStart);
 
-  const std::vector<TileJob> jobs = maskedTiles(result.mask, w, h, tileSize, result.maskedPixels);
+  const std::vector<TileJob> jobs = maskedTiles(result.mask, w, window, tileSize, result.maskedPixels);
   result.tiles = static_cast<int>(jobs.size());
 
   const Clock::time_point traceStart = Clock::now();
@@ -127,9 +131,9 @@ void renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
   gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
   std::vector<std::uint8_t> scratch;
   for (std::size_t j = 0; j < jobs.size(); ++j) drawTile(gl, jobs[j], j, outputs[j], h, scratch);
-  result.image.width = w;
-  result.image.height = h;
-  readPixels(gl, w, h, GL_RGB, 3, result.image.rgb);
+  result.image.width = window.width;
+  result.image.height = window.height;
+  readPixels(gl, window, h, GL_RGB, 3, result.image.rgb);
   gl.Disable(GL_STENCIL_TEST);
   result.times.composeMs = msSince(composeStart);
   result.times.totalMs = msSince(start);

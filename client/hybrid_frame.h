@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "client/gl_api.h"
@@ -24,7 +25,7 @@ struct HybridTimes {
 double medianOf(const std::vector<HybridTimes>& frames, double HybridTimes::*step);
 
 struct HybridResult {
-  FrameImage image;
+  FrameImage image;                // the frame, or the crop window of it
   std::vector<std::uint8_t> mask;  // one byte per pixel, row 0 at the top: 1 traced, 0 OpenGL
   std::size_t maskedPixels = 0;
   int tiles = 0;  // tiles sent to the tile service (those with a masked pixel)
@@ -39,8 +40,10 @@ struct HybridResult {
 // rule "all" every pixel is traced. The frame is written into `result`:
 // passing the same object frame after frame keeps its image-sized buffers
 // (fresh megabyte buffers per frame cost more in page faults than the reads
-// themselves).
+// themselves). With `crop`, only that window's masked pixels are traced and
+// the image is the window (the mask stays the whole frame's).
 void renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& service, const FrameSettings& frame,
-                  const MaskSettings& mask, int tileSize, HybridResult& result);
+                  const MaskSettings& mask, int tileSize, HybridResult& result,
+                  const std::optional<TileRect>& crop = std::nullopt);
 
 }  // namespace glint

@@ -10,6 +10,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "client/raster_shaders.h"
+#include "common/encoding.h"
 #include "common/error.h"
 #include "common/mask_rule.h"
 
@@ -229,6 +230,8 @@ void RasterScene::setUniforms(unsigned program, const FrameSettings& frame, cons
   const auto at = [&](const char* name) { return gl_.GetUniformLocation(program, name); };
   gl_.UniformMatrix4fv(at("uViewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
   gl_.Uniform3fv(at("uEye"), 1, glm::value_ptr(frame.camera.eye));
+  gl_.Uniform1f(at("uExposureScale"), Encoder(frame.output).scale());
+  gl_.Uniform1i(at("uSrgb"), frame.output.encoding == Encoding::kSrgb ? 1 : 0);
   std::vector<glm::vec3> positions, colors, attenuations;
   for (const PointLight& l : scene_.lights) {
     positions.push_back(l.position);

@@ -14,9 +14,12 @@ std::string fragmentPrelude() {
 }
 
 // Shared by both fragment shaders, after the prelude: material, texture and
-// light data, and shade(), which mirrors Tracer::shade.
+// light data, shade(), which mirrors Tracer::shade, and encodeOutput(),
+// which mirrors Encoder::byte before the rounding.
 const char* const kFragmentShading = R"(
 uniform vec3 uEye;
+uniform float uExposureScale;  // 2^exposure
+uniform bool uSrgb;
 uniform mat4 uViewProjection;
 uniform int uLightCount;
 uniform vec3 uLightPosition[MAX_LIGHTS];
@@ -30,6 +33,12 @@ uniform vec3 uTextureColor0[MAX_TEXTURES];
 uniform vec3 uTextureColor1[MAX_TEXTURES];
 uniform sampler2D uAtlas;                    // every image texture, stacked rows, RGB float
 out vec4 fragColor;
+
+vec3 encodeOutput(vec3 linear) {
+  vec3 v = clamp(linear * uExposureScale, 0.0, 1.0);
+  if (!uSrgb) return v;
+  return mix(1.055 * pow(v, vec3(1.0 / 2.4)) - 0.055, 12.92 * v, lessThanEqual(v, vec3(0.0031308)));
+}
 
 vec3 texel(int t, int x, int y) {
   ivec2 size = ivec2(uTextureSize[t].xy);
@@ -125,7 +134,7 @@ void main() {
 #ifdef TRACED
   fragColor = vec4(0.0, 0.0, 0.0, 1.0);
 #else
-  fragColor = vec4(clamp(shade(vPosition, vFaceNormal, vNormal, vUv, vMaterial), 0.0, 1.0), 1.0);
+  fragColor = vec4(encodeOutput(shade(vPosition, vFaceNormal, vNormal, vUv, vMaterial)), 1.0);
 #endif
 }
 )";
@@ -179,7 +188,7 @@ void main() {
   float u = atan(n.x, n.z) / (2.0 * 3.14159265);
   float v = acos(clamp(-n.y, -1.0, 1.0)) / 3.14159265;
   vec2 uv = vec2(u < 0.0 ? u + 1.0 : u, v);
-  fragColor = vec4(clamp(shade(p, n, n, uv, vMaterial), 0.0, 1.0), 1.0);
+  fragColor = vec4(encodeOutput(shade(p, n, n, uv, vMaterial)), 1.0);
 #endif
 }
 )";

@@ -11,15 +11,19 @@
 
 #include "client/hybrid_frame.h"
 #include "client/offscreen_context.h"
+#include "client/output_file.h"
 #include "client/progress.h"
 #include "client/provenance.h"
 #include "client/distributed_tile_service.h"
 #include "client/raster_scene.h"
+#include "client/scene_warnings.h"
 #include "client/stats_json.h"
 #include "client/tile_backend.h"
+#include "common/encoding.h"
 #include "common/error.h"
 #include "common/frame.h"
 #include "common/image_io.h"
+#include "common/linear_image.h"
 #include "common/frame_limits.h"
 #include "common/load_limits.h"
 #include "common/scene_load.h"
@@ -50,19 +54,38 @@ void printTimingTable(const std::vector<HybridTimes>& frames, bool hybrid) {
   std::fprintf(stderr, "  frame      %8.1f ms\n", median(&HybridTimes::totalMs));
 }
 
-// --mask all: every pixel through the tile service, no OpenGL.
-void renderFullTrace(TileService& service, const FrameSettings& frame, int tileSize, HybridResult& r) {
+// --mask all: every pixel (of the crop window) through the tile service, no
+// OpenGL.
+void renderFullTrace(TileService& service, const FrameSettings& frame, FrameOptions frameOptions, HybridResult& r) {
   const Clock::time_point start = Clock::now();
-  FrameOptions frameOptions;
-  frameOptions.tileSize = tileSize;
   ProgressBar progress("rendering");
   frameOptions.progress = [&progress](int done, int total) { progress.update(done, total); };
   FrameResult full = renderFrame(service, frame, frameOptions);
   r.image = std::move(full.image);
   r.rays = full.stats;
-  r.maskedPixels = static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height);
-  r.tiles = static_cast<int>(tileGrid(frame.width, frame.height, tileSize).size());
+  const TileRect window = frameWindow(frame, frameOptions);
+  r.maskedPixels = window.pixelCount();
+  r.tiles = static_cast<int>(tileGrid(window, frameOptions.tileSize).size());
   r.times.traceMs = r.times.totalMs = msSince(start);
+}
+
+// The same in process for a float output: the tracer's linear values, not
+// clamped, scaled by the exposure.
+LinearImage renderFullTraceLinear(TileBackend& backend, const FrameSettings& frame, FrameOptions frameOptions,
+                                  HybridResult& r) {
+  const Clock::time_point start = Clock::now();
+  ProgressBar progress("rendering");
+  frameOptions.progress = [&progress](int done, int total) { progress.update(done, total); };
+  const Renderer renderer(*backend.prepared(), frame);
+  r.rays = RayStats{};
+  LinearImage image = renderLinear(renderer, *backend.pool(), r.rays, LinearRange::kUnbounded, frameOptions);
+  const float scale = Encoder(frame.output).scale();
+  for (float& v : image.rgb) v *= scale;
+  const TileRect window = frameWindow(frame, frameOptions);
+  r.maskedPixels = window.pixelCount();
+  r.tiles = static_cast<int>(tileGrid(window, frameOptions.tileSize).size());
+  r.times.traceMs = r.times.totalMs = msSince(start);
+  return image;
 }
 
 // The line on stderr after a render, the medians of --frames N, and a
@@ -94,15 +117,14 @@ void printServers(const DistributionReport& report, bool legend) {
   if (legend) std::fprintf(stderr, "provenance: %s\n", provenanceLegend(report).c_str());
 }
 
-// An output is refused before anything renders: a PNG option must name a
-// .png file, and its folder must exist and be writable.
-void checkOutput(const char* option, const std::string& path, bool png) {
+// An output is refused before anything renders: an image option must name a
+// format glint writes (only PNG where `png`), and its folder must exist and
+// be writable.
+void checkOutput(const char* option, const std::string& path, bool image, bool png) {
   if (path.empty() || path == "-") return;
   const std::filesystem::path p(path);
-  std::string extension = p.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
-  if (png && extension != ".png") {
-    throw InputError(std::string(option) + " " + path + ": glint writes PNG; give a file name ending in .png");
+  if (image && outputFormat(option, p) != OutputFormat::kPng && png) {
+    throw InputError(std::string(option) + " " + path + ": this image is 8-bit; give a file name ending in .png");
   }
   const std::filesystem::path folder = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
   std::error_code ec;
@@ -115,10 +137,24 @@ void checkOutput(const char* option, const std::string& path, bool png) {
 }
 
 void checkOutputs(const RenderOptions& o) {
-  checkOutput("-o", o.output, true);
-  checkOutput("--mask-out", o.maskOut, true);
-  checkOutput("--provenance-out", o.provenanceOut, true);
-  checkOutput("--stats", o.statsPath, false);
+  checkOutput("-o", o.output, true, false);
+  checkOutput("--mask-out", o.maskOut, true, true);
+  checkOutput("--provenance-out", o.provenanceOut, true, true);
+  checkOutput("--stats", o.statsPath, false, false);
+  if (holdsFloats(outputFormat("-o", o.output)) && o.encoding == Encoding::kSrgb) {
+    throw InputError("--encoding srgb: applies to 8-bit output; " + o.output +
+                     " holds linear values (give a .png, or drop --encoding)");
+  }
+}
+
+// The crop window lies inside the frame.
+void checkCrop(const TileRect& crop, const FrameSettings& frame) {
+  if (crop.x + crop.width > frame.width || crop.y + crop.height > frame.height) {
+    throw InputError("--crop " + std::to_string(crop.x) + "," + std::to_string(crop.y) + "," +
+                     std::to_string(crop.x + crop.width) + "," + std::to_string(crop.y + crop.height) +
+                     ": the window must lie inside the " + std::to_string(frame.width) + "x" +
+                     std::to_string(frame.height) + " frame");
+  }
 }
 
 }  // namespace
@@ -137,6 +173,8 @@ void applyOverrides(const RenderOptions& o, Scene& scene) {
   if (o.seed) scene.frame.sampling.seed = *o.seed;
   if (o.maxDepth) scene.frame.tracing.maxDepth = *o.maxDepth;
   if (o.minWeight) scene.frame.tracing.minWeight = *o.minWeight;
+  if (o.encoding) scene.frame.output.encoding = *o.encoding;
+  if (o.exposure) scene.frame.output.exposure = *o.exposure;
   const std::string samples = "--samples " + std::to_string(scene.frame.sampling.samples);
   checkFrame(scene.frame, LoadLimits{}.maxImagePixels,
              {.size = "--size",
@@ -145,34 +183,43 @@ void applyOverrides(const RenderOptions& o, Scene& scene) {
               .seed = "--seed",
               .maxDepth = "--max-depth",
               .minWeight = "--min-weight",
-              .adaptiveThreshold = "--adaptive-threshold"});
+              .adaptiveThreshold = "--adaptive-threshold",
+              .exposure = "--exposure"});
+  if (o.crop) checkCrop(*o.crop, scene.frame);
   if (o.mask) scene.mask.rule = *o.mask;
   if (o.maskThreshold) scene.mask.minReflectivity = *o.maskThreshold;
 }
 
-void runRender(const RenderOptions& options) {
-  const Clock::time_point start = Clock::now();
-  checkOutputs(options);
-  proto::LoadedBundle loaded = proto::loadSceneBundle(options.scene);
-  applyOverrides(options, loaded.scene);
-  const FrameSettings frame = loaded.scene.frame;
-  const EffectPlan plan = EffectPlan::derive(loaded.scene, frame);
-  const std::size_t dropped = loaded.scene.geometry.droppedTriangles();
-  const double loadMs = msSince(start);
+namespace {
 
-  // In process (the default) or through a glintd: the same tiles either way.
-  const Clock::time_point prepareStart = Clock::now();
-  if (!options.provenanceOut.empty() && options.remote.servers.empty()) {
-    throw InputError("--provenance-out " + options.provenanceOut + ": shows which server traced each tile; give --server");
-  }
-  TileBackend backend({options.remote, options.threads, options.bvh, true}, std::move(loaded));
-  TileService& service = backend.service();
+// What runRender keeps between its steps.
+struct RenderRun {
+  explicit RenderRun(const RenderOptions& o) : options(o) {}
+  const RenderOptions& options;
+  Clock::time_point start = Clock::now();
+  FrameSettings frame;
+  EffectPlan plan;
+  std::size_t dropped = 0;
+  double loadMs = 0.0;
+  double prepareMs = 0.0;
+};
+
+// --mask all is the full ray trace: every pixel through the tile service.
+// Other rules draw each frame with OpenGL and trace only the masked pixels.
+bool drawsWithGl(const Scene& scene, const RenderOptions& options) {
+  return scene.mask.rule != MaskRule::kAll || !options.maskOut.empty();
+}
+
+// Renders options.frames frames into `r` (the last one stays), writing the
+// stats of each; the float output's image when the tracer's own values
+// are at hand (in process, the full trace).
+std::optional<LinearImage> renderFrames(const RenderRun& run, TileBackend& backend, HybridResult& r,
+                                        std::vector<HybridTimes>& frameTimes) {
+  const RenderOptions& options = run.options;
+  const FrameSettings& frame = run.frame;
   const Scene& scene = backend.scene();
-  const double prepareMs = msSince(prepareStart);
-
-  // --mask all is the full ray trace: every pixel through the tile service.
-  // Other rules draw each frame with OpenGL and trace only the masked pixels.
-  const bool hybridPath = scene.mask.rule != MaskRule::kAll || !options.maskOut.empty();
+  const bool hybridPath = drawsWithGl(scene, options);
+  const bool linear = !hybridPath && backend.prepared() && holdsFloats(outputFormat("-o", options.output));
   std::optional<gl::OffscreenContext> context;
   std::optional<gl::RasterScene> raster;
   if (hybridPath) {
@@ -181,42 +228,90 @@ void runRender(const RenderOptions& options) {
   }
   std::optional<StatsWriter> stats;
   if (!options.statsPath.empty()) stats.emplace(options.statsPath);
-  std::vector<HybridTimes> frameTimes;
-  HybridResult r;  // reused: each frame overwrites it
+  std::optional<LinearImage> image;
+  const FrameOptions frameOptions{.tileSize = options.tileSize, .window = options.crop, .progress = {}};
   for (int f = 0; f < options.frames; ++f) {
     if (hybridPath) {
-      renderHybrid(context->api(), *raster, service, frame, scene.mask, options.tileSize, r);
+      renderHybrid(context->api(), *raster, backend.service(), frame, scene.mask, options.tileSize, r, options.crop);
+    } else if (linear) {
+      image = renderFullTraceLinear(backend, frame, frameOptions, r);
     } else {
-      renderFullTrace(service, frame, options.tileSize, r);
+      renderFullTrace(backend.service(), frame, frameOptions, r);
     }
     if (f == 0 && !options.maskOut.empty()) writeMaskPng(options.maskOut, r.mask, frame.width, frame.height);
     if (stats) {
       stats->write({.frame = f,
                     .width = frame.width,
                     .height = frame.height,
+                    .crop = options.crop,
                     .maskedPixels = r.maskedPixels,
                     .tiles = r.tiles,
                     .rays = r.rays,
-                    .plan = &plan,
-                    .droppedTriangles = dropped,
+                    .plan = &run.plan,
+                    .droppedTriangles = run.dropped,
                     .remote = !options.remote.servers.empty(),
-                    .loadMs = loadMs,
-                    .prepareMs = prepareMs,
+                    .loadMs = run.loadMs,
+                    .prepareMs = run.prepareMs,
                     .traceMs = r.times.traceMs,
                     .frameMs = r.times.totalMs,
-                    .totalMs = f == 0 ? msSince(start) : r.times.totalMs,
+                    .totalMs = f == 0 ? msSince(run.start) : r.times.totalMs,
                     .hybrid = hybridPath ? std::optional<HybridTimes>(r.times) : std::nullopt,
                     .distribution = backend.distributed() ? &backend.distributed()->lastFrame() : nullptr});
     }
     frameTimes.push_back(r.times);
   }
-  writePng(options.output, r.image);
+  return image;
+}
+
+// Writes -o (and --provenance-out). A float output of an 8-bit frame (a
+// hybrid frame, or tiles from servers) holds its values as byte / 255.
+void writeOutputs(const RenderOptions& options, TileBackend& backend, const HybridResult& r,
+                  const std::optional<LinearImage>& linear) {
+  const OutputFormat format = outputFormat("-o", options.output);
+  if (holdsFloats(format) && !linear) {
+    writeOutput(options.output, format, r.image, fromBytes(r.image));
+    if (!options.quiet) {
+      std::fprintf(stderr, "note: %s holds the 8-bit frame's values (a hybrid frame or tiles from servers); "
+                   "--mask all in process writes the tracer's own floats\n", options.output.c_str());
+    }
+  } else {
+    writeOutput(options.output, format, r.image, linear ? *linear : LinearImage{});
+  }
   if (!options.provenanceOut.empty()) {
     writePng(options.provenanceOut, provenanceImage(r.image, backend.distributed()->lastFrame()));
   }
+}
 
+}  // namespace
+
+void runRender(const RenderOptions& options) {
+  RenderRun run(options);
+  checkOutputs(options);
+  proto::LoadedBundle loaded = proto::loadSceneBundle(options.scene);
+  printSceneWarnings(options.scene, loaded.scene);
+  applyOverrides(options, loaded.scene);
+  run.frame = loaded.scene.frame;
+  run.plan = EffectPlan::derive(loaded.scene, run.frame);
+  run.dropped = loaded.scene.geometry.droppedTriangles();
+  run.loadMs = msSince(run.start);
+
+  // In process (the default) or through a glintd: the same tiles either way.
+  const Clock::time_point prepareStart = Clock::now();
+  if (!options.provenanceOut.empty() && options.remote.servers.empty()) {
+    throw InputError("--provenance-out " + options.provenanceOut + ": shows which server traced each tile; give --server");
+  }
+  if (!options.provenanceOut.empty() && options.crop) {
+    throw InputError("--provenance-out " + options.provenanceOut + ": shows the whole frame; it cannot go with --crop");
+  }
+  TileBackend backend({options.remote, options.threads, options.bvh, true}, std::move(loaded));
+  run.prepareMs = msSince(prepareStart);
+
+  std::vector<HybridTimes> frameTimes;
+  HybridResult r;  // reused: each frame overwrites it
+  const std::optional<LinearImage> linear = renderFrames(run, backend, r, frameTimes);
+  writeOutputs(options, backend, r, linear);
   if (!options.quiet) {
-    printSummary(options, frame, backend.where(), frameTimes, r.rays, hybridPath);
+    printSummary(options, run.frame, backend.where(), frameTimes, r.rays, drawsWithGl(backend.scene(), options));
     if (backend.distributed()) printServers(backend.distributed()->lastFrame(), !options.provenanceOut.empty());
   }
 }

@@ -9,6 +9,7 @@
 #include "client/tile_backend.h"
 #include "common/bvh.h"
 #include "common/scene.h"
+#include "common/tile.h"
 
 namespace glint {
 
@@ -34,6 +35,9 @@ struct RenderOptions {
   std::optional<int> width;
   std::optional<int> height;
   std::optional<std::uint32_t> seed;
+  std::optional<Encoding> encoding;  // --encoding, 8-bit outputs
+  std::optional<float> exposure;     // --exposure EV
+  std::optional<TileRect> crop;      // --crop: only this window of the frame
   std::optional<BvhBuilder> bvh;  // in process only; unset: SAH
   RemoteOptions remote;       // --server ... (none renders in process), --stall-timeout, --tls-*
   std::string provenanceOut;  // PNG of who traced which tile, "" none
@@ -42,7 +46,8 @@ struct RenderOptions {
   bool quiet = false;
 };
 
-// Loads the scene, applies the options, renders and writes the PNG. Throws
+// Loads the scene, applies the options, renders and writes the image (its
+// format from the output's extension). Throws
 // InputError for bad input (nothing is written then).
 void runRender(const RenderOptions& options);
 

@@ -45,6 +45,7 @@ nlohmann::json toJson(const FrameRecord& r) {
       {"frame_ms", r.frameMs},
       {"total_ms", r.totalMs},
   };
+  if (r.crop) j["crop"] = {r.crop->x, r.crop->y, r.crop->x + r.crop->width, r.crop->y + r.crop->height};
   if (r.plan) j["effects"] = toJson(*r.plan);
   if (r.hybrid) {
     j["raster_ms"] = r.hybrid->rasterMs;

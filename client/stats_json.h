@@ -20,6 +20,7 @@ struct FrameRecord {
   int frame = 0;
   int width = 0;
   int height = 0;
+  std::optional<TileRect> crop;  // --crop: the window rendered
   std::size_t maskedPixels = 0;
   int tiles = 0;
   RayStats rays;

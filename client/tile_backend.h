@@ -51,6 +51,10 @@ class TileBackend {
   // The servers' service; nullptr in process.
   DistributedTileService* distributed() { return distributed_; }
   const Scene& scene() const;
+  // In process: the prepared scene and its pool (for linear renders);
+  // nullptr through servers.
+  const PreparedScene* prepared() const { return prepared_.get(); }
+  ThreadPool* pool() { return pool_.get(); }
   // "4 threads", "server HOST:PORT" or "3 servers", for summaries.
   std::string where() const;
 

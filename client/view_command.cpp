@@ -17,6 +17,7 @@
 #include "client/image_rows.h"
 #include "client/provenance.h"
 #include "client/raster_scene.h"
+#include "client/scene_warnings.h"
 #include "client/tile_backend.h"
 #include "common/error.h"
 #include "common/image_io.h"
@@ -178,6 +179,7 @@ bool showFrame(GLFWwindow* window, const gl::Api& api, gl::RasterScene& raster, 
 
 void runView(const ViewOptions& options) {
   proto::LoadedBundle loaded = proto::loadSceneBundle(options.scene);
+  printSceneWarnings(options.scene, loaded.scene);
   if (options.width) loaded.scene.frame.width = *options.width;
   if (options.height) loaded.scene.frame.height = *options.height;
   if (options.mask) loaded.scene.mask.rule = *options.mask;

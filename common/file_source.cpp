@@ -1,5 +1,6 @@
 #include "common/file_source.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -14,7 +15,9 @@ std::string normalisePath(const std::string& path) {
 }
 
 std::string siblingPath(const std::string& file, const std::string& name) {
-  return normalisePath((std::filesystem::path(file).parent_path() / name).generic_string());
+  std::string forward = name;
+  std::replace(forward.begin(), forward.end(), '\\', '/');
+  return normalisePath((std::filesystem::path(file).parent_path() / forward).generic_string());
 }
 
 DirectorySource::DirectorySource(std::filesystem::path folder, std::size_t maxBytes)
@@ -39,6 +42,11 @@ std::string DirectorySource::read(const std::string& path, const std::string& pl
   return std::move(bytes).str();
 }
 
+bool DirectorySource::has(const std::string& path) {
+  std::error_code ec;
+  return std::filesystem::is_regular_file(folder_ / path, ec);
+}
+
 void MemorySource::add(const std::string& path, std::string bytes) {
   files_[normalisePath(path)] = std::move(bytes);
 }
@@ -48,5 +56,7 @@ std::string MemorySource::read(const std::string& path, const std::string& place
   if (it == files_.end()) throw InputError(place + ": file '" + path + "' was not sent with the scene");
   return it->second;
 }
+
+bool MemorySource::has(const std::string& path) { return files_.count(normalisePath(path)) > 0; }
 
 }  // namespace glint

@@ -17,6 +17,9 @@ class FileSource {
   virtual ~FileSource() = default;
   // The file's bytes; throws InputError starting with `place` if it cannot.
   virtual std::string read(const std::string& path, const std::string& place) = 0;
+  // Whether the file is there at all (a file an OBJ names may be missing:
+  // a warning, not an error).
+  virtual bool has(const std::string& path) = 0;
 };
 
 // Files on disk below a folder, each at most maxBytes.
@@ -24,6 +27,7 @@ class DirectorySource : public FileSource {
  public:
   DirectorySource(std::filesystem::path folder, std::size_t maxBytes);
   std::string read(const std::string& path, const std::string& place) override;
+  bool has(const std::string& path) override;
 
  private:
   std::filesystem::path folder_;
@@ -35,6 +39,7 @@ class MemorySource : public FileSource {
  public:
   void add(const std::string& path, std::string bytes);
   std::string read(const std::string& path, const std::string& place) override;
+  bool has(const std::string& path) override;
 
  private:
   std::map<std::string, std::string> files_;
@@ -44,7 +49,8 @@ class MemorySource : public FileSource {
 std::string normalisePath(const std::string& path);
 
 // Joins a path written inside a file (an OBJ's mtllib, an MTL's map_Kd) to
-// the folder of that file.
+// the folder of that file. Backslashes, as Windows exporters write them
+// (.\\textures\\wall.png), separate folders too.
 std::string siblingPath(const std::string& file, const std::string& name);
 
 }  // namespace glint

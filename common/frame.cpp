@@ -7,13 +7,18 @@
 
 namespace glint {
 
+TileRect frameWindow(const FrameSettings& frame, const FrameOptions& options) {
+  return options.window.value_or(TileRect{0, 0, frame.width, frame.height});
+}
+
 FrameResult renderFrame(TileService& service, const FrameSettings& frame, const FrameOptions& options) {
+  const TileRect window = frameWindow(frame, options);
   FrameResult result;
-  result.image.width = frame.width;
-  result.image.height = frame.height;
-  result.image.rgb.assign(static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height) * 3, 0);
+  result.image.width = window.width;
+  result.image.height = window.height;
+  result.image.rgb.assign(window.pixelCount() * 3, 0);
   std::vector<TileJob> jobs;
-  for (const TileRect& rect : tileGrid(frame.width, frame.height, std::max(1, options.tileSize))) {
+  for (const TileRect& rect : tileGrid(window, std::max(1, options.tileSize))) {
     jobs.push_back({rect, {}});
   }
   int done = 0;
@@ -24,8 +29,8 @@ FrameResult renderFrame(TileService& service, const FrameSettings& frame, const 
                        " bytes of colour for " + std::to_string(rect.pixelCount()) + " pixels");
     }
     for (int row = 0; row < rect.height; ++row) {
-      const std::size_t dst = (static_cast<std::size_t>(rect.y + row) * static_cast<std::size_t>(frame.width) +
-                               static_cast<std::size_t>(rect.x)) * 3;
+      const std::size_t dst = (static_cast<std::size_t>(rect.y - window.y + row) * static_cast<std::size_t>(window.width) +
+                               static_cast<std::size_t>(rect.x - window.x)) * 3;
       std::memcpy(&result.image.rgb[dst], &out.rgb[static_cast<std::size_t>(row * rect.width) * 3],
                   static_cast<std::size_t>(rect.width) * 3);
     }

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "common/ray_stats.h"
@@ -20,10 +21,16 @@ struct FrameImage {
 
 struct FrameOptions {
   int tileSize = 64;
+  // The pixels rendered (--crop); none: the whole frame. The image is the
+  // window's size.
+  std::optional<TileRect> window;
   // Called after each finished tile with (tiles done, tiles in all), from a
   // worker thread, never concurrently.
   std::function<void(int, int)> progress;
 };
+
+// The window the options ask for, or the whole frame.
+TileRect frameWindow(const FrameSettings& frame, const FrameOptions& options);
 
 struct FrameResult {
   FrameImage image;

@@ -1,5 +1,7 @@
 #include "common/frame_limits.h"
 
+#include <cmath>
+
 #include "common/error.h"
 #include "common/sampling.h"
 
@@ -40,6 +42,9 @@ std::optional<FrameProblem> frameProblem(const FrameSettings& f, std::size_t max
   if (!(f.sampling.adaptiveThreshold > 0.0f && f.sampling.adaptiveThreshold <= 1.0f)) {
     return FrameProblem{FrameField::kAdaptiveThreshold, "must be in (0, 1]"};
   }
+  if (!(std::abs(f.output.exposure) <= L::kMaxExposure)) {
+    return FrameProblem{FrameField::kExposure, range(-static_cast<long long>(L::kMaxExposure), static_cast<long long>(L::kMaxExposure)) + " (EV)"};
+  }
   return std::nullopt;
 }
 
@@ -61,6 +66,8 @@ void checkFrame(const FrameSettings& frame, std::size_t maxPixels, const FrameFi
       throw InputError(std::string(names.minWeight) + ": " + p->what);
     case FrameField::kAdaptiveThreshold:
       throw InputError(std::string(names.adaptiveThreshold) + ": " + p->what);
+    case FrameField::kExposure:
+      throw InputError(std::string(names.exposure) + ": " + p->what);
   }
 }
 

@@ -17,12 +17,13 @@ struct FrameLimits {
   static constexpr int kMaxSamples = 4096;                      // per pixel
   static constexpr int kMaxDepth = 64;                          // primary ray = 1
   static constexpr std::uint32_t kMaxSeed = 0x7fffffff;
+  static constexpr float kMaxExposure = 32.0f;                  // |EV|
 };
 
 // Which setting a problem is about, so that each caller names it its own way
 // (the scene file's "sampling.samples", the wire's "frame_setup.samples", the
 // command line's "--samples").
-enum class FrameField { kSize, kCamera, kSamples, kMaxDepth, kMinWeight, kSeed, kAdaptiveThreshold };
+enum class FrameField { kSize, kCamera, kSamples, kMaxDepth, kMinWeight, kSeed, kAdaptiveThreshold, kExposure };
 
 struct FrameProblem {
   FrameField field;
@@ -41,6 +42,7 @@ struct FrameFieldNames {
   const char* maxDepth;
   const char* minWeight;
   const char* adaptiveThreshold;
+  const char* exposure;
 };
 
 // Throws InputError("<name>: <what>") for the first problem, if any.

@@ -108,10 +108,6 @@ Image decodeImage(std::string_view bytes, const std::string& place, SceneBudget&
   return image;
 }
 
-namespace {
-
-// Writes bytes to `path` through a temporary file renamed over it once
-// complete, so that a failed or interrupted write leaves no half-written file.
 void writeAtomically(const std::filesystem::path& path, const unsigned char* data, std::size_t size) {
   std::filesystem::path tmp = path;
   tmp += ".partial";
@@ -136,8 +132,6 @@ void writeAtomically(const std::filesystem::path& path, const unsigned char* dat
     throw InputError(path.string() + ": cannot move the finished file into place (" + ec.message() + ")");
   }
 }
-
-}  // namespace
 
 void writePng(const std::filesystem::path& path, const FrameImage& image) {
   std::vector<unsigned char> png;

@@ -24,6 +24,10 @@ Image decodeImage(std::string_view bytes, const std::string& place, SceneBudget&
 // interrupted write never leaves a half-written image.
 void writePng(const std::filesystem::path& path, const FrameImage& image);
 
+// Writes `size` bytes to `path` atomically: to `path`.partial, renamed over
+// `path` only once complete. Errors name the path.
+void writeAtomically(const std::filesystem::path& path, const unsigned char* data, std::size_t size);
+
 // Writes linear colour as a Portable Float Map (PF, little-endian, rows
 // bottom-up as the format has them), atomically like writePng.
 void writePfm(const std::filesystem::path& path, const LinearImage& image);

@@ -1,17 +1,20 @@
 #include "common/linear_image.h"
 
 #include <algorithm>
+#include <limits>
 #include <mutex>
 
 namespace glint {
 
-LinearImage renderLinear(const Renderer& renderer, ThreadPool& pool, RayStats& stats) {
-  constexpr int kTileSize = 64;  // as glint render's tiles, so that the adaptive pattern's borders cost the same
-  const FrameSettings& frame = renderer.frame();
-  LinearImage image{frame.width, frame.height,
-                    std::vector<float>(static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height) * 3)};
-  const std::vector<TileRect> tiles = tileGrid(frame.width, frame.height, kTileSize);
+LinearImage renderLinear(const Renderer& renderer, ThreadPool& pool, RayStats& stats, LinearRange range,
+                         const FrameOptions& options) {
+  const TileRect window = frameWindow(renderer.frame(), options);
+  LinearImage image{window.width, window.height, std::vector<float>(window.pixelCount() * 3)};
+  const std::vector<TileRect> tiles = tileGrid(window, std::max(1, options.tileSize));
+  const float hi = range == LinearRange::kClamped ? 1.0f : std::numeric_limits<float>::max();
+  const float lo = range == LinearRange::kClamped ? 0.0f : -hi;
   std::mutex statsMutex;
+  int done = 0;
   pool.parallelFor(tiles.size(), [&](std::size_t t) {
     const TileRect& r = tiles[t];
     RayStats tileStats;
@@ -20,13 +23,14 @@ LinearImage renderLinear(const Renderer& renderer, ThreadPool& pool, RayStats& s
     std::size_t i = 0;
     for (int y = r.y; y < r.y + r.height; ++y) {
       for (int x = r.x; x < r.x + r.width; ++x, ++i) {
-        float* p = &image.rgb[(static_cast<std::size_t>(y) * static_cast<std::size_t>(frame.width) +
-                               static_cast<std::size_t>(x)) * 3];
-        for (int k = 0; k < 3; ++k) p[k] = std::clamp(linear[i][k], 0.0f, 1.0f);
+        float* p = &image.rgb[(static_cast<std::size_t>(y - window.y) * static_cast<std::size_t>(window.width) +
+                               static_cast<std::size_t>(x - window.x)) * 3];
+        for (int k = 0; k < 3; ++k) p[k] = std::clamp(linear[i][k], lo, hi);
       }
     }
     std::lock_guard lock(statsMutex);
     stats += tileStats;
+    if (options.progress) options.progress(++done, static_cast<int>(tiles.size()));
   });
   return image;
 }

@@ -32,9 +32,14 @@ std::string mtllibName(const std::string& text) {
 
 float mean(const float c[3]) { return (c[0] + c[1] + c[2]) / 3.0f; }
 
+// MTL illumination models 3 to 7 trace reflections (3, 4, 5) and
+// refractions (6, 7); below 3 Ks is only the highlight.
+bool mtlReflects(int illum) { return illum >= 3 && illum <= 7; }
+
 // MTL -> Glint: Kd is the surface colour C (or map_Kd the texture) with r_D
 // = 1, so that C r_D = Kd; r_A and r_S are the means of Ka and Ks; Ns is h;
-// Ni the index; d (or 1 - Tr) the opacity.
+// Ni the index; d (or 1 - Tr) the opacity; under illum 3 to 7 the mean of
+// Ks is also the reflectivity.
 Material toMaterial(const tinyobj::material_t& m) {
   Material out;
   out.name = m.name;
@@ -45,6 +50,7 @@ Material toMaterial(const tinyobj::material_t& m) {
   out.shininess = m.shininess > 0.0f ? m.shininess : 1.0f;
   out.ior = m.ior > 0.0f ? m.ior : 1.0f;
   out.transparency = std::clamp(1.0f - m.dissolve, 0.0f, 1.0f);
+  if (mtlReflects(m.illum)) out.reflectivity = std::clamp(mean(m.specular), 0.0f, 1.0f);
   return out;
 }
 
@@ -53,13 +59,35 @@ struct VertexKey {
   auto operator<=>(const VertexKey&) const = default;
 };
 
-// The OBJ (and, when materials are wanted, its mtllib) parsed by tinyobjloader.
+// Why a text cannot be an OBJ at all, or "".
+std::string notObjText(const std::string& text) {
+  if (text.find_first_not_of(" \t\r\n") == std::string::npos) return "is empty";
+  const bool bom16 = text.size() >= 2 && ((text[0] == '\xff' && text[1] == '\xfe') || (text[0] == '\xfe' && text[1] == '\xff'));
+  if (bom16 || text.find('\0') != std::string::npos) {
+    return "is not a text file in ASCII or UTF-8 (UTF-16, or binary); save it as UTF-8";
+  }
+  return "";
+}
+
+// The OBJ (and, when materials are wanted, its mtllib, whose path goes to
+// `mtlPath`) parsed by tinyobjloader; a missing mtllib is a warning.
 tinyobj::ObjReader parseObj(FileSource& files, const std::string& path, const std::string& place,
-                            const LoadLimits& limits, bool withMaterials) {
+                            const LoadLimits& limits, bool withMaterials, std::vector<std::string>& warnings,
+                            std::string& mtlPath) {
   const std::string text = files.read(path, place);
+  if (const std::string why = notObjText(text); !why.empty()) throw InputError(place + ": '" + path + "' " + why);
   std::string mtl;
   const std::string lib = mtllibName(text);
-  if (withMaterials && !lib.empty()) mtl = files.read(siblingPath(path, lib), place + " (mtllib " + lib + ")");
+  if (withMaterials && !lib.empty()) {
+    const std::string libPath = siblingPath(path, lib);
+    if (files.has(libPath)) {
+      mtl = files.read(libPath, place + " (mtllib " + lib + ")");
+      mtlPath = libPath;
+    } else {
+      warnings.push_back("'" + path + "' names the material library '" + libPath +
+                         "', which is missing; its faces get the default material");
+    }
+  }
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;
@@ -75,13 +103,18 @@ tinyobj::ObjReader parseObj(FileSource& files, const std::string& path, const st
   return reader;
 }
 
-// The MTL materials, each map_Kd decoded as the material's texture.
-void readMaterials(const tinyobj::ObjReader& reader, FileSource& files, const std::string& path,
+// The materials of the MTL file at `mtlPath`, each map_Kd (relative to the
+// MTL file) decoded as the material's texture; a missing texture is a
+// warning, and the material keeps its Kd colour.
+void readMaterials(const tinyobj::ObjReader& reader, FileSource& files, const std::string& mtlPath,
                    const std::string& place, SceneBudget& budget, ObjModel& model) {
   for (const tinyobj::material_t& m : reader.GetMaterials()) {
     Material mat = toMaterial(m);
-    if (!m.diffuse_texname.empty()) {
-      const std::string texPath = siblingPath(path, m.diffuse_texname);
+    const std::string texPath = m.diffuse_texname.empty() ? "" : siblingPath(mtlPath, m.diffuse_texname);
+    if (!texPath.empty() && !files.has(texPath)) {
+      model.warnings.push_back("'" + mtlPath + "' names the texture '" + texPath + "' (map_Kd of material " +
+                               m.name + "), which is missing; the material's Kd colour is used");
+    } else if (!texPath.empty()) {
       const std::string texPlace = place + " (map_Kd of material " + m.name + ")";
       Texture tex;
       tex.type = TextureType::kImage;
@@ -151,9 +184,10 @@ class FaceGrouper {
 ObjModel loadObj(FileSource& files, const std::string& path, const std::string& place, SceneBudget& budget,
                  bool withMaterials) {
   const LoadLimits& limits = budget.limits();
-  const tinyobj::ObjReader reader = parseObj(files, path, place, limits, withMaterials);
   ObjModel model;
-  if (withMaterials) readMaterials(reader, files, path, place, budget, model);
+  std::string mtlPath;
+  const tinyobj::ObjReader reader = parseObj(files, path, place, limits, withMaterials, model.warnings, mtlPath);
+  if (!mtlPath.empty()) readMaterials(reader, files, mtlPath, place, budget, model);
   // Faces without a material (or all faces, without MTL) use a default one.
   const int defaultMaterial = static_cast<int>(model.materials.size());
   FaceGrouper grouper(reader.GetAttrib());
@@ -177,6 +211,11 @@ ObjModel loadObj(FileSource& files, const std::string& path, const std::string& 
         }
       }
     }
+  }
+  if (triangles == 0) {
+    throw InputError(place + ": '" + path + "' holds no triangle (" +
+                     std::to_string(reader.GetAttrib().vertices.size() / 3) +
+                     " vertices, no faces: points or lines only?); a mesh needs faces (f lines)");
   }
   grouper.finish(model);
   if (grouper.uses(defaultMaterial)) model.materials.push_back(Material{});

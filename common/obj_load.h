@@ -19,11 +19,14 @@ struct ObjModel {
   std::vector<MeshInput> meshes;
   std::vector<Material> materials;
   std::vector<Texture> textures;
+  std::vector<std::string> warnings;  // files the OBJ names that are missing
 };
 
 // Parses the OBJ at `path` (read through `files`) with tinyobjloader. With
 // withMaterials, its mtllib is read too; otherwise every face goes into one
-// mesh with material 0. Errors start with `place`.
+// mesh with material 0. A missing MTL file or texture is a warning (the
+// default material, the Kd colour); a file that yields no triangle (empty,
+// UTF-16, points or lines only) is an error. Errors start with `place`.
 ObjModel loadObj(FileSource& files, const std::string& path, const std::string& place,
                  SceneBudget& budget, bool withMaterials);
 

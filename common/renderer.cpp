@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/encoding.h"
 #include "common/finite.h"
 #include "common/sampling.h"
 
@@ -118,10 +119,11 @@ void Renderer::renderTile(const TileRect& rect, std::span<const std::uint8_t> ma
   std::vector<glm::vec3> linear;
   linear.reserve(rect.pixelCount());
   renderTileLinear(rect, mask, linear, stats);
+  const Encoder encoder(frame_.output);
   for (const glm::vec3& c : linear) {
-    rgb.push_back(toByte(c.r));
-    rgb.push_back(toByte(c.g));
-    rgb.push_back(toByte(c.b));
+    rgb.push_back(encoder.byte(c.r));
+    rgb.push_back(encoder.byte(c.g));
+    rgb.push_back(encoder.byte(c.b));
   }
 }
 

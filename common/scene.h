@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -18,6 +19,9 @@ namespace glint {
 enum class SamplePattern { kRegular, kJittered, kAdaptive };
 enum class FilterType { kBox, kTent, kGaussian, kMitchell };
 enum class MaskRule { kAuto, kAll, kNone };
+// How linear colour becomes an 8-bit value: kLinear stores it as it is (the
+// thesis's frame buffer), kSrgb applies the sRGB transfer function.
+enum class Encoding { kLinear, kSrgb };
 
 template <>
 struct EnumWords<SamplePattern> {
@@ -30,6 +34,11 @@ struct EnumWords<FilterType> {
                                                                                   {FilterType::kTent, "tent"},
                                                                                   {FilterType::kGaussian, "gaussian"},
                                                                                   {FilterType::kMitchell, "mitchell"}}};
+};
+template <>
+struct EnumWords<Encoding> {
+  static constexpr std::array<std::pair<Encoding, std::string_view>, 2> kWords{
+      {{Encoding::kLinear, "linear"}, {Encoding::kSrgb, "srgb"}}};
 };
 template <>
 struct EnumWords<MaskRule> {
@@ -56,6 +65,13 @@ struct MaskSettings {
   float minTransparency = 0.0f;
 };
 
+// What a frame's colour becomes in its output: scaled by 2^exposure (EV),
+// then, for 8-bit values, encoded (common/encoding.h).
+struct OutputSettings {
+  Encoding encoding = Encoding::kLinear;
+  float exposure = 0.0f;
+};
+
 // What may change from one frame of a scene to the next: the view and the
 // accuracy settings. The scene file gives the first frame's.
 struct FrameSettings {
@@ -64,6 +80,7 @@ struct FrameSettings {
   CameraSpec camera;
   SamplingSettings sampling;
   TracingSettings tracing;
+  OutputSettings output;
 };
 
 // A loaded scene: everything the scene file says, with names resolved to
@@ -76,6 +93,8 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<PointLight> lights;
   Geometry geometry;
+  // What the loader let pass (a file an OBJ names that is missing), each once.
+  std::vector<std::string> warnings;
 };
 
 }  // namespace glint

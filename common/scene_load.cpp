@@ -10,6 +10,7 @@
 #include "common/image_io.h"
 #include "common/json_reader.h"
 #include "common/obj_load.h"
+#include "common/smooth_normals.h"
 #include "common/transform.h"
 
 namespace glint {
@@ -71,9 +72,11 @@ class SceneLoader {
 
  private:
   void readImage(const JsonReader& r) {
-    r.allowKeys({"width", "height"});
+    r.allowKeys({"width", "height", "encoding", "exposure"});
     scene_.frame.width = r["width"].integer(1, FrameLimits::kMaxEdge);
     scene_.frame.height = r["height"].integer(1, FrameLimits::kMaxEdge);
+    if (auto e = r.find("encoding")) scene_.frame.output.encoding = choice<Encoding>(*e);
+    scene_.frame.output.exposure = r.number("exposure", 0.0f, -FrameLimits::kMaxExposure, FrameLimits::kMaxExposure);
   }
 
   void readCamera(const JsonReader& r) {
@@ -110,7 +113,8 @@ class SceneLoader {
                        .seed = "sampling.seed",
                        .maxDepth = "tracing.max_depth",
                        .minWeight = "tracing.min_weight",
-                       .adaptiveThreshold = "sampling.adaptive_threshold"});
+                       .adaptiveThreshold = "sampling.adaptive_threshold",
+                       .exposure = "image.exposure"});
   }
 
   void readTracing(const JsonReader& r) {
@@ -316,31 +320,13 @@ class SceneLoader {
   }
 
   void readMesh(const JsonReader& o) {
-    o.allowKeys({"type", "file", "positions", "indices", "normals", "uvs", "material", "transform"});
+    o.allowKeys({"type", "file", "positions", "indices", "normals", "uvs", "material", "materials", "raytrace",
+                 "smooth", "transform"});
     if (o.has("file") == o.has("positions")) o.fail("a mesh needs either file or positions (not both)");
-    if (auto f = o.find("file")) {
-      for (const char* key : {"indices", "normals", "uvs"}) {
-        if (o.has(key)) o[key].fail("belongs to an inline mesh; a mesh from a file takes its own");
-      }
-      const bool own = !o.has("material");
-      ObjModel obj = loadObj(files_, normalisePath(f->string()), f->path(), budget_, own);
-      const std::uint32_t named = own ? 0 : material(o);
-      const auto materialBase = static_cast<std::uint32_t>(scene_.materials.size());
-      const auto textureBase = static_cast<int>(scene_.textures.size());
-      if (own) {
-        for (Material& m : obj.materials) {
-          if (m.texture >= 0) m.texture += textureBase;
-          m.name = o.path() + ":" + m.name;
-          scene_.materials.push_back(std::move(m));
-        }
-        for (Texture& t : obj.textures) scene_.textures.push_back(std::move(t));
-      }
-      for (MeshInput& mesh : obj.meshes) {
-        mesh.material = own ? mesh.material + materialBase : named;
-        addMesh(o, std::move(mesh));
-      }
-      return;
+    if (o.has("material") && o.has("materials")) {
+      o["materials"].fail("renames the file's materials one by one; \"material\" already gives them all one");
     }
+    if (auto f = o.find("file")) return readMeshFile(o, *f);
     MeshInput mesh;
     const JsonReader positions = o["positions"];
     const std::size_t values = positions.arraySize();
@@ -367,8 +353,82 @@ class SceneLoader {
       if (uv->arraySize() != 2 * vertices) uv->fail("must hold one (u, v) pair per vertex");
       for (std::size_t i = 0; i < vertices; ++i) mesh.uvs.emplace_back(uv->at(2 * i).number(), uv->at(2 * i + 1).number());
     }
-    mesh.material = material(o);
+    if (o.has("materials")) o["materials"].fail("renames a mesh file's materials; an inline mesh has one material");
+    mesh.material = meshMaterial(o, material(o));
     addMesh(o, std::move(mesh));
+  }
+
+  // A mesh from a file: its own materials (renamed by "materials"), or the
+  // one "material" names for all its faces.
+  void readMeshFile(const JsonReader& o, const JsonReader& f) {
+    for (const char* key : {"indices", "normals", "uvs"}) {
+      if (o.has(key)) o[key].fail("belongs to an inline mesh; a mesh from a file takes its own");
+    }
+    const bool own = !o.has("material");
+    ObjModel obj = loadObj(files_, normalisePath(f.string()), f.path(), budget_, own);
+    for (std::string& w : obj.warnings) warn(std::move(w));
+    const std::vector<std::uint32_t> mapped = own ? ownMaterials(o, obj) : std::vector<std::uint32_t>{};
+    const std::uint32_t named = own ? 0 : material(o);
+    for (MeshInput& mesh : obj.meshes) {
+      mesh.material = meshMaterial(o, own ? mapped[mesh.material] : named);
+      addMesh(o, std::move(mesh));
+    }
+  }
+
+  // The file's materials as scene materials (their textures with them),
+  // each renamed by the mesh's "materials" map where it names it; returns
+  // the scene index of each.
+  std::vector<std::uint32_t> ownMaterials(const JsonReader& o, ObjModel& obj) {
+    std::map<std::string, std::uint32_t> renamed;
+    if (auto r = o.find("materials")) {
+      r->requireObject();
+      for (const auto& [name, value] : r->raw().items()) {
+        const JsonReader entry(value, r->path() + "." + name);
+        const bool known = std::any_of(obj.materials.begin(), obj.materials.end(),
+                                       [&name](const Material& m) { return m.name == name; });
+        if (!known) entry.fail("the file has no material named '" + name + "'");
+        const auto it = materialIndex_.find(entry.string());
+        if (it == materialIndex_.end()) entry.fail("no material named '" + entry.string() + "' in materials");
+        renamed[name] = it->second;
+      }
+    }
+    const auto textureBase = static_cast<int>(scene_.textures.size());
+    for (Texture& t : obj.textures) scene_.textures.push_back(std::move(t));
+    std::vector<std::uint32_t> index;
+    for (Material& m : obj.materials) {
+      if (const auto it = renamed.find(m.name); it != renamed.end()) {
+        index.push_back(it->second);
+        continue;
+      }
+      if (m.texture >= 0) m.texture += textureBase;
+      m.name = o.path() + ":" + m.name;
+      index.push_back(static_cast<std::uint32_t>(scene_.materials.size()));
+      scene_.materials.push_back(std::move(m));
+    }
+    return index;
+  }
+
+  // The material a mesh's faces get: `index`, or with the mesh's "raytrace"
+  // a copy of it that the auto mask rule traces (true) or leaves out (false).
+  std::uint32_t meshMaterial(const JsonReader& o, std::uint32_t index) {
+    const std::optional<JsonReader> r = o.find("raytrace");
+    if (!r) return index;
+    const RaytraceRule rule = r->boolean() ? RaytraceRule::kAlways : RaytraceRule::kNever;
+    if (scene_.materials[index].raytrace == rule) return index;
+    const auto key = std::make_pair(index, rule);
+    if (const auto it = raytraceCopies_.find(key); it != raytraceCopies_.end()) return it->second;
+    Material copy = scene_.materials[index];
+    copy.raytrace = rule;
+    copy.name = o.path() + ":" + copy.name;
+    scene_.materials.push_back(std::move(copy));
+    return raytraceCopies_[key] = static_cast<std::uint32_t>(scene_.materials.size() - 1);
+  }
+
+  // A warning, once however often it comes.
+  void warn(std::string warning) {
+    if (std::find(scene_.warnings.begin(), scene_.warnings.end(), warning) == scene_.warnings.end()) {
+      scene_.warnings.push_back(std::move(warning));
+    }
   }
 
   std::vector<glm::vec3> vectors3(const JsonReader& r, std::size_t count) {
@@ -413,6 +473,9 @@ class SceneLoader {
       const float len = glm::length(v);
       n = len > 0.0f ? v / len : v;
     }
+    if (auto smooth = o.find("smooth"); smooth && mesh.normals.empty()) {
+      smoothNormals(mesh, smooth->number(0.0f, 180.0f));
+    }
     budget_.chargeMesh(mesh.positions.size(), mesh.indices.size() / 3, o.path());
     scene_.geometry.addMesh(std::move(mesh));
   }
@@ -423,6 +486,7 @@ class SceneLoader {
   Scene scene_;
   std::map<std::string, int> textureIndex_;
   std::map<std::string, std::uint32_t> materialIndex_;
+  std::map<std::pair<std::uint32_t, RaytraceRule>, std::uint32_t> raytraceCopies_;  // meshMaterial's copies
   std::size_t vertices_ = 0;
   std::size_t triangles_ = 0;
 };

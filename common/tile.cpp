@@ -13,11 +13,12 @@ std::size_t countMasked(const TileRect& rect, std::span<const std::uint8_t> mask
   return n;
 }
 
-std::vector<TileRect> tileGrid(int width, int height, int tileSize) {
+std::vector<TileRect> tileGrid(const TileRect& window, int tileSize) {
   std::vector<TileRect> tiles;
-  for (int y = 0; y < height; y += tileSize) {
-    for (int x = 0; x < width; x += tileSize) {
-      tiles.push_back({x, y, std::min(tileSize, width - x), std::min(tileSize, height - y)});
+  const int x1 = window.x + window.width, y1 = window.y + window.height;
+  for (int y = window.y; y < y1; y += tileSize) {
+    for (int x = window.x; x < x1; x += tileSize) {
+      tiles.push_back({x, y, std::min(tileSize, x1 - x), std::min(tileSize, y1 - y)});
     }
   }
   return tiles;

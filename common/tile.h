@@ -31,8 +31,12 @@ inline void setMaskBit(std::span<std::uint8_t> mask, std::size_t i) {
 }
 std::size_t countMasked(const TileRect& rect, std::span<const std::uint8_t> mask);
 
-// Cuts a width x height frame into tiles of at most tileSize x tileSize, row
-// by row from the top-left.
-std::vector<TileRect> tileGrid(int width, int height, int tileSize);
+// Cuts a window of a frame into tiles of at most tileSize x tileSize, row by
+// row from the window's top-left.
+std::vector<TileRect> tileGrid(const TileRect& window, int tileSize);
+// The same for a whole width x height frame.
+inline std::vector<TileRect> tileGrid(int width, int height, int tileSize) {
+  return tileGrid(TileRect{0, 0, width, height}, tileSize);
+}
 
 }  // namespace glint

@@ -78,7 +78,8 @@ std::vector<std::uint8_t> encodeFrameSetup(std::uint32_t frameId, const SceneHas
       &lookAt, &up, f.camera.fovY, f.sampling.pattern != SamplePattern::kRegular,
       static_cast<std::uint32_t>(f.sampling.samples), static_cast<std::uint8_t>(f.sampling.filter), f.sampling.seed,
       static_cast<std::uint32_t>(f.tracing.maxDepth), f.tracing.minWeight,
-      f.sampling.pattern == SamplePattern::kAdaptive, f.sampling.adaptiveThreshold);
+      f.sampling.pattern == SamplePattern::kAdaptive, f.sampling.adaptiveThreshold,
+      f.output.encoding == Encoding::kSrgb, f.output.exposure);
   return finish(b, setup, wire::Body::FrameSetup);
 }
 
@@ -158,6 +159,8 @@ FrameSettings decodeFrameSettings(const wire::FrameSetup& s, std::size_t maxPixe
   f.sampling.seed = s.seed();
   f.tracing.maxDepth = toInt(s.max_depth());
   f.tracing.minWeight = s.min_weight();
+  f.output.encoding = s.srgb() ? Encoding::kSrgb : Encoding::kLinear;
+  f.output.exposure = s.exposure();
   checkFrame(f, maxPixels,
              {.size = "frame_setup.width, height",
               .camera = "frame_setup.",
@@ -165,7 +168,8 @@ FrameSettings decodeFrameSettings(const wire::FrameSetup& s, std::size_t maxPixe
               .seed = "frame_setup.seed",
               .maxDepth = "frame_setup.max_depth",
               .minWeight = "frame_setup.min_weight",
-              .adaptiveThreshold = "frame_setup.adaptive_threshold"});
+              .adaptiveThreshold = "frame_setup.adaptive_threshold",
+              .exposure = "frame_setup.exposure"});
   return f;
 }
 

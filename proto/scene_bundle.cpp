@@ -20,6 +20,7 @@ class RecordingSource : public FileSource {
     files_[normalisePath(path)] = bytes;
     return bytes;
   }
+  bool has(const std::string& path) override { return disk_.has(path); }
   std::map<std::string, std::string> take() { return std::move(files_); }
 
  private:

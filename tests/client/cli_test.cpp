@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "common/image_io.h"
+#include "common/renderer.h"
 #include "common/scene_budget.h"
 #include "tests/server/glintd_process.h"
 
@@ -193,6 +194,58 @@ TEST_F(Cli, CommentsAndCameraOverrides) {
   EXPECT_NE(decodePng(path("flag.png")).rgb, decodePng(path("plain.png")).rgb);
 }
 
+// --crop renders the window of the frame: the same pixels as that window of
+// the whole frame, hybrid and full trace; the stats name the window.
+TEST_F(Cli, CropIsTheWindowOfTheWholeFrame) {
+  for (const std::string mask : {"auto", "all"}) {
+    const std::string args = " --size 96x64 -q --mask " + mask;
+    ASSERT_EQ(glint("render " + scene("room.json") + " -o " + path("whole.png") + args).status, 0);
+    const Result run = glint("render " + scene("room.json") + " -o " + path("crop.png") + args +
+                             " --crop 10,5,70,41 --stats " + path("stats.json"));
+    ASSERT_EQ(run.status, 0) << run.output;
+    const Image whole = decodePng(path("whole.png")), crop = decodePng(path("crop.png"));
+    ASSERT_EQ(crop.width, 60);
+    ASSERT_EQ(crop.height, 36);
+    for (int y = 0; y < crop.height; ++y) {
+      for (int x = 0; x < crop.width * 3; ++x) {
+        const std::size_t w = static_cast<std::size_t>((y + 5) * whole.width * 3 + 30 + x);
+        ASSERT_EQ(crop.rgb[static_cast<std::size_t>(y * crop.width * 3 + x)], whole.rgb[w]) << mask << " " << x / 3 << "," << y;
+      }
+    }
+    std::ifstream stats(path("stats.json"));
+    const std::string line((std::istreambuf_iterator<char>(stats)), std::istreambuf_iterator<char>());
+    EXPECT_NE(line.find("\"crop\":[10,5,70,41]"), std::string::npos) << line;
+  }
+}
+
+// .pfm and .exr of the in-process full trace hold the tracer's floats (the
+// PNG's bytes are their rounding); of a hybrid frame, the 8-bit values.
+TEST_F(Cli, FloatOutputsHoldTheFrame) {
+  const std::string args = " --size 48x32 -q --mask all";
+  ASSERT_EQ(glint("render " + scene("room.json") + " -o " + path("room.png") + args).status, 0);
+  ASSERT_EQ(glint("render " + scene("room.json") + " -o " + path("room.pfm") + args).status, 0);
+  ASSERT_EQ(glint("render " + scene("room.json") + " -o " + path("room.exr") + args).status, 0);
+  const Image png = decodePng(path("room.png"));
+  std::ifstream pfm(path("room.pfm"), std::ios::binary);
+  std::string header[4];
+  pfm >> header[0] >> header[1] >> header[2] >> header[3];
+  pfm.get();
+  EXPECT_EQ(header[0] + " " + header[1] + " " + header[2] + " " + header[3], "PF 48 32 -1.0");
+  std::vector<float> values(48 * 32 * 3);
+  pfm.read(reinterpret_cast<char*>(values.data()), static_cast<std::streamsize>(values.size() * sizeof(float)));
+  ASSERT_TRUE(pfm);
+  for (int y = 0; y < 32; ++y) {  // PFM rows run bottom-up
+    for (int i = 0; i < 48 * 3; ++i) {
+      const float v = values[static_cast<std::size_t>((31 - y) * 48 * 3 + i)];
+      ASSERT_EQ(glint::toByte(v), png.rgb[static_cast<std::size_t>(y * 48 * 3 + i)]) << i / 3 << "," << y;
+    }
+  }
+  EXPECT_GT(fs::file_size(path("room.exr")), 100u);
+  const Result hybrid = glint("render " + scene("room.json") + " -o " + path("hybrid.pfm") + " --size 48x32");
+  EXPECT_EQ(hybrid.status, 0);
+  EXPECT_NE(hybrid.output.find("holds the 8-bit frame's values"), std::string::npos) << hybrid.output;
+}
+
 TEST_F(Cli, ViewWithoutADisplaySaysSo) {
   const Result run = glint("view " + scene("room.json") + " --frames 1", "env -u DISPLAY -u WAYLAND_DISPLAY ");
   EXPECT_EQ(run.status, 1);
@@ -222,7 +275,14 @@ TEST_F(Cli, BadValuesGiveClearErrorsAndWriteNothing) {
       {"render " + room + out + " --mask all --server 127.0.0.1:1", "server 127.0.0.1:1: unreachable, cannot connect"},
       {"render " + room + out + " --mask all --bvh qsplit --server 127.0.0.1:1", "--bvh: a glintd builds"},
       {"render " + room + out + " --mask all --server nowhere", "--server nowhere: expected HOST:PORT"},
-      {"render " + room + " -o " + path("x.jpg") + " --mask all", "-o " + path("x.jpg") + ": glint writes PNG"},
+      {"render " + room + " -o " + path("x.jpg") + " --mask all", "-o " + path("x.jpg") + ": glint writes .png, .exr, .pfm"},
+      {"render " + room + " -o " + path("x.exr") + " --encoding srgb", "--encoding srgb: applies to 8-bit output"},
+      {"render " + room + out + " --mask-out " + path("m.exr"), "--mask-out " + path("m.exr") + ": this image is 8-bit"},
+      {"render " + room + out + " --crop 0,0,641,10", "--crop 0,0,641,10: the window must lie inside the 640x480 frame"},
+      {"render " + room + out + " --crop 10,10,10,20", "--crop 10,10,10,20: X1 must be above X0"},
+      {"render " + room + out + " --crop 1,2,3", "--crop 1,2,3: expected X0,Y0,X1,Y1"},
+      {"render " + room + out + " --exposure 40", "--exposure"},
+      {"render " + room + out + " --encoding gamma", "--encoding"},
       {"render " + room + out + " --mask all --mask-out " + path("nowhere/m.png"), "nowhere does not exist"},
       {"render " + room + out + " --mask all --size 100000x100000", "width and height must be in [1, 65536]"},
       {"render " + room + out + " --mask all --eye 1,2", "--eye 1,2: expected X,Y,Z"},

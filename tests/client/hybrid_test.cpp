@@ -74,9 +74,10 @@ std::vector<bool> fullyCovered(const PreparedScene& prepared, const FrameSetting
 // GL draws a surface as the tracer's direct light (no shadow rays, no
 // secondary rays, one sample at the pixel centre): within 2/255 per channel
 // on every fully covered pixel.
-void expectRasterMatchesDirectTrace(const char* sceneFile) {
+void expectRasterMatchesDirectTrace(const char* sceneFile, const OutputSettings& output = {}) {
   SceneSetup s = load(sceneFile);
   s.frame.sampling = {SamplePattern::kRegular, 1, FilterType::kBox, 0};
+  s.frame.output = output;
   const PreparedScene prepared(s.loaded.scene, BvhSettings{});
   const Renderer renderer(prepared, s.frame, test::directLightOnly(prepared.scene(), s.frame));
   ThreadPool pool(2);
@@ -161,6 +162,13 @@ TEST(Hybrid, RasterMatchesTheTracersDirectLight) {
   expectRasterMatchesDirectTrace("scenes/bunny.json");
 }
 
+// The raster encodes as the tracer does: sRGB and exposure in the shader.
+TEST(Hybrid, RasterEncodesAsTheTracer) {
+  expectRasterMatchesDirectTrace("scenes/room.json", {Encoding::kSrgb, 0.0f});
+  expectRasterMatchesDirectTrace("scenes/glass.json", {Encoding::kLinear, 1.5f});
+  expectRasterMatchesDirectTrace("scenes/bunny.json", {Encoding::kSrgb, -0.5f});
+}
+
 // A pixel is masked exactly when the object the tracer's primary ray meets
 // at the pixel centre is masked (silhouette pixels aside, where GL and the
 // ray may see different objects).
@@ -220,6 +228,12 @@ TEST(Hybrid, MaskedPixelsEqualTheFullTrace) {
   }
   // Under "all" the hybrid frame is the full trace.
   EXPECT_EQ(hybrid(prepared.scene(), local, s.frame, {MaskRule::kAll, 0.2f, 0.0f}).image.rgb, full.rgb);
+  // The output encoding travels to the server: sRGB at +1 EV, the same bytes.
+  FrameSettings encoded = s.frame;
+  encoded.output = {Encoding::kSrgb, 1.0f};
+  const FrameImage here = renderFrame(local, encoded, {}).image;
+  EXPECT_EQ(renderFrame(remote, encoded, {}).image.rgb, here.rgb);
+  EXPECT_NE(here.rgb, full.rgb);
 }
 
 // A result passed back frame after frame (to keep its buffers) holds each

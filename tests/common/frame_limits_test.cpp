@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "common/error.h"
 
 namespace glint {
@@ -50,7 +52,8 @@ TEST(FrameLimits, CheckFrameUsesTheCallersNames) {
                               .seed = "--seed",
                               .maxDepth = "--max-depth",
                               .minWeight = "--min-weight",
-                              .adaptiveThreshold = "--adaptive-threshold"};
+                              .adaptiveThreshold = "--adaptive-threshold",
+                              .exposure = "--exposure"};
   FrameSettings f = goodFrame();
   f.tracing.maxDepth = 65;
   try {
@@ -66,6 +69,14 @@ TEST(FrameLimits, CheckFrameUsesTheCallersNames) {
     FAIL();
   } catch (const InputError& e) {
     EXPECT_STREQ(e.what(), "camera.up: must not be the zero vector");
+  }
+  f = goodFrame();
+  f.output.exposure = std::numeric_limits<float>::infinity();
+  try {
+    checkFrame(f, FrameLimits::kMaxPixels, names);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "--exposure: must be in [-32, 32] (EV)");
   }
 }
 

@@ -110,6 +110,15 @@ TEST(Messages, FrameSetupRoundTrips) {
       EXPECT_EQ(back.sampling.adaptiveThreshold, 0.125f);
     }
   }
+  {  // the output encoding travels
+    FrameSettings f = someFrame();
+    f.output = {Encoding::kSrgb, -1.5f};
+    const FrameSettings back = decodeFrameSettings(*decode(encodeFrameSetup(1, h, f)).body_as_FrameSetup(), 1 << 28);
+    EXPECT_EQ(back.output.encoding, Encoding::kSrgb);
+    EXPECT_EQ(back.output.exposure, -1.5f);
+    f.output.exposure = 99.0f;
+    EXPECT_THROW(decodeFrameSettings(*decode(encodeFrameSetup(1, h, f)).body_as_FrameSetup(), 1 << 28), InputError);
+  }
   {  // a threshold out of range is named
     FrameSettings f = someFrame();
     f.sampling.pattern = SamplePattern::kAdaptive;
