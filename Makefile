@@ -7,7 +7,7 @@ DEPS := cmake g++ make pkg-config libglm-dev nlohmann-json3-dev libtinyobjloader
         libstb-dev libcli11-dev libgtest-dev libgmock-dev \
         libflatbuffers-dev flatbuffers-compiler libssl-dev libasio-dev libosmesa6-dev \
         libglfw3-dev libgl1-mesa-dri xvfb xauth openssl iproute2 \
-        libopenexr-dev
+        libopenexr-dev libassimp-dev assimp-testmodels
 # The benchmark also compares against POV-Ray 3.7.
 BENCH_DEPS := povray
 # `make accuracy` plots with gnuplot.
@@ -19,7 +19,7 @@ FUZZ_SECONDS ?= 60
 
 SUDO := $(shell [ "$$(id -u)" -eq 0 ] || echo sudo)
 
-.PHONY: all deps bench-deps accuracy-deps fuzz-deps configure build test demo bench accuracy fuzz fuzz-seeds clean
+.PHONY: all deps bench-deps accuracy-deps fuzz-deps configure build test demo install bench accuracy fuzz fuzz-seeds clean
 
 all: build
 
@@ -49,8 +49,16 @@ build: configure
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
 
-demo: build
+# The demo needs only the two programs (the tests build in `make test`).
+demo: configure
+	cmake --build $(BUILD) -j$(JOBS) --target glint glintd
 	deploy/local-demo.sh $(BUILD) out
+
+# glint, glintd, glint-certs and deploy/glintd@.service under /usr/local
+# (PREFIX=... elsewhere; the unit expects /usr/local/bin/glintd).
+PREFIX ?= /usr/local
+install: build
+	$(SUDO) cmake --install $(BUILD) --prefix $(PREFIX)
 
 bench: bench-deps build
 	$(BUILD)/bin/glint-bench --scenes scenes

@@ -20,6 +20,18 @@ class FileSource {
   // Whether the file is there at all (a file an OBJ names may be missing:
   // a warning, not an error).
   virtual bool has(const std::string& path) = 0;
+
+  // Mesh formats read by an importer (glTF, PLY: common/mesh_import.h) are
+  // imported only where the files come from disk; a scene loaded from memory
+  // (on a server) takes each imported mesh as a mesh blob instead, so that no
+  // importer ever parses bytes a peer sent.
+  virtual bool importsMeshes() const { return false; }
+  // The bytes an importer reads (a recording source does not keep them: the
+  // blob goes in their place).
+  virtual std::string readForImport(const std::string& path, const std::string& place) { return read(path, place); }
+  // The imported mesh of `path` as a blob (common/mesh_blob.h), for a source
+  // that records what a scene needs.
+  virtual void keepImported(const std::string& /*path*/, std::string /*blob*/) {}
 };
 
 // Files on disk below a folder, each at most maxBytes.
@@ -28,6 +40,7 @@ class DirectorySource : public FileSource {
   DirectorySource(std::filesystem::path folder, std::size_t maxBytes);
   std::string read(const std::string& path, const std::string& place) override;
   bool has(const std::string& path) override;
+  bool importsMeshes() const override { return true; }
 
  private:
   std::filesystem::path folder_;

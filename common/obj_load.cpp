@@ -107,7 +107,7 @@ tinyobj::ObjReader parseObj(FileSource& files, const std::string& path, const st
 // MTL file) decoded as the material's texture; a missing texture is a
 // warning, and the material keeps its Kd colour.
 void readMaterials(const tinyobj::ObjReader& reader, FileSource& files, const std::string& mtlPath,
-                   const std::string& place, SceneBudget& budget, ObjModel& model) {
+                   const std::string& place, SceneBudget& budget, MeshModel& model) {
   for (const tinyobj::material_t& m : reader.GetMaterials()) {
     Material mat = toMaterial(m);
     const std::string texPath = m.diffuse_texname.empty() ? "" : siblingPath(mtlPath, m.diffuse_texname);
@@ -163,7 +163,7 @@ class FaceGrouper {
 
   // The meshes; a mesh some of whose corners lack a normal gets its normals
   // from the faces instead.
-  void finish(ObjModel& model) {
+  void finish(MeshModel& model) {
     for (auto& [mat, group] : groups_) {
       if (!complete_[mat]) group.normals.clear();
       group.material = static_cast<std::uint32_t>(mat);
@@ -181,10 +181,10 @@ class FaceGrouper {
 
 }  // namespace
 
-ObjModel loadObj(FileSource& files, const std::string& path, const std::string& place, SceneBudget& budget,
+MeshModel loadObj(FileSource& files, const std::string& path, const std::string& place, SceneBudget& budget,
                  bool withMaterials) {
   const LoadLimits& limits = budget.limits();
-  ObjModel model;
+  MeshModel model;
   std::string mtlPath;
   const tinyobj::ObjReader reader = parseObj(files, path, place, limits, withMaterials, model.warnings, mtlPath);
   if (!mtlPath.empty()) readMaterials(reader, files, mtlPath, place, budget, model);

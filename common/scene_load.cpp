@@ -9,7 +9,7 @@
 #include "common/frame_limits.h"
 #include "common/image_io.h"
 #include "common/json_reader.h"
-#include "common/obj_load.h"
+#include "common/mesh_import.h"
 #include "common/smooth_normals.h"
 #include "common/transform.h"
 
@@ -365,7 +365,7 @@ class SceneLoader {
       if (o.has(key)) o[key].fail("belongs to an inline mesh; a mesh from a file takes its own");
     }
     const bool own = !o.has("material");
-    ObjModel obj = loadObj(files_, normalisePath(f.string()), f.path(), budget_, own);
+    MeshModel obj = importMeshFile(files_, normalisePath(f.string()), f.path(), budget_, own);
     for (std::string& w : obj.warnings) warn(std::move(w));
     const std::vector<std::uint32_t> mapped = own ? ownMaterials(o, obj) : std::vector<std::uint32_t>{};
     const std::uint32_t named = own ? 0 : material(o);
@@ -378,12 +378,13 @@ class SceneLoader {
   // The file's materials as scene materials (their textures with them),
   // each renamed by the mesh's "materials" map where it names it; returns
   // the scene index of each.
-  std::vector<std::uint32_t> ownMaterials(const JsonReader& o, ObjModel& obj) {
+  std::vector<std::uint32_t> ownMaterials(const JsonReader& o, MeshModel& obj) {
     std::map<std::string, std::uint32_t> renamed;
     if (auto r = o.find("materials")) {
       r->requireObject();
-      for (const auto& [name, value] : r->raw().items()) {
-        const JsonReader entry(value, r->path() + "." + name);
+      for (const auto& item : r->raw().items()) {
+        const std::string& name = item.key();
+        const JsonReader entry(item.value(), r->path() + "." + name);
         const bool known = std::any_of(obj.materials.begin(), obj.materials.end(),
                                        [&name](const Material& m) { return m.name == name; });
         if (!known) entry.fail("the file has no material named '" + name + "'");

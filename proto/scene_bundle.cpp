@@ -11,7 +11,8 @@
 namespace glint::proto {
 namespace {
 
-// Reads through to the disk and keeps a copy of every file read.
+// Reads through to the disk and keeps a copy of every file read; of a mesh
+// an importer reads, the imported mesh's blob instead of its files.
 class RecordingSource : public FileSource {
  public:
   RecordingSource(std::filesystem::path folder, std::size_t maxBytes) : disk_(std::move(folder), maxBytes) {}
@@ -21,6 +22,11 @@ class RecordingSource : public FileSource {
     return bytes;
   }
   bool has(const std::string& path) override { return disk_.has(path); }
+  bool importsMeshes() const override { return true; }
+  std::string readForImport(const std::string& path, const std::string& place) override {
+    return disk_.read(path, place);
+  }
+  void keepImported(const std::string& path, std::string blob) override { files_[normalisePath(path)] = std::move(blob); }
   std::map<std::string, std::string> take() { return std::move(files_); }
 
  private:

@@ -152,6 +152,42 @@ TEST_F(Cli, ViewThroughServersAndWithoutThem) {
   EXPECT_GT(magenta, 1000u);  // the mirror, the sphere and the floor of the room's auto mask
 }
 
+// A glTF and a PLY model (Debian's assimp-testmodels), with a missing
+// texture's warning: the same image in process and through two glintd, which
+// get the imported meshes, not the files.
+TEST_F(Cli, ImportedModelsRenderTheSameThroughServers) {
+  const fs::path models = "/usr/share/assimp/models";
+  fs::create_directories(dir_ / "box");
+  for (const char* f : {"BoxTextured.gltf", "BoxTextured0.bin"}) {
+    fs::copy_file(models / "glTF2/BoxTextured-glTF" / f, dir_ / "box" / f);  // its CesiumLogoFlat.png left behind
+  }
+  fs::copy_file(models / "PLY/cube_binary.ply", dir_ / "cube.ply");
+  const std::string scenePath = writeScene("models.json", R"({"glint": 1, "image": {"width": 96, "height": 64},
+    "camera": {"eye": [3, 2, 4], "look_at": [0, 0, 0]}, "lights": [{"type": "point", "position": [3, 5, 4]}],
+    "materials": {"clay": {"color": [0.8, 0.6, 0.4], "reflectivity": 0.3}},
+    "objects": [{"type": "mesh", "file": "box/BoxTextured.gltf"},
+                {"type": "mesh", "file": "cube.ply", "material": "clay", "transform": {"translate": [-1.5, 0, 0]}}]})");
+  const Result here = glint("render " + scenePath + " -o " + path("here.png"));
+  ASSERT_EQ(here.status, 0) << here.output;
+  EXPECT_NE(here.output.find("warning: " + scenePath + ": 'box/BoxTextured.gltf' names the texture "
+                             "'box/CesiumLogoFlat.png', which is missing"),
+            std::string::npos)
+      << here.output;
+  glint::server::test::GlintdProcess a({"--threads", "1"}), b({"--threads", "1"});
+  const Result there = glint("render " + scenePath + " -o " + path("there.png") + " --server " + a.address() + "," +
+                             b.address());
+  ASSERT_EQ(there.status, 0) << there.output;
+  EXPECT_EQ(decodePng(path("there.png")).rgb, decodePng(path("here.png")).rgb);
+  const Image image = decodePng(path("here.png"));
+  std::size_t lit[2] = {0, 0};  // left half: the PLY cube; right half: the glTF box
+  for (std::size_t i = 0; i < image.rgb.size() / 3; ++i) {
+    const bool bright = image.rgb[3 * i] > 20 || image.rgb[3 * i + 1] > 20 || image.rgb[3 * i + 2] > 20;
+    lit[i % 96 < 48 ? 0 : 1] += bright ? 1 : 0;
+  }
+  EXPECT_GT(lit[0], 150u);
+  EXPECT_GT(lit[1], 150u);
+}
+
 // A usage error (an option that does not exist) exits with 2, other errors with 1.
 TEST_F(Cli, UsageErrorsExitWithTwo) {
   const Result misspelt = glint("render " + scene("room.json") + " -o " + path("x.png") + " --smaples 4");

@@ -3,8 +3,19 @@
 #include <string>
 
 #include "common/file_source.h"
+#include "common/load_limits.h"
 
 namespace glint::fuzz {
+
+// Limits small enough that a run never waits on a huge allocation: what the
+// loaders' fuzz targets load under.
+inline LoadLimits smallLimits() {
+  LoadLimits limits;
+  limits.maxSceneBytes = std::size_t{64} << 20;
+  limits.maxTexturePixels = std::size_t{1} << 20;
+  limits.maxTriangles = limits.maxVertices = 1'000'000;
+  return limits;
+}
 
 // A 1x1 24-bit BMP (green): a texture small enough for every run.
 inline std::string tinyBmp() {

@@ -17,10 +17,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   files.add("m.obj", input.substr(0, at));
   if (at != std::string::npos) files.add("m.mtl", input.substr(at + separator.size()));
   files.add("tex.bmp", glint::fuzz::tinyBmp());
-  glint::LoadLimits limits;
-  limits.maxSceneBytes = std::size_t{64} << 20;
-  limits.maxTexturePixels = std::size_t{1} << 20;
-  limits.maxTriangles = limits.maxVertices = 1'000'000;
+  const glint::LoadLimits limits = glint::fuzz::smallLimits();
   glint::SceneBudget budget(limits);
   try {
     (void)glint::loadObj(files, "m.obj", "fuzz", budget, true);

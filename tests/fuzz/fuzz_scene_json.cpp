@@ -12,10 +12,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   glint::MemorySource files;
   glint::fuzz::addFuzzFiles(files);
-  glint::LoadLimits limits;
-  limits.maxSceneBytes = std::size_t{64} << 20;
-  limits.maxTexturePixels = std::size_t{1} << 20;
-  limits.maxTriangles = limits.maxVertices = 1'000'000;
+  const glint::LoadLimits limits = glint::fuzz::smallLimits();
   try {
     (void)glint::loadScene(std::string_view(reinterpret_cast<const char*>(data), size), files, limits);
   } catch (const glint::InputError&) {

@@ -11,6 +11,8 @@
 
 #include "common/frame.h"
 #include "common/image_io.h"
+#include "common/mesh_blob.h"
+#include "common/obj_load.h"
 #include "proto/messages.h"
 #include "proto/scene_bundle.h"
 #include "tests/fuzz/fuzz_files.h"
@@ -114,6 +116,12 @@ void objAndImageSeeds() {
   write("obj", "groups-normals",
         "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvn 0 0 1\ng a\nf 1//1 2//1 3//1\ng b\nf 2//1 4//1 3//1\n");
   write("image", "tiny.bmp", fuzz::tinyBmp());
+  MemorySource cube;
+  cube.add("m.obj", fuzz::kCubeObj);
+  cube.add("cube.mtl", fuzz::kCubeMtl);
+  cube.add("tex.bmp", fuzz::tinyBmp());
+  SceneBudget budget;
+  write("mesh_blob", "textured-cube", encodeMeshBlob(loadObj(cube, "m.obj", "seed", budget, true)));
   FrameImage image{4, 3, Bytes(36)};
   for (std::size_t i = 0; i < image.rgb.size(); ++i) image.rgb[i] = static_cast<std::uint8_t>(i * 7);
   const fs::path png = fs::temp_directory_path() / "glint-seed.png";

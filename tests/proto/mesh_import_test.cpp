@@ -1,0 +1,181 @@
+// glTF and PLY meshes: Debian's sample models (assimp-testmodels) import
+// with their triangles, textures and node transforms; a server gets the
+// imported mesh as a blob that loads into the same scene, never the files an
+// importer would parse; a damaged or hostile blob is refused, never trusted.
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "common/error.h"
+#include "common/file_source.h"
+#include "common/mesh_blob.h"
+#include "common/mesh_import.h"
+#include "common/scene_load.h"
+#include "proto/scene_bundle.h"
+
+namespace glint {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kModels = "/usr/share/assimp/models";  // Debian's assimp-testmodels (make deps)
+
+MeshModel import(const fs::path& file, bool withMaterials = true) {
+  DirectorySource files(file.parent_path(), std::size_t{1} << 28);
+  SceneBudget budget;
+  return importMeshFile(files, file.filename().string(), "test", budget, withMaterials);
+}
+
+std::size_t triangles(const MeshModel& m) {
+  std::size_t n = 0;
+  for (const MeshInput& mesh : m.meshes) n += mesh.indices.size() / 3;
+  return n;
+}
+
+// The corners of every triangle, in order: what the scene's geometry is made of.
+std::vector<glm::vec3> corners(const MeshModel& m) {
+  std::vector<glm::vec3> out;
+  for (const MeshInput& mesh : m.meshes) {
+    for (const std::uint32_t i : mesh.indices) out.push_back(mesh.positions[i]);
+  }
+  return out;
+}
+
+TEST(MeshImport, DebianSampleModels) {
+  ASSERT_TRUE(fs::exists(kModels)) << "install assimp-testmodels (make deps)";
+  const MeshModel gltf = import(kModels / "glTF2/BoxTextured-glTF/BoxTextured.gltf");
+  EXPECT_EQ(triangles(gltf), 12u);
+  ASSERT_EQ(gltf.textures.size(), 1u);  // CesiumLogoFlat.png, beside the .gltf
+  EXPECT_GT(gltf.textures[0].image->width, 0);
+  ASSERT_EQ(gltf.meshes.size(), 1u);
+  EXPECT_EQ(gltf.materials[gltf.meshes[0].material].texture, 0);
+  EXPECT_EQ(gltf.meshes[0].uvs.size(), gltf.meshes[0].positions.size());
+  const MeshModel glb = import(kModels / "glTF2/BoxTextured-glTF-Binary/BoxTextured.glb");
+  EXPECT_EQ(corners(glb), corners(gltf));  // one model, text or binary, texture embedded
+  EXPECT_EQ(glb.textures.size(), 1u);
+
+  const MeshModel ply = import(kModels / "PLY/cube.ply"), binary = import(kModels / "PLY/cube_binary.ply");
+  EXPECT_EQ(triangles(ply), 12u);
+  EXPECT_EQ(corners(binary), corners(ply));
+  EXPECT_GT(triangles(import(kModels / "glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb")), 100000u);
+  try {
+    import(kModels / "PLY/points.ply");
+    ADD_FAILURE() << "points.ply imported";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("test: 'points.ply' cannot be imported: Validation failed: Mesh  contains "
+                                         "no faces"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// A glTF written here: one triangle under a node that scales by 2 and moves
+// by (1, 2, 3).
+TEST(MeshImport, NodeTransformsAreApplied) {
+  const fs::path dir = fs::temp_directory_path() / "glint_mesh_import";
+  fs::create_directories(dir);
+  std::ofstream(dir / "tri.gltf") << R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+    "nodes": [{"mesh": 0, "translation": [1, 2, 3], "scale": [2, 2, 2]}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+    "buffers": [{"byteLength": 44, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIAAAA="}],
+    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+                  {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}]})";
+  const MeshModel m = import(dir / "tri.gltf");
+  EXPECT_EQ(corners(m), (std::vector<glm::vec3>{{1, 2, 3}, {3, 2, 3}, {1, 4, 3}}));
+  fs::remove_all(dir);
+}
+
+// Through a bundle (what a server gets) the scene is the one loaded from
+// disk, and the bundle holds the imported mesh, not the .gltf, .bin or .png.
+TEST(MeshImport, ServersGetTheImportedMeshNotItsFiles) {
+  const fs::path dir = fs::temp_directory_path() / "glint_mesh_bundle";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  fs::copy(kModels / "glTF2/BoxTextured-glTF", dir / "box", fs::copy_options::recursive);
+  nlohmann::json scene = nlohmann::json::parse(R"({"glint": 1, "image": {"width": 8, "height": 6},
+    "camera": {"eye": [2, 2, 3], "look_at": [0, 0, 0]}, "lights": [{"type": "point", "position": [0, 5, 5]}],
+    "objects": [{"type": "mesh", "file": "box/BoxTextured.gltf"}]})");
+  std::ofstream(dir / "scene.json") << scene.dump();
+  const proto::LoadedBundle loaded = proto::loadSceneBundle(dir / "scene.json");
+  ASSERT_EQ(loaded.bundle.files.size(), 1u);
+  const std::string& blob = loaded.bundle.files.at("box/BoxTextured.gltf");
+  EXPECT_EQ(blob.substr(0, 8), "GLINTMSH");
+  SceneBudget budget;
+  const Scene there = proto::loadBundle(loaded.bundle, budget);
+  const Scene& here = loaded.scene;
+  EXPECT_EQ(there.geometry.positions(), here.geometry.positions());
+  EXPECT_EQ(there.geometry.normals(), here.geometry.normals());
+  EXPECT_EQ(there.geometry.uvs(), here.geometry.uvs());
+  ASSERT_EQ(there.textures.size(), 1u);
+  EXPECT_EQ(there.textures[0].image->rgb, here.textures[0].image->rgb);
+  ASSERT_EQ(there.materials.size(), here.materials.size());
+  for (std::size_t i = 0; i < here.materials.size(); ++i) {
+    EXPECT_EQ(there.materials[i].color, here.materials[i].color);
+    EXPECT_EQ(there.materials[i].texture, here.materials[i].texture);
+  }
+
+  // The .gltf itself sent in the blob's place is refused: no importer runs
+  // on what a peer sends.
+  proto::SceneBundle raw = loaded.bundle;
+  std::ifstream in(dir / "box/BoxTextured.gltf");
+  raw.files["box/BoxTextured.gltf"].assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  try {
+    proto::loadBundle(raw, budget);
+    ADD_FAILURE() << "a server loaded a raw glTF";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("glintd does not run importers"), std::string::npos) << e.what();
+  }
+  fs::remove_all(dir);
+}
+
+// Every truncation of a blob, and counts that announce more than is there,
+// are refused with an InputError before anything is allocated for them.
+TEST(MeshImport, DamagedBlobsAreRefused) {
+  const MeshModel box = import(kModels / "glTF2/BoxTextured-glTF-Binary/BoxTextured.glb");
+  const std::string blob = encodeMeshBlob(box);
+  SceneBudget budget;
+  const MeshModel back = decodeMeshBlob(blob, "test", budget);
+  EXPECT_EQ(corners(back), corners(box));
+  for (std::size_t n = 0; n < blob.size(); n += std::max<std::size_t>(1, blob.size() / 4000)) {
+    SceneBudget fresh;
+    EXPECT_THROW(decodeMeshBlob(std::string_view(blob).substr(0, n), "test", fresh), InputError) << n;
+  }
+  std::string huge = blob;
+  const std::uint32_t lots = 0xfffffff0u;
+  std::memcpy(huge.data() + 12, &lots, 4);  // the texture count
+  SceneBudget fresh;
+  EXPECT_THROW(decodeMeshBlob(huge, "test", fresh), InputError);
+  std::string extra = blob + "x";
+  EXPECT_THROW(decodeMeshBlob(extra, "test", fresh), InputError);
+}
+
+// The fuzzer's first find (tests/fuzz/corpus/mesh_blob/regression-empty-arrays):
+// a mesh of no vertices decodes as one, without copying from nothing.
+TEST(MeshImport, BlobWithEmptyArraysDecodes) {
+  MeshModel empty;
+  empty.materials.push_back(Material{});
+  empty.meshes.push_back(MeshInput{});
+  SceneBudget budget;
+  const MeshModel back = decodeMeshBlob(encodeMeshBlob(empty), "test", budget);
+  ASSERT_EQ(back.meshes.size(), 1u);
+  EXPECT_TRUE(back.meshes[0].positions.empty());
+  EXPECT_TRUE(back.meshes[0].indices.empty());
+}
+
+TEST(MeshImport, OtherExtensionsAreNamed) {
+  MemorySource files;
+  SceneBudget budget;
+  try {
+    importMeshFile(files, "car.fbx", "objects[0].file", budget, true);
+    ADD_FAILURE();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("objects[0].file: 'car.fbx': mesh files are .obj, .ply, .gltf, .glb"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace glint
