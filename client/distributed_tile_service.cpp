@@ -33,7 +33,7 @@ struct DistributedTileService::Frame {
 
 DistributedTileService::DistributedTileService(std::vector<ServerAddress> servers, const proto::SceneBundle& bundle,
                                                const DistributedSettings& settings)
-    : paces_(servers.size()), bundle_(bundle), hash_(bundle.hash()), settings_(settings) {
+    : paces_(servers.size()), bundle_(bundle), digest_(proto::digest(bundle)), settings_(settings) {
   if (settings.tls.any()) {
     if (settings.tls.ca.empty()) {
       throw InputError("--tls-cert and --tls-key need --tls-ca: the CA that signed the servers' certificates");
@@ -75,7 +75,7 @@ void DistributedTileService::connect(std::size_t index) {
   s.everReady = false;
   std::unique_ptr<LinkStream> stream = tls_ ? makeTlsStream(io_, *tls_, s.address.host) : makePlainStream(io_);
   s.link = std::make_shared<ServerLink>(io_, std::move(stream), index, s.address.name, s.address.endpoint, bundle_,
-                                        hash_, settings_.timeouts);
+                                        digest_, settings_.timeouts);
   s.link->start(*this);
 }
 

@@ -91,7 +91,7 @@ class DistributedTileService : public TileService, private LinkListener {
   std::vector<Server> servers_;
   std::vector<ServerPace> paces_;
   const proto::SceneBundle& bundle_;
-  proto::SceneHash hash_;
+  proto::BundleDigest digest_;
   DistributedSettings settings_;
   std::optional<asio::ssl::context> tls_;
   std::chrono::steady_clock::time_point epoch_ = std::chrono::steady_clock::now();

@@ -17,14 +17,14 @@ std::uint64_t key(std::uint32_t frameId, std::uint32_t tileId) { return std::uin
 
 ServerLink::ServerLink(asio::io_context& io, std::unique_ptr<LinkStream> stream, std::size_t index, std::string name,
                        const asio::ip::tcp::endpoint& endpoint, const proto::SceneBundle& bundle,
-                       const proto::SceneHash& hash, const LinkTimeouts& timeouts)
+                       const proto::BundleDigest& digest, const LinkTimeouts& timeouts)
     : stream_(std::move(stream)),
       timer_(io),
       index_(index),
       name_(std::move(name)),
       endpoint_(endpoint),
       bundle_(bundle),
-      hash_(hash),
+      digest_(digest),
       timeouts_(timeouts) {}
 
 void ServerLink::start(LinkListener& listener) {
@@ -165,22 +165,45 @@ void ServerLink::onHello(const wire::Hello& hello) {
   maxMessageBytes_ = std::min<std::size_t>(maxMessageBytes_, hello.max_message_bytes());
   threads_ = static_cast<int>(std::clamp<std::uint32_t>(hello.threads(), 1, kMaxThreadsBelieved));
   state_ = State::kQuery;
-  write(proto::encodeSceneQuery(hash_));
+  write(proto::encodeSceneQuery(hash_, digest_.files));
 }
 
+// The server lacks the scene: the files it lacks, in pieces within its
+// message limit, then the scene's text and file list.
 void ServerLink::onSceneStatus(const wire::SceneStatus& status) {
   if (status.present()) return becomeReady();
   std::vector<std::uint8_t> upload = proto::encodeSceneUpload(hash_, bundle_);
   if (upload.size() - proto::kHeaderBytes > maxMessageBytes_) {
-    fail(LinkFailure::Kind::kRefused, "the scene and its files (" + std::to_string(upload.size()) +
-                                          " bytes) are over the server's limit of " + std::to_string(maxMessageBytes_) +
+    fail(LinkFailure::Kind::kRefused, "the scene file's text (" + std::to_string(bundle_.text.size()) +
+                                          " bytes) is over the server's message limit of " +
+                                          std::to_string(maxMessageBytes_) +
                                           " bytes; start glintd with a larger --max-message-mb");
     return;
   }
+  if (!sendMissingFiles(status)) return;
   state_ = State::kUpload;
   uploaded_ = true;
   armTimer(timeouts_.scene, "scene upload and build");
   write(std::move(upload));
+}
+
+bool ServerLink::sendMissingFiles(const wire::SceneStatus& status) {
+  std::vector<const std::string*> files;
+  for (const auto& [path, bytes] : bundle_.files) files.push_back(&bytes);
+  constexpr std::size_t kChunkOverhead = 4096;  // the FileChunk's own fields and framing
+  const std::size_t chunkBytes =
+      std::min(proto::kFileChunkBytes, maxMessageBytes_ > 2 * kChunkOverhead ? maxMessageBytes_ - kChunkOverhead
+                                                                              : kChunkOverhead);
+  if (!status.missing()) return true;
+  for (const std::uint32_t i : *status.missing()) {
+    if (i >= files.size()) {
+      fail(LinkFailure::Kind::kBadBytes, "asked for file " + std::to_string(i) + " of a scene of " +
+                                             std::to_string(files.size()) + " files");
+      return false;
+    }
+    for (auto& chunk : proto::encodeFileChunks(*files[i], chunkBytes)) write(std::move(chunk));
+  }
+  return true;
 }
 
 void ServerLink::becomeReady() {

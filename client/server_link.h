@@ -62,8 +62,8 @@ class ServerLink : public std::enable_shared_from_this<ServerLink> {
  public:
   // `stream` is plain TCP or TLS (client/link_stream.h).
   ServerLink(asio::io_context& io, std::unique_ptr<LinkStream> stream, std::size_t index, std::string name,
-             const asio::ip::tcp::endpoint& endpoint, const proto::SceneBundle& bundle, const proto::SceneHash& hash,
-             const LinkTimeouts& timeouts);
+             const asio::ip::tcp::endpoint& endpoint, const proto::SceneBundle& bundle,
+             const proto::BundleDigest& digest, const LinkTimeouts& timeouts);
   ServerLink(const ServerLink&) = delete;
   ServerLink& operator=(const ServerLink&) = delete;
 
@@ -100,6 +100,7 @@ class ServerLink : public std::enable_shared_from_this<ServerLink> {
   void onMessage(const wire::Message& m);
   void onHello(const wire::Hello& hello);
   void onSceneStatus(const wire::SceneStatus& status);
+  bool sendMissingFiles(const wire::SceneStatus& status);
   void onResult(const wire::TileResult& result);
   void onError(const wire::Error& error);
   void becomeReady();
@@ -110,7 +111,8 @@ class ServerLink : public std::enable_shared_from_this<ServerLink> {
   std::string name_;
   asio::ip::tcp::endpoint endpoint_;
   const proto::SceneBundle& bundle_;
-  proto::SceneHash hash_;
+  const proto::BundleDigest& digest_;  // the scene's hash and its files'
+  const proto::SceneHash& hash_ = digest_.scene;
   LinkTimeouts timeouts_;
   LinkListener* listener_ = nullptr;
   State state_ = State::kConnecting;

@@ -12,9 +12,15 @@
 
 namespace glint::proto {
 
-constexpr std::uint32_t kProtocolVersion = 2;  // 2: Hello.build, Cancel
+constexpr std::uint32_t kProtocolVersion = 3;  // 2: Hello.build, Cancel; 3: files by hash, FileChunk
 constexpr std::size_t kHeaderBytes = 4;  // little-endian uint32 length
 constexpr std::size_t kDefaultMaxMessageBytes = std::size_t{64} << 20;
+// The most file bytes one FileChunk carries (less where a server's message
+// limit is smaller).
+constexpr std::size_t kFileChunkBytes = std::size_t{4} << 20;
+// The most files one scene may name (SceneQuery.files), and the most files
+// one client may have arriving at once.
+constexpr std::size_t kMaxSceneFiles = 65536;
 // A server keeps the setup of a client's last 16 frames; tiles of older ones
 // are refused, and a client stops expecting their results.
 constexpr std::uint32_t kFramesRemembered = 16;

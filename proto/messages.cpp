@@ -20,6 +20,7 @@ std::vector<std::uint8_t> finish(FlatBufferBuilder& b, flatbuffers::Offset<T> bo
 }
 
 wire::Vec3 toWire(const glm::vec3& v) { return {v.x, v.y, v.z}; }
+wire::Hash32 toWire(const SceneHash& h) { return wire::Hash32(flatbuffers::span<const std::uint8_t, 32>(h)); }
 
 glm::vec3 fromWire(const wire::Vec3* v, const char* field) {
   if (!v) throw InputError(std::string("frame_setup.") + field + ": missing");
@@ -40,14 +41,20 @@ std::vector<std::uint8_t> encodeHello(std::uint32_t maxMessageBytes, std::uint32
   return finish(b, hello, wire::Body::Hello);
 }
 
-std::vector<std::uint8_t> encodeSceneQuery(const SceneHash& hash) {
-  FlatBufferBuilder b;
-  return finish(b, wire::CreateSceneQuery(b, b.CreateVector(hash.data(), hash.size())), wire::Body::SceneQuery);
+std::vector<std::uint8_t> encodeSceneQuery(const SceneHash& hash, std::span<const SceneHash> files) {
+  FlatBufferBuilder b(files.size() * sizeof(wire::Hash32) + 128);
+  std::vector<wire::Hash32> hashes;
+  for (const SceneHash& f : files) hashes.push_back(toWire(f));
+  const auto fileVector = b.CreateVectorOfStructs(hashes);
+  return finish(b, wire::CreateSceneQuery(b, b.CreateVector(hash.data(), hash.size()), fileVector),
+                wire::Body::SceneQuery);
 }
 
-std::vector<std::uint8_t> encodeSceneStatus(const SceneHash& hash, bool present) {
+std::vector<std::uint8_t> encodeSceneStatus(const SceneHash& hash, bool present,
+                                            std::span<const std::uint32_t> missing) {
   FlatBufferBuilder b;
-  return finish(b, wire::CreateSceneStatus(b, b.CreateVector(hash.data(), hash.size()), present),
+  const auto missingVector = b.CreateVector(missing.data(), missing.size());
+  return finish(b, wire::CreateSceneStatus(b, b.CreateVector(hash.data(), hash.size()), present, missingVector),
                 wire::Body::SceneStatus);
 }
 
@@ -55,12 +62,41 @@ std::vector<std::uint8_t> encodeSceneUpload(const SceneHash& hash, const SceneBu
   FlatBufferBuilder b(bundle.text.size() + 1024);
   std::vector<flatbuffers::Offset<wire::SceneFile>> files;
   for (const auto& [path, bytes] : bundle.files) {
-    const auto data = b.CreateVector(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
-    files.push_back(wire::CreateSceneFile(b, b.CreateString(path), data));
+    const wire::Hash32 fileHash = toWire(sha256(bytes));
+    files.push_back(wire::CreateSceneFile(b, b.CreateString(path), &fileHash));
   }
   const auto upload = wire::CreateSceneUpload(b, b.CreateVector(hash.data(), hash.size()),
                                               b.CreateString(bundle.text), b.CreateVector(files));
   return finish(b, upload, wire::Body::SceneUpload);
+}
+
+std::vector<std::uint8_t> encodeFileChunk(const SceneHash& file, std::uint64_t size, std::uint64_t offset,
+                                          std::string_view data) {
+  FlatBufferBuilder b(data.size() + 128);
+  const auto bytes = b.CreateVector(reinterpret_cast<const std::uint8_t*>(data.data()), data.size());
+  const wire::Hash32 hash = toWire(file);
+  return finish(b, wire::CreateFileChunk(b, &hash, size, offset, bytes), wire::Body::FileChunk);
+}
+
+std::vector<std::vector<std::uint8_t>> encodeFileChunks(std::string_view bytes, std::size_t chunkBytes) {
+  const SceneHash hash = sha256(bytes);
+  std::vector<std::vector<std::uint8_t>> chunks;
+  std::size_t offset = 0;
+  do {
+    const std::size_t n = std::min(chunkBytes, bytes.size() - offset);
+    chunks.push_back(encodeFileChunk(hash, bytes.size(), offset, bytes.substr(offset, n)));
+    offset += n;
+  } while (offset < bytes.size());
+  return chunks;
+}
+
+std::vector<std::vector<std::uint8_t>> encodeFullUpload(const SceneBundle& bundle, std::size_t chunkBytes) {
+  std::vector<std::vector<std::uint8_t>> frames;
+  for (const auto& [path, bytes] : bundle.files) {
+    for (auto& chunk : encodeFileChunks(bytes, chunkBytes)) frames.push_back(std::move(chunk));
+  }
+  frames.push_back(encodeSceneUpload(bundle.hash(), bundle));
+  return frames;
 }
 
 std::vector<std::uint8_t> encodeSceneReady(const SceneHash& hash, float buildMs) {
@@ -173,17 +209,35 @@ FrameSettings decodeFrameSettings(const wire::FrameSetup& s, std::size_t maxPixe
   return f;
 }
 
-SceneBundle decodeBundle(const wire::SceneUpload& upload) {
-  SceneBundle bundle;
+SceneHash decodeHash32(const wire::Hash32* hash, const char* field) {
+  if (!hash) throw InputError(std::string(field) + ": missing");
+  SceneHash out{};
+  std::copy(hash->bytes()->begin(), hash->bytes()->end(), out.begin());
+  return out;
+}
+
+std::vector<SceneHash> decodeFileHashes(const wire::SceneQuery& query, std::size_t maxFiles) {
+  std::vector<SceneHash> files;
+  if (!query.files()) return files;
+  if (query.files()->size() > maxFiles) {
+    throw InputError("scene_query.files: " + std::to_string(query.files()->size()) + " files, over the limit of " +
+                     std::to_string(maxFiles));
+  }
+  for (const wire::Hash32* f : *query.files()) files.push_back(decodeHash32(f, "scene_query.files"));
+  return files;
+}
+
+SceneManifest decodeManifest(const wire::SceneUpload& upload) {
+  SceneManifest manifest;
   if (!upload.text()) throw InputError("scene_upload.text: missing");
-  bundle.text = upload.text()->str();
+  manifest.text = upload.text()->str();
   if (upload.files()) {
     for (const wire::SceneFile* file : *upload.files()) {
-      if (!file->path() || !file->data()) throw InputError("scene_upload.files: a file without path or data");
-      bundle.files[file->path()->str()] = std::string(file->data()->begin(), file->data()->end());
+      if (!file->path()) throw InputError("scene_upload.files: a file without a path");
+      manifest.files.emplace_back(file->path()->str(), decodeHash32(file->hash(), "scene_upload.files.hash"));
     }
   }
-  return bundle;
+  return manifest;
 }
 
 TileRect decodeTileRect(const wire::TileRequest& t, const FrameSettings& frame) {

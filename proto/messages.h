@@ -3,6 +3,8 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "common/build_identity.h"
@@ -19,9 +21,19 @@ namespace glint::proto {
 // pose as another build.
 std::vector<std::uint8_t> encodeHello(std::uint32_t maxMessageBytes, std::uint32_t threads,
                                       const std::string& software, const std::string& build = buildIdentity());
-std::vector<std::uint8_t> encodeSceneQuery(const SceneHash& hash);
-std::vector<std::uint8_t> encodeSceneStatus(const SceneHash& hash, bool present);
+std::vector<std::uint8_t> encodeSceneQuery(const SceneHash& hash, std::span<const SceneHash> files = {});
+std::vector<std::uint8_t> encodeSceneStatus(const SceneHash& hash, bool present,
+                                            std::span<const std::uint32_t> missing = {});
+// The scene's text and each file's path and hash; the bytes go in FileChunks.
 std::vector<std::uint8_t> encodeSceneUpload(const SceneHash& hash, const SceneBundle& bundle);
+std::vector<std::uint8_t> encodeFileChunk(const SceneHash& file, std::uint64_t size, std::uint64_t offset,
+                                          std::string_view data);
+// A file as FileChunks of at most chunkBytes each (one, empty, for an empty file).
+std::vector<std::vector<std::uint8_t>> encodeFileChunks(std::string_view bytes, std::size_t chunkBytes);
+// A whole upload to a server that holds none of the bundle's files: every
+// file's chunks, then the SceneUpload.
+std::vector<std::vector<std::uint8_t>> encodeFullUpload(const SceneBundle& bundle,
+                                                        std::size_t chunkBytes = kFileChunkBytes);
 std::vector<std::uint8_t> encodeSceneReady(const SceneHash& hash, float buildMs);
 std::vector<std::uint8_t> encodeFrameSetup(std::uint32_t frameId, const SceneHash& hash, const FrameSettings& frame);
 std::vector<std::uint8_t> encodeTileRequest(std::uint32_t frameId, std::uint32_t tileId, const TileRect& rect,
@@ -39,7 +51,15 @@ std::vector<std::uint8_t> encodeGoodbye();
 // naming the field ("frame_setup.eye: not finite").
 SceneHash decodeHash(const flatbuffers::Vector<std::uint8_t>* bytes, const char* field);
 FrameSettings decodeFrameSettings(const wire::FrameSetup& setup, std::size_t maxPixels);
-SceneBundle decodeBundle(const wire::SceneUpload& upload);
+SceneHash decodeHash32(const wire::Hash32* hash, const char* field);
+// SceneQuery.files (at most maxFiles of them).
+std::vector<SceneHash> decodeFileHashes(const wire::SceneQuery& query, std::size_t maxFiles);
+// A SceneUpload: the text and each file's path and hash.
+struct SceneManifest {
+  std::string text;
+  std::vector<std::pair<std::string, SceneHash>> files;
+};
+SceneManifest decodeManifest(const wire::SceneUpload& upload);
 // The tile's rectangle, checked against the frame's size, and its mask,
 // checked against the rectangle.
 TileRect decodeTileRect(const wire::TileRequest& tile, const FrameSettings& frame);

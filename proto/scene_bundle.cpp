@@ -57,6 +57,19 @@ SceneHash SceneBundle::hash() const {
   return out;
 }
 
+SceneHash sha256(std::string_view bytes) {
+  SceneHash out{};
+  unsigned int size = 0;
+  EVP_Digest(bytes.data(), bytes.size(), out.data(), &size, EVP_sha256(), nullptr);
+  return out;
+}
+
+BundleDigest digest(const SceneBundle& bundle) {
+  BundleDigest d{bundle.hash(), {}};
+  for (const auto& [path, bytes] : bundle.files) d.files.push_back(sha256(bytes));
+  return d;
+}
+
 LoadedBundle loadSceneBundle(const std::filesystem::path& path, const LoadLimits& limits) {
   try {
     RecordingSource files(path.parent_path(), limits.maxFileBytes);

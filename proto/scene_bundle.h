@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "common/load_limits.h"
 #include "common/scene.h"
@@ -25,6 +27,18 @@ struct SceneBundle {
   // preceded by its length, so that no two bundles share a hash by framing.
   SceneHash hash() const;
 };
+
+// SHA-256 of bytes: a file's identity on the wire (files are sent and kept
+// by it).
+SceneHash sha256(std::string_view bytes);
+
+// A bundle's hash and each file's (in the order of bundle.files), computed
+// once for every server it goes to.
+struct BundleDigest {
+  SceneHash scene{};
+  std::vector<SceneHash> files;
+};
+BundleDigest digest(const SceneBundle& bundle);
 
 // Loads a scene file from disk and collects the files it read into a bundle.
 struct LoadedBundle {

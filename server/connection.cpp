@@ -25,7 +25,7 @@ std::uint64_t tileTag(std::uint32_t frameId, std::uint32_t tileId) {
 Session::Settings sessionSettings(const ServerContext& context) {
   return {static_cast<std::uint32_t>(context.options.maxMessageBytes),
           static_cast<std::uint32_t>(context.scheduler.threads()),
-          static_cast<std::size_t>(context.options.maxClients)};
+          static_cast<std::size_t>(context.options.maxClients), context.options.maxSceneBytes};
 }
 
 }  // namespace
@@ -36,7 +36,8 @@ BasicConnection<Stream>::BasicConnection(Stream stream, ServerContext& context, 
       timer_(context.io),
       context_(context),
       id_(id),
-      session_(*this, context.cache, sessionSettings(context), peerName(socket_.lowest_layer(), id)) {
+      session_(*this, {context.cache, context.files, context.buildMemory}, sessionSettings(context),
+               peerName(socket_.lowest_layer(), id)) {
   asio::error_code ignored;
   socket_.lowest_layer().set_option(asio::ip::tcp::no_delay(true), ignored);
 }

@@ -55,10 +55,14 @@ void declareOptions(CLI::App& app, glint::server::ServerOptions& o, bool& quiet)
   addMebibytes(app, "--cache-mb", o.cacheBytes,
                "Memory for cached scenes and their BVHs, in MiB (least recently used goes)", 1.0, 1e7);
   addMebibytes(app, "--max-scene-mb", o.maxSceneBytes,
-               "Most memory one scene may hold once built (texels, meshes, BVH), in MiB; at most --cache-mb", 1.0,
+               "Most memory one scene may hold once built (texels, meshes, BVH), in MiB; at most --cache-mb; also "
+               "the most uploaded files kept (each one file's limit)",
+               1.0,
                1e7);
   addMebibytes(app, "--max-memory-mb", o.maxMemoryBytes,
-               "Memory for all scenes, cached and being built, in MiB; at least --cache-mb + --max-scene-mb", 2.0,
+               "Memory for all scenes, cached, being built and uploading, in MiB; at least --cache-mb + 2 x "
+               "--max-scene-mb",
+               2.0,
                1e8);
   app.add_option("--max-clients", o.maxClients, "Clients served at once; more are refused with Busy at their Hello")
       ->check(CLI::Range(1, 100000))

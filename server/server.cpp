@@ -18,9 +18,10 @@ const ServerOptions& checked(const ServerOptions& o) {
     throw InputError("--max-scene-mb " + mb(o.maxSceneBytes) + " is over --cache-mb " + mb(o.cacheBytes) +
                      ": the cache must be able to hold the largest scene");
   }
-  if (o.cacheBytes + o.maxSceneBytes > o.maxMemoryBytes) {
-    throw InputError("--max-memory-mb " + mb(o.maxMemoryBytes) + " is below --cache-mb + --max-scene-mb (" +
-                     mb(o.cacheBytes + o.maxSceneBytes) + ")");
+  if (o.cacheBytes + 2 * o.maxSceneBytes > o.maxMemoryBytes) {
+    throw InputError("--max-memory-mb " + mb(o.maxMemoryBytes) + " is below --cache-mb + 2 x --max-scene-mb (" +
+                     mb(o.cacheBytes + 2 * o.maxSceneBytes) + "): the scene cache, the uploaded files kept, and a "
+                     "scene being built");
   }
   if (o.tls.any() && (o.tls.ca.empty() || o.tls.cert.empty() || o.tls.key.empty())) {
     throw InputError("TLS needs all three of --tls-cert, --tls-key and --tls-client-ca (deploy/glint-certs makes them)");
@@ -48,10 +49,12 @@ void checkExposure(const ServerOptions& o, const asio::ip::tcp::endpoint& endpoi
 Server::Server(const ServerOptions& options)
     : options_(checked(options)),
       cache_(options.cacheBytes),
+      files_(options.maxSceneBytes),
       scheduler_(resolveThreadCount(options.threads)),
       registry_(static_cast<std::size_t>(options.maxClients), static_cast<std::size_t>(options.maxWaiting)),
-      buildMemory_(options.maxMemoryBytes - options.cacheBytes, "glintd --max-memory-mb less --cache-mb"),
-      context_{io_, scheduler_, cache_, registry_, buildMemory_, options_},
+      buildMemory_(options.maxMemoryBytes - options.cacheBytes - options.maxSceneBytes,
+                   "glintd --max-memory-mb less --cache-mb and the files kept (--max-scene-mb)"),
+      context_{io_, scheduler_, cache_, files_, registry_, buildMemory_, options_},
       acceptor_(io_),
       acceptRetry_(io_),
       signals_(io_) {

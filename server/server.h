@@ -19,8 +19,11 @@ struct ServerContext {
   asio::io_context& io;
   TileScheduler& scheduler;
   SceneCache& cache;
+  FileStore& files;
   ConnectionRegistry& registry;
-  MemoryGauge& buildMemory;  // scenes being built: --max-memory-mb less --cache-mb
+  // Scenes being built and files still arriving: --max-memory-mb less
+  // --cache-mb and the file store (--max-scene-mb).
+  MemoryGauge& buildMemory;
   const ServerOptions& options;
 };
 
@@ -53,6 +56,7 @@ class Server {
   ServerOptions options_;
   asio::io_context io_;
   SceneCache cache_;
+  FileStore files_;
   TileScheduler scheduler_;
   ConnectionRegistry registry_;
   MemoryGauge buildMemory_;

@@ -23,8 +23,10 @@ std::vector<std::uint8_t> traceTile(const TileWork& work) {
   return proto::encodeTileResult(work.frameId, work.tileId, rgb, rays, micros);
 }
 
-Session::Session(SessionHost& host, SceneCache& cache, const Settings& settings, std::string peer)
-    : host_(host), cache_(cache), settings_(settings), peer_(std::move(peer)) {}
+Session::Session(SessionHost& host, const SessionStores& stores, const Settings& settings, std::string peer)
+    : host_(host), stores_(stores), settings_(settings), peer_(std::move(peer)) {}
+
+Session::~Session() { stores_.uploads.give(partialBytes_); }
 
 void Session::handle(const wire::Message& message) {
   if (state_ == State::kEnded) return;
@@ -49,6 +51,8 @@ void Session::dispatch(const wire::Message& m) {
       return onSceneQuery(*m.body_as_SceneQuery());
     case wire::Body::SceneUpload:
       return onSceneUpload(*m.body_as_SceneUpload());
+    case wire::Body::FileChunk:
+      return onFileChunk(*m.body_as_FileChunk());
     case wire::Body::FrameSetup:
       return onFrameSetup(*m.body_as_FrameSetup());
     case wire::Body::TileRequest:
@@ -99,15 +103,87 @@ void Session::onHello(const wire::Hello& hello) {
   host_.reply(proto::encodeHello(settings_.maxMessageBytes, settings_.threads, "glintd 0.1"));
 }
 
+// The scene, if held; otherwise which of its files are not held either.
 void Session::onSceneQuery(const wire::SceneQuery& query) {
   const proto::SceneHash hash = proto::decodeHash(query.hash(), "scene_query.hash");
-  host_.reply(proto::encodeSceneStatus(hash, cache_.find(hash) != nullptr));
+  if (stores_.scenes.find(hash)) {
+    host_.reply(proto::encodeSceneStatus(hash, true));
+    return;
+  }
+  const std::vector<proto::SceneHash> files = proto::decodeFileHashes(query, proto::kMaxSceneFiles);
+  std::vector<std::uint32_t> missing;
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    if (!stores_.files.find(files[i])) missing.push_back(static_cast<std::uint32_t>(i));
+  }
+  host_.reply(proto::encodeSceneStatus(hash, false, missing));
 }
 
+// The scene put together from files this server holds; its hash is checked
+// when it is built.
 void Session::onSceneUpload(const wire::SceneUpload& upload) {
   const proto::SceneHash hash = proto::decodeHash(upload.hash(), "scene_upload.hash");
-  // Copied out of the read buffer, which the next message reuses.
-  host_.build({hash, std::make_shared<const proto::SceneBundle>(proto::decodeBundle(upload))});
+  proto::SceneManifest manifest = proto::decodeManifest(upload);
+  auto bundle = std::make_shared<proto::SceneBundle>();
+  bundle->text = std::move(manifest.text);
+  for (const auto& [path, fileHash] : manifest.files) {
+    const std::shared_ptr<const std::string> bytes = stores_.files.find(fileHash);
+    if (!bytes) {
+      error(wire::ErrorCode::BadScene,
+            "scene_upload.files: '" + path + "' (" + shortHash(fileHash) +
+                ") is not on this server; send its FileChunks before the SceneUpload",
+            false);
+      return;
+    }
+    bundle->files[path] = *bytes;
+  }
+  host_.build({hash, std::move(bundle)});
+}
+
+// A piece of a file: in order, within the size announced with the first
+// piece, which must fit the upload memory; the whole is checked against its
+// hash and kept for every client.
+void Session::onFileChunk(const wire::FileChunk& chunk) {
+  const proto::SceneHash hash = proto::decodeHash32(chunk.hash(), "file_chunk.hash");
+  if (stores_.files.find(hash)) return;  // held already (another client sent it meanwhile)
+  if (!partial_.count(hash) && partial_.size() >= proto::kMaxSceneFiles) {
+    error(wire::ErrorCode::Malformed, "file_chunk: more than " + std::to_string(proto::kMaxSceneFiles) +
+                                          " files arriving at once", false);
+    return;
+  }
+  const auto [it, fresh] = partial_.try_emplace(hash);
+  PartialFile& file = it->second;
+  if (fresh) file.size = chunk.size();
+  const std::size_t n = chunk.data() ? chunk.data()->size() : 0;
+  const auto fail = [&](const std::string& why) {
+    dropPartial(hash);
+    error(wire::ErrorCode::Malformed, "file_chunk " + shortHash(hash) + ": " + why, false);
+  };
+  if (chunk.size() != file.size) return fail("the size changed from " + std::to_string(file.size));
+  if (chunk.offset() != file.bytes.size()) {
+    return fail("offset " + std::to_string(chunk.offset()) + ", expected " + std::to_string(file.bytes.size()) +
+                " (pieces come in order)");
+  }
+  if (n > file.size - file.bytes.size()) return fail("more bytes than the size " + std::to_string(file.size));
+  if (file.size > settings_.maxFileBytes || !stores_.uploads.take(n)) {
+    return fail("a file of " + std::to_string(file.size) + " bytes does not fit what this server holds for uploads (" +
+                stores_.uploads.name() + ")");
+  }
+  file.taken += n;
+  partialBytes_ += n;
+  if (n > 0) file.bytes.append(reinterpret_cast<const char*>(chunk.data()->data()), n);
+  if (file.bytes.size() < file.size) return;
+  if (proto::sha256(file.bytes) != hash) return fail("its bytes do not match its hash");
+  std::string bytes = std::move(file.bytes);
+  dropPartial(hash);
+  stores_.files.insert(hash, std::move(bytes));
+}
+
+void Session::dropPartial(const proto::SceneHash& hash) {
+  const auto it = partial_.find(hash);
+  if (it == partial_.end()) return;
+  stores_.uploads.give(it->second.taken);
+  partialBytes_ -= it->second.taken;
+  partial_.erase(it);
 }
 
 void Session::sceneBuilt(const BuiltScene& built) {
@@ -117,7 +193,7 @@ void Session::sceneBuilt(const BuiltScene& built) {
     error(wire::ErrorCode::BadScene, built.error, false);
     return;
   }
-  cache_.insert(built.hash, built.prepared);
+  stores_.scenes.insert(built.hash, built.prepared);
   logLine(peer_ + ": scene " + shortHash(built.hash) + " built in " + std::to_string(built.ms) + " ms (" +
           std::to_string(built.prepared->scene().geometry.primitiveCount()) + " primitives)");
   host_.reply(proto::encodeSceneReady(built.hash, static_cast<float>(built.ms)));
@@ -127,7 +203,7 @@ void Session::onFrameSetup(const wire::FrameSetup& setup) {
   const std::uint32_t frameId = setup.frame_id();
   try {
     const proto::SceneHash hash = proto::decodeHash(setup.scene_hash(), "frame_setup.scene_hash");
-    auto scene = cache_.find(hash);
+    auto scene = stores_.scenes.find(hash);
     if (!scene) {
       error(wire::ErrorCode::UnknownScene, "scene " + shortHash(hash) + " is not on this server; upload it first",
             false, frameId);

@@ -49,6 +49,15 @@ class SessionHost {
   virtual void cancel(std::uint32_t frameId, std::span<const std::uint32_t> tileIds) = 0;
 };
 
+// What the sessions of a server share: built scenes, uploaded files, and
+// the memory that files still arriving draw from (given back when a file is
+// complete or its session ends).
+struct SessionStores {
+  SceneCache& scenes;
+  FileStore& files;
+  MemoryGauge& uploads;
+};
+
 // The protocol state of one client, without a socket: it takes verified
 // messages in order and answers through its host. Any value a client sent is
 // checked before use; a problem is an Error to the client, and where the
@@ -61,9 +70,11 @@ class Session {
     std::uint32_t maxMessageBytes = 0;  // announced in Hello
     std::uint32_t threads = 0;          // announced in Hello
     std::size_t maxClients = 0;         // named when a Hello finds the server full
+    std::size_t maxFileBytes = 0;       // one uploaded file (--max-scene-mb)
   };
 
-  Session(SessionHost& host, SceneCache& cache, const Settings& settings, std::string peer);
+  Session(SessionHost& host, const SessionStores& stores, const Settings& settings, std::string peer);
+  ~Session();
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
 
@@ -81,16 +92,27 @@ class Session {
   void onHello(const wire::Hello& hello);
   void onSceneQuery(const wire::SceneQuery& query);
   void onSceneUpload(const wire::SceneUpload& upload);
+  void onFileChunk(const wire::FileChunk& chunk);
+  void dropPartial(const proto::SceneHash& hash);
   void onFrameSetup(const wire::FrameSetup& setup);
   void onTileRequest(const wire::TileRequest& tile);
   void onCancel(const wire::Cancel& cancel);
 
+  // A file whose pieces are still arriving (FileChunk).
+  struct PartialFile {
+    std::uint64_t size = 0;
+    std::string bytes;      // grows as pieces arrive, never ahead of them
+    std::size_t taken = 0;  // from stores_.uploads
+  };
+
   SessionHost& host_;
-  SceneCache& cache_;
+  SessionStores stores_;
   Settings settings_;
   std::string peer_;
   State state_ = State::kAwaitingHello;
   std::map<std::uint32_t, std::shared_ptr<const SessionFrame>> frames_;  // by frame id
+  std::map<proto::SceneHash, PartialFile> partial_;
+  std::size_t partialBytes_ = 0;  // taken from stores_.uploads
 };
 
 }  // namespace glint::server

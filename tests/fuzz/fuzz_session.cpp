@@ -14,8 +14,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   using namespace glint::server;
   setLogging(false);
   SceneCache cache(std::size_t{64} << 20);
+  FileStore files(std::size_t{64} << 20);
+  glint::MemoryGauge uploads(std::size_t{64} << 20, "fuzz uploads");
   test::InlineHost host(std::size_t{64} << 20, 4096);
-  Session session(host, cache, {1 << 20, 1, 4}, "fuzz");
+  Session session(host, {cache, files, uploads}, {1 << 20, 1, 4, std::size_t{16} << 20}, "fuzz");
   host.attach(session);
   glint::fuzz::forEachMessage(
       data, size, [&session](const glint::wire::Message& m) { session.handle(m); },

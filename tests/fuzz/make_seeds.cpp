@@ -57,18 +57,23 @@ Bytes session(const proto::SceneBundle& bundle, FrameSettings frame) {
   frame.sampling.pattern = SamplePattern::kRegular;
   const proto::SceneHash hash = bundle.hash();
   std::vector<std::uint8_t> mask(maskByteCount({0, 0, 8, 8}), 0x5a);
-  return join({proto::encodeHello(1 << 20, 0, "seed"), proto::encodeSceneQuery(hash),
-               proto::encodeSceneUpload(hash, bundle), proto::encodeFrameSetup(1, hash, frame),
-               proto::encodeTileRequest(1, 0, {0, 0, 8, 8}, {}), proto::encodeTileRequest(1, 1, {8, 0, 8, 8}, mask),
-               proto::encodeCancel(1, std::vector<std::uint32_t>{1}), proto::encodeCancel(1, {}),
-               proto::encodeGoodbye()});
+  std::vector<Bytes> frames{proto::encodeHello(1 << 20, 0, "seed"),
+                            proto::encodeSceneQuery(hash, proto::digest(bundle).files)};
+  for (Bytes& f : proto::encodeFullUpload(bundle, 2048)) frames.push_back(std::move(f));  // files in pieces
+  for (Bytes f : {proto::encodeFrameSetup(1, hash, frame), proto::encodeTileRequest(1, 0, {0, 0, 8, 8}, {}),
+                  proto::encodeTileRequest(1, 1, {8, 0, 8, 8}, mask), proto::encodeCancel(1, std::vector<std::uint32_t>{1}),
+                  proto::encodeCancel(1, {}), proto::encodeGoodbye()}) {
+    frames.push_back(std::move(f));
+  }
+  return join(frames);
 }
 
 void framingSeeds(const proto::SceneBundle& bundle, const FrameSettings& frame) {
   const proto::SceneHash hash = bundle.hash();
   write("framing", "hello", proto::encodeHello(1 << 20, 2, "seed"));
-  write("framing", "scene-query", proto::encodeSceneQuery(hash));
-  write("framing", "scene-status", proto::encodeSceneStatus(hash, true));
+  write("framing", "scene-query", proto::encodeSceneQuery(hash, proto::digest(bundle).files));
+  write("framing", "scene-status", proto::encodeSceneStatus(hash, false, std::vector<std::uint32_t>{0, 2}));
+  write("framing", "file-chunk", proto::encodeFileChunk(proto::sha256("v 0 0 0\n"), 8, 0, "v 0 0 0\n"));
   write("framing", "scene-upload", proto::encodeSceneUpload(hash, bundle));
   write("framing", "scene-ready", proto::encodeSceneReady(hash, 1.5f));
   write("framing", "frame-setup", proto::encodeFrameSetup(3, hash, frame));

@@ -71,10 +71,29 @@ TEST(Messages, SceneMessagesRoundTrip) {
     const SceneBundle bundle{"{\"glint\": 1}", {{"m/a.obj", "v 0 0 0\n"}, {"t.png", std::string("\0\1\2", 3)}}};
     const auto* m = decode(encodeSceneUpload(bundle.hash(), bundle)).body_as_SceneUpload();
     EXPECT_EQ(decodeHash(m->hash(), "hash"), bundle.hash());
-    const SceneBundle back = decodeBundle(*m);
+    const SceneManifest back = decodeManifest(*m);
     EXPECT_EQ(back.text, bundle.text);
-    EXPECT_EQ(back.files, bundle.files);
-    EXPECT_EQ(back.hash(), bundle.hash());
+    ASSERT_EQ(back.files.size(), 2u);
+    EXPECT_EQ(back.files[0], std::make_pair(std::string("m/a.obj"), sha256("v 0 0 0\n")));
+    EXPECT_EQ(back.files[1], std::make_pair(std::string("t.png"), sha256(std::string("\0\1\2", 3))));
+    const std::vector<SceneHash> hashes = digest(bundle).files;
+    const auto* q = decode(encodeSceneQuery(bundle.hash(), hashes)).body_as_SceneQuery();
+    EXPECT_EQ(decodeFileHashes(*q, 2), hashes);
+    EXPECT_THROW(decodeFileHashes(*q, 1), InputError);  // more files than allowed
+    const std::vector<std::uint32_t> missing{1};
+    const auto* st = decode(encodeSceneStatus(h, false, missing)).body_as_SceneStatus();
+    EXPECT_EQ(std::vector<std::uint32_t>(st->missing()->begin(), st->missing()->end()), missing);
+  }
+  {  // a file in pieces: each piece's offset and the whole size; an empty file is one empty piece
+    const std::string bytes(10, 'x');
+    const auto chunks = encodeFileChunks(bytes, 4);
+    ASSERT_EQ(chunks.size(), 3u);
+    const auto* last = decode(chunks[2]).body_as_FileChunk();
+    EXPECT_EQ(last->size(), 10u);
+    EXPECT_EQ(last->offset(), 8u);
+    EXPECT_EQ(last->data()->size(), 2u);
+    EXPECT_EQ(decodeHash32(last->hash(), "hash"), sha256(bytes));
+    EXPECT_EQ(encodeFileChunks("", 4).size(), 1u);
   }
   EXPECT_FLOAT_EQ(decode(encodeSceneReady(h, 12.5f)).body_as_SceneReady()->build_ms(), 12.5f);
 }

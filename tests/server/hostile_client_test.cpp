@@ -133,7 +133,7 @@ TEST(HostileClient, SceneThatDecodesTooLargeIsRefusedNamingTheLimit) {
   const long before = glintd.peakResidentKb();
   RawClient c(glintd.port());
   ASSERT_TRUE(c.hello());
-  c.write(proto::encodeSceneUpload(bundle.hash(), bundle));
+  for (const auto& frame : proto::encodeFullUpload(bundle)) c.write(frame);
   const auto [code, text] = c.readError();
   EXPECT_EQ(code, wire::ErrorCode::BadScene);
   EXPECT_NE(text.find("textures.c.file: the scene would hold 36.0 MiB once built, 4.0 MiB over glintd "

@@ -16,7 +16,11 @@ class SessionTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() { setLogging(false); }
 
-  SessionTest() : cache_(std::size_t{64} << 20), session_(host_, cache_, {1 << 20, 2, 8}, "test peer") {
+  SessionTest()
+      : cache_(std::size_t{64} << 20),
+        files_(std::size_t{64} << 20),
+        uploads_(std::size_t{32} << 20, "the test's upload gauge"),
+        session_(host_, {cache_, files_, uploads_}, {1 << 20, 2, 8, std::size_t{16} << 20}, "test peer") {
     host_.attach(session_);
   }
 
@@ -36,8 +40,16 @@ class SessionTest : public ::testing::Test {
   void hello() { send(proto::encodeHello(1 << 20, 0, "test")); }
 
   std::vector<std::uint64_t> aligned_;
+  // What a client sends for a bundle the server lacks: each file's pieces
+  // (of 4 KiB, so that a file takes several), then the scene.
+  void upload(const proto::SceneBundle& bundle) {
+    for (const auto& frame : proto::encodeFullUpload(bundle, 4096)) send(frame);
+  }
+
   test::InlineHost host_;
   SceneCache cache_;
+  FileStore files_;
+  MemoryGauge uploads_;
   Session session_;
 };
 
@@ -61,7 +73,7 @@ TEST_F(SessionTest, HelloIsAnsweredOnceAndAFullServerSaysBusy) {
 
   test::InlineHost full;
   full.admits = false;
-  Session other(full, cache_, {1 << 20, 2, 8}, "other");
+  Session other(full, {cache_, files_, uploads_}, {1 << 20, 2, 8, 1 << 20}, "other");
   const auto frame = proto::encodeHello(1 << 20, 0, "test");
   other.handle(decode(frame));
   EXPECT_EQ(other.state(), Session::State::kEnded);
@@ -77,7 +89,7 @@ TEST_F(SessionTest, UploadBuildsTheSceneAndTilesAreTraced) {
   const proto::SceneHash hash = room.bundle.hash();
   send(proto::encodeSceneQuery(hash));
   EXPECT_EQ(replyType(1), wire::Body::SceneStatus);
-  send(proto::encodeSceneUpload(hash, room.bundle));
+  upload(room.bundle);
   EXPECT_EQ(host_.builds, 1);
   EXPECT_EQ(replyType(2), wire::Body::SceneReady);
   EXPECT_TRUE(cache_.find(hash));
@@ -106,10 +118,88 @@ TEST_F(SessionTest, UploadBuildsTheSceneAndTilesAreTraced) {
 TEST_F(SessionTest, BadSceneIsAnErrorAndTheSessionGoesOn) {
   hello();
   proto::SceneBundle bad{"{\"glint\": 1, \"image\": {\"width\": 1e999}}", {}};
-  send(proto::encodeSceneUpload(bad.hash(), bad));
+  upload(bad);
   EXPECT_EQ(errorCode(1), wire::ErrorCode::BadScene);
   EXPECT_EQ(session_.state(), Session::State::kServing);
   EXPECT_EQ(cache_.size(), 0u);
+}
+
+// Files travel in pieces, by their hash: the bunny's mesh (220 KB, in 4 KiB
+// pieces) is sent once; a changed scene that names it again is told that
+// nothing is missing, and builds from the file the server kept.
+TEST_F(SessionTest, FilesArriveInPiecesAndAreNotAskedForTwice) {
+  hello();
+  const proto::LoadedBundle bunny = proto::loadSceneBundle(glint::test::sourcePath("scenes/bunny.json"));
+  const proto::BundleDigest digest = proto::digest(bunny.bundle);
+  ASSERT_EQ(digest.files.size(), 1u);
+  send(proto::encodeSceneQuery(digest.scene, digest.files));
+  const auto* status = decode(host_.replies.at(1)).body_as_SceneStatus();
+  ASSERT_TRUE(status && status->missing());
+  EXPECT_FALSE(status->present());
+  EXPECT_EQ(status->missing()->size(), 1u);
+  upload(bunny.bundle);
+  ASSERT_EQ(replyType(2), wire::Body::SceneReady);
+  EXPECT_EQ(files_.size(), 1u);
+  EXPECT_EQ(uploads_.used(), 0u);  // a complete file no longer draws on the upload memory
+
+  proto::SceneBundle changed = bunny.bundle;
+  changed.text.insert(changed.text.rfind('}'), ", \"background\": [0.1, 0.1, 0.1]");
+  send(proto::encodeSceneQuery(changed.hash(), proto::digest(changed).files));
+  status = decode(host_.replies.at(3)).body_as_SceneStatus();
+  ASSERT_TRUE(status);
+  EXPECT_FALSE(status->present());
+  EXPECT_EQ(status->missing()->size(), 0u);  // the mesh is not sent again
+  send(proto::encodeSceneUpload(changed.hash(), changed));
+  EXPECT_EQ(replyType(4), wire::Body::SceneReady);
+}
+
+// Pieces out of order, over the size, over the limit, or whose whole does
+// not match its hash are refused and leave nothing behind; a scene naming a
+// file that never arrived is a BadScene; the session goes on.
+TEST_F(SessionTest, HostileFilePiecesAreRefused) {
+  hello();
+  const std::string bytes(10000, 'v');
+  const proto::SceneHash hash = proto::sha256(bytes);
+  std::size_t replies = host_.replies.size();
+  const auto refused = [&](const std::vector<std::uint8_t>& frame, const std::string& words) {
+    send(frame);
+    ASSERT_EQ(host_.replies.size(), replies + 1) << words;
+    EXPECT_EQ(errorCode(replies), wire::ErrorCode::Malformed) << words;
+    const std::string message = decode(host_.replies.at(replies)).body_as_Error()->message()->str();
+    EXPECT_NE(message.find(words), std::string::npos) << message;
+    ++replies;
+    EXPECT_EQ(uploads_.used(), 0u) << words;
+  };
+  refused(proto::encodeFileChunk(hash, bytes.size(), 100, std::string_view(bytes).substr(0, 100)),
+          "offset 100, expected 0 (pieces come in order)");
+  refused(proto::encodeFileChunk(hash, 10, 0, bytes), "more bytes than the size 10");
+  refused(proto::encodeFileChunk(hash, std::uint64_t{1} << 40, 0, "x"), "does not fit what this server holds");
+  send(proto::encodeFileChunk(hash, bytes.size(), 0, std::string_view(bytes).substr(0, 5000)));
+  EXPECT_EQ(uploads_.used(), 5000u);  // what arrived, not what was announced
+  refused(proto::encodeFileChunk(hash, bytes.size(), 5000, std::string(5000, 'w')), "do not match its hash");
+  EXPECT_EQ(files_.size(), 0u);
+
+  const proto::SceneBundle scene{"{}", {{"mesh.obj", bytes}}};
+  send(proto::encodeSceneUpload(scene.hash(), scene));
+  EXPECT_EQ(errorCode(replies), wire::ErrorCode::BadScene);
+  EXPECT_NE(decode(host_.replies.at(replies)).body_as_Error()->message()->str().find(
+                "'mesh.obj' (" + proto::toHex(hash).substr(0, 12) + ") is not on this server"),
+            std::string::npos);
+  EXPECT_EQ(session_.state(), Session::State::kServing);
+}
+
+// Pieces of a file that never completes are given back when the session ends.
+TEST_F(SessionTest, UnfinishedFilesAreGivenBackAtTheEnd) {
+  {
+    test::InlineHost host;
+    Session other(host, {cache_, files_, uploads_}, {1 << 20, 2, 8, 1 << 20}, "other");
+    host.attach(other);
+    other.handle(decode(proto::encodeHello(1 << 20, 0, "test")));
+    const std::string half(3000, 'h');
+    other.handle(decode(proto::encodeFileChunk(proto::sha256("whatever"), 6000, 0, half)));
+    EXPECT_EQ(uploads_.used(), 3000u);
+  }
+  EXPECT_EQ(uploads_.used(), 0u);
 }
 
 // Cancel names the frame and its tiles (none: the whole frame) and is handed
