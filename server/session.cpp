@@ -175,6 +175,7 @@ void Session::onFileChunk(const wire::FileChunk& chunk) {
   if (proto::sha256(file.bytes) != hash) return fail("its bytes do not match its hash");
   std::string bytes = std::move(file.bytes);
   dropPartial(hash);
+  logLine(peer_ + ": file " + shortHash(hash) + " received (" + std::to_string(bytes.size()) + " bytes)");
   stores_.files.insert(hash, std::move(bytes));
 }
 

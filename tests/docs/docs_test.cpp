@@ -1,0 +1,110 @@
+// What the documents show and say is what the code does: the README's
+// picture is today's render, the scene format's example loads and renders,
+// the texture formats it lists are the ones that load, and every relative
+// link in the documents leads to a file.
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "common/error.h"
+#include "common/frame.h"
+#include "common/image_io.h"
+#include "common/prepared_scene.h"
+#include "common/scene_load.h"
+#include "tests/common/test_support.h"
+
+namespace glint {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+FrameImage render(const Scene& scene) {
+  const PreparedScene prepared(scene, BvhSettings{});
+  ThreadPool pool(2);
+  return renderFrame(Renderer(prepared, scene.frame), pool, {}).image;
+}
+
+// README.md shows docs/images/room.png as "the thesis's room, full ray
+// trace": it must be what `glint render scenes/room.json --mask all` writes
+// today (re-render it with that command when the tracer changes).
+TEST(Docs, ReadmePictureIsTodaysRender) {
+  EXPECT_NE(readText(test::sourcePath("README.md")).find("(docs/images/room.png)"), std::string::npos);
+  SceneBudget budget;
+  const Image picture = decodeImage(readText(test::sourcePath("docs/images/room.png")), "room.png", budget);
+  const FrameImage today = render(loadSceneFile(test::sourcePath("scenes/room.json")));
+  ASSERT_EQ(picture.width, today.width);
+  ASSERT_EQ(picture.height, today.height);
+  EXPECT_TRUE(picture.rgb == today.rgb) << "docs/images/room.png is not today's render: run build/bin/glint render "
+                                           "scenes/room.json --mask all -o docs/images/room.png";
+}
+
+// The example at the top of docs/scene-format.md, with the two files it
+// names put beside it, loads and renders something.
+TEST(Docs, SceneFormatExampleRenders) {
+  const std::string doc = readText(test::sourcePath("docs/scene-format.md"));
+  const std::size_t start = doc.find("```json\n");
+  ASSERT_NE(start, std::string::npos);
+  const std::size_t end = doc.find("```", start + 8);
+  const fs::path dir = fs::temp_directory_path() / "glint_docs_example";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "models");
+  fs::create_directories(dir / "textures");
+  fs::copy_file(test::sourcePath("scenes/models/bunny.obj"), dir / "models/bunny.obj");
+  std::ofstream(dir / "textures/photo.png", std::ios::binary) << test::flatPng(4, 4);
+  std::ofstream(dir / "scene.json") << doc.substr(start + 8, end - start - 8);
+  Scene scene = loadSceneFile(dir / "scene.json");
+  scene.frame.width = 80;
+  scene.frame.height = 60;
+  const FrameImage image = render(scene);
+  std::size_t lit = 0;
+  for (const std::uint8_t v : image.rgb) lit += v > 30 ? 1 : 0;
+  EXPECT_GT(lit, image.rgb.size() / 10);
+  fs::remove_all(dir);
+}
+
+// "image (PNG or 24-bit BMP ...)": both load; a JPEG, which the image
+// library could read, is refused by name.
+TEST(Docs, TextureFormatsListedAreTheOnesThatLoad) {
+  const std::string doc = readText(test::sourcePath("docs/scene-format.md"));
+  EXPECT_NE(doc.find("`image` (PNG or 24-bit BMP"), std::string::npos);
+  SceneBudget budget;
+  EXPECT_EQ(decodeImage(test::flatPng(3, 2), "png", budget).width, 3);
+  const unsigned char bmp[] = {'B', 'M', 58, 0, 0, 0, 0, 0, 0, 0, 54, 0, 0, 0, 40, 0, 0, 0, 1, 0, 0, 0, 1, 0,
+                               0, 0, 1, 0, 24, 0, 0, 0, 0, 0, 4, 0, 0, 0, 0x13, 0x0b, 0, 0, 0x13, 0x0b, 0,
+                               0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 255, 0, 0};
+  EXPECT_EQ(decodeImage(std::string(reinterpret_cast<const char*>(bmp), sizeof bmp), "bmp", budget).width, 1);
+  const std::string jpeg("\xff\xd8\xff\xe0\0\x10JFIF\0", 11);
+  EXPECT_THROW(decodeImage(jpeg, "jpeg", budget), InputError);
+}
+
+// Every relative link ([text](path) or [text](path#anchor)) in README.md
+// and docs/*.md names a file or folder that exists.
+TEST(Docs, RelativeLinksResolve) {
+  std::vector<fs::path> documents{test::sourcePath("README.md")};
+  for (const auto& entry : fs::directory_iterator(test::sourcePath("docs"))) {
+    if (entry.path().extension() == ".md") documents.push_back(entry.path());
+  }
+  const std::regex link(R"(\]\(([^)#\s]+)(#[^)]*)?\))");
+  int checked = 0;
+  for (const fs::path& doc : documents) {
+    const std::string text = readText(doc);
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), link); it != std::sregex_iterator(); ++it) {
+      const std::string target = (*it)[1];
+      if (target.find("://") != std::string::npos || target.rfind("mailto:", 0) == 0) continue;
+      ++checked;
+      EXPECT_TRUE(fs::exists(doc.parent_path() / target)) << doc.filename() << " links to " << target;
+    }
+  }
+  EXPECT_GT(checked, 20);
+}
+
+}  // namespace
+}  // namespace glint
