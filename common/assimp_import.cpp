@@ -141,7 +141,7 @@ MeshInput toMesh(const aiMesh& m) {
 }  // namespace
 
 MeshModel importWithAssimp(FileSource& files, const std::string& path, const std::string& place,
-                           SceneBudget& budget, bool withMaterials) {
+                           SceneBudget& budget) {
   Assimp::Importer importer;
   auto* io = new SourceIo(files, place);
   importer.SetIOHandler(io);  // the importer owns it
@@ -160,7 +160,6 @@ MeshModel importWithAssimp(FileSource& files, const std::string& path, const std
     if (mesh.indices.empty()) continue;
     triangles += mesh.indices.size() / 3;
     vertices += mesh.positions.size();
-    if (!withMaterials) mesh.material = 0;
     model.meshes.push_back(std::move(mesh));
   }
   if (triangles == 0) throw InputError(place + ": '" + path + "' holds no triangle (points or lines only?)");
@@ -168,10 +167,6 @@ MeshModel importWithAssimp(FileSource& files, const std::string& path, const std
     throw InputError(place + ": '" + path + "' has more triangles or vertices than the limits (" +
                      std::to_string(budget.limits().maxTriangles) + ", " + std::to_string(budget.limits().maxVertices) +
                      ")");
-  }
-  if (!withMaterials) {
-    model.materials.push_back(Material{});
-    return model;
   }
   for (unsigned i = 0; i < scene->mNumMaterials; ++i) {
     Material m = toMaterial(*scene->mMaterials[i]);

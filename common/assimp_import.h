@@ -16,6 +16,6 @@ namespace glint {
 // reflectivity. A missing texture is a warning; a file that yields no
 // triangle is an error. Errors start with `place`.
 MeshModel importWithAssimp(FileSource& files, const std::string& path, const std::string& place,
-                           SceneBudget& budget, bool withMaterials);
+                           SceneBudget& budget);
 
 }  // namespace glint

@@ -164,6 +164,13 @@ std::string encodeMeshBlob(const MeshModel& model) {
     w.put(static_cast<std::uint32_t>(mesh.indices.size()));
     w.putArray(mesh.indices);
   }
+  w.put(static_cast<std::uint8_t>(model.camera.has_value()));
+  if (model.camera) {
+    w.put(model.camera->eye);
+    w.put(model.camera->lookAt);
+    w.put(model.camera->up);
+    w.put(model.camera->fovY);
+  }
   return w.take();
 }
 
@@ -184,6 +191,14 @@ MeshModel decodeMeshBlob(std::string_view bytes, const std::string& place, Scene
   const auto meshes = r.get<std::uint32_t>();
   if (meshes > r.remaining()) r.fail("announces more meshes than it holds");
   for (std::uint32_t i = 0; i < meshes; ++i) model.meshes.push_back(readMesh(r, materials, budget.limits()));
+  if (r.get<std::uint8_t>() != 0) {  // the camera is checked where the scene takes it
+    CameraSpec camera;
+    camera.eye = r.get<glm::vec3>();
+    camera.lookAt = r.get<glm::vec3>();
+    camera.up = r.get<glm::vec3>();
+    camera.fovY = r.get<float>();
+    model.camera = camera;
+  }
   if (r.remaining() != 0) r.fail("has bytes after its last mesh");
   return model;
 }

@@ -18,6 +18,7 @@ namespace glint {
 //                        transparency ior, u8 raytrace
 //   u32 meshes,    each: u32 material, u32 vertices, u8 has normals, u8 has uvs,
 //                        f32 positions[3v], normals[3v], uvs[2v], u32 indices, u32[indices]
+//   u8 has camera, then f32 eye[3] look_at[3] up[3] fov_y
 std::string encodeMeshBlob(const MeshModel& model);
 
 // Reads a blob, checking every count against the bytes that are there before

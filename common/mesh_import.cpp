@@ -5,6 +5,7 @@
 
 #include "common/assimp_import.h"
 #include "common/error.h"
+#include "common/gltf_camera.h"
 #include "common/mesh_blob.h"
 #include "common/obj_load.h"
 
@@ -20,9 +21,21 @@ MeshModel importMeshFile(FileSource& files, const std::string& path, const std::
                      " (Wavefront OBJ, PLY, glTF 2.0)");
   }
   if (*format == MeshFormat::kObj) return loadObj(files, path, place, budget, withMaterials);
-  if (!files.importsMeshes()) return decodeMeshBlob(files.read(path, place), place, budget);
-  MeshModel model = importWithAssimp(files, path, place, budget, withMaterials);
-  files.keepImported(path, encodeMeshBlob(model));
+  MeshModel model;
+  if (!files.importsMeshes()) {
+    model = decodeMeshBlob(files.read(path, place), place, budget);
+  } else {
+    model = importWithAssimp(files, path, place, budget);
+    if (*format == MeshFormat::kGltf || *format == MeshFormat::kGlb) {
+      model.camera = gltfCamera(files.readForImport(path, place), place + ": '" + path + "'");
+    }
+    files.keepImported(path, encodeMeshBlob(model));  // always with its materials, whoever asks next
+  }
+  if (!withMaterials) {
+    for (MeshInput& mesh : model.meshes) mesh.material = 0;
+    model.materials.assign(1, Material{});
+    model.textures.clear();
+  }
   return model;
 }
 

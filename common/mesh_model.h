@@ -1,8 +1,10 @@
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "common/camera.h"
 #include "common/geometry.h"
 #include "common/material.h"
 #include "common/texture.h"
@@ -18,6 +20,7 @@ struct MeshModel {
   std::vector<Material> materials;
   std::vector<Texture> textures;
   std::vector<std::string> warnings;  // files the mesh file names that are missing
+  std::optional<CameraSpec> camera;   // a glTF file's first perspective camera
 };
 
 }  // namespace glint

@@ -80,12 +80,24 @@ class SceneLoader {
   }
 
   void readCamera(const JsonReader& r) {
-    r.allowKeys({"eye", "look_at", "up", "fov_y"});
+    r.allowKeys({"eye", "look_at", "up", "fov_y", "file"});
     CameraSpec& c = scene_.frame.camera;
+    if (auto f = r.find("file")) return readCameraFile(r, *f);
     c.eye = r["eye"].vec3();
     c.lookAt = r["look_at"].vec3();
     c.up = r.vec3("up", {0.0f, 1.0f, 0.0f});
     c.fovY = r.number("fov_y", 45.0f, 0.0f, 179.0f, true);
+  }
+
+  // The first perspective camera of a glTF file (imported as a mesh file is).
+  void readCameraFile(const JsonReader& r, const JsonReader& f) {
+    for (const char* key : {"eye", "look_at", "up", "fov_y"}) {
+      if (r.has(key)) r[key].fail("the camera comes from its file; give either file or eye and look_at");
+    }
+    const std::string path = normalisePath(f.string());
+    const MeshModel model = importMeshFile(files_, path, f.path(), budget_, false);
+    if (!model.camera) f.fail("'" + path + "' has no perspective camera (glTF files carry cameras)");
+    scene_.frame.camera = *model.camera;
   }
 
   void readSampling(const JsonReader& r) {

@@ -15,8 +15,15 @@ using namespace glint;
 
 void decodeBody(const wire::Message& m) {
   try {
-    if (const auto* q = m.body_as_SceneQuery()) (void)proto::decodeHash(q->hash(), "hash");
-    if (const auto* u = m.body_as_SceneUpload()) (void)proto::decodeBundle(*u);
+    if (const auto* q = m.body_as_SceneQuery()) {
+      (void)proto::decodeHash(q->hash(), "hash");
+      (void)proto::decodeFileHashes(*q, proto::kMaxSceneFiles);
+    }
+    if (const auto* u = m.body_as_SceneUpload()) (void)proto::decodeManifest(*u);
+    if (const auto* c = m.body_as_FileChunk()) {
+      (void)proto::decodeHash32(c->hash(), "hash");
+      if (c->data()) (void)c->data()->size();
+    }
     if (const auto* s = m.body_as_FrameSetup()) {
       const FrameSettings frame = proto::decodeFrameSettings(*s, std::size_t{1} << 28);
       (void)frame;

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -84,6 +85,50 @@ TEST(MeshImport, NodeTransformsAreApplied) {
                   {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}]})";
   const MeshModel m = import(dir / "tri.gltf");
   EXPECT_EQ(corners(m), (std::vector<glm::vec3>{{1, 2, 3}, {3, 2, 3}, {1, 4, 3}}));
+  fs::remove_all(dir);
+}
+
+// A scene may take its camera from a glTF file: the first perspective
+// camera, placed by its node and the node's parent; through a bundle too.
+TEST(MeshImport, CameraFromAGltfFile) {
+  const fs::path dir = fs::temp_directory_path() / "glint_gltf_camera";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  // Camera node 2: translation (1, 1, 10), turned 90 degrees about +y (so it
+  // looks down -x), child of node 1, which moves by (0, 1, 0).
+  std::ofstream(dir / "cam.gltf") << R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
+    "nodes": [{"mesh": 0}, {"translation": [0, 1, 0], "children": [2]},
+              {"camera": 1, "translation": [1, 1, 10], "rotation": [0, 0.70710678, 0, 0.70710678]}],
+    "cameras": [{"type": "orthographic", "orthographic": {"xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 9}},
+                {"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1}}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+    "buffers": [{"byteLength": 44, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIAAAA="}],
+    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+                  {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}]})";
+  std::ofstream(dir / "scene.json") << R"({"glint": 1, "image": {"width": 8, "height": 6},
+    "camera": {"file": "cam.gltf"}, "lights": [{"type": "point", "position": [0, 5, 5]}],
+    "objects": [{"type": "mesh", "file": "cam.gltf"}]})";
+  const proto::LoadedBundle loaded = proto::loadSceneBundle(dir / "scene.json");
+  const CameraSpec& c = loaded.scene.frame.camera;
+  EXPECT_LT(glm::length(c.eye - glm::vec3(1, 2, 10)), 1e-5f);
+  EXPECT_LT(glm::length(c.lookAt - glm::vec3(0, 2, 10)), 1e-5f);
+  EXPECT_LT(glm::length(c.up - glm::vec3(0, 1, 0)), 1e-5f);
+  EXPECT_NEAR(c.fovY, 45.8366f, 1e-3f);
+  SceneBudget budget;
+  const Scene there = proto::loadBundle(loaded.bundle, budget);
+  EXPECT_EQ(there.frame.camera.eye, c.eye);
+  EXPECT_EQ(there.frame.camera.lookAt, c.lookAt);
+  EXPECT_EQ(there.frame.camera.fovY, c.fovY);
+
+  std::ofstream(dir / "both.json") << R"({"glint": 1, "image": {"width": 8, "height": 6},
+    "camera": {"file": "cam.gltf", "eye": [0, 0, 1]}, "objects": []})";
+  try {
+    loadSceneFile(dir / "both.json");
+    ADD_FAILURE();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("camera.eye: the camera comes from its file"), std::string::npos) << e.what();
+  }
   fs::remove_all(dir);
 }
 
