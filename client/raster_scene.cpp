@@ -93,6 +93,7 @@ RasterScene::RasterScene(const Api& api, const Scene& scene) : gl_(api), scene_(
     throw InputError("the OpenGL path takes at most " + std::to_string(kMaxMaterials) + " materials and " +
                      std::to_string(kMaxTextures) + " textures");
   }
+  for (std::uint32_t i = 0; i < scene.geometry.primitiveCount(); ++i) bounds_.expand(scene.geometry.primitiveBounds(i));
   for (int traced = 0; traced < 2; ++traced) {
     programs_[0][traced] = link(gl_, kMeshVertexShader, kMeshFragmentShader, traced == 1);
     programs_[1][traced] = link(gl_, kSphereVertexShader, kSphereFragmentShader, traced == 1);
@@ -203,32 +204,30 @@ void RasterScene::uploadSpheres() {
   }
 }
 
-glm::mat4 RasterScene::viewProjection(const FrameSettings& frame) const {
+RasterScene::Projection RasterScene::projection(const FrameSettings& frame) const {
   // The far plane just beyond the scene's farthest corner as seen from the eye.
-  Bounds3 bounds;
-  for (std::uint32_t i = 0; i < scene_.geometry.primitiveCount(); ++i) bounds.expand(scene_.geometry.primitiveBounds(i));
   float far = 1.0f;
-  if (!bounds.empty()) {
+  if (!bounds_.empty()) {
     for (int corner = 0; corner < 8; ++corner) {
-      const glm::vec3 p(corner & 1 ? bounds.max.x : bounds.min.x, corner & 2 ? bounds.max.y : bounds.min.y,
-                        corner & 4 ? bounds.max.z : bounds.min.z);
+      const glm::vec3 p(corner & 1 ? bounds_.max.x : bounds_.min.x, corner & 2 ? bounds_.max.y : bounds_.min.y,
+                        corner & 4 ? bounds_.max.z : bounds_.min.z);
       far = std::max(far, glm::length(p - frame.camera.eye) * 1.01f);
     }
   }
   const glm::mat4 view = glm::lookAt(frame.camera.eye, frame.camera.lookAt, frame.camera.up);
-  // near = far / 1000 keeps 24-bit depth fine enough to separate surfaces a
-  // thousandth of the scene's depth apart at its far end (a mirror 1 cm in
-  // front of a wall 10 m away); what is nearer to the eye than far / 1000 is clipped.
-  const glm::mat4 projection = glm::perspective(glm::radians(frame.camera.fovY),
-                                                static_cast<float>(frame.width) / static_cast<float>(frame.height),
-                                                far * 1e-3f, far);
-  return projection * view;
+  // The near plane only clips (what is nearer to the eye than far / 1000);
+  // depth itself is written linear by the shaders.
+  const glm::mat4 perspective = glm::perspective(glm::radians(frame.camera.fovY),
+                                                 static_cast<float>(frame.width) / static_cast<float>(frame.height),
+                                                 far * 1e-3f, far);
+  return {perspective * view, far};
 }
 
-void RasterScene::setUniforms(unsigned program, const FrameSettings& frame, const glm::mat4& viewProjection) {
+void RasterScene::setUniforms(unsigned program, const FrameSettings& frame, const Projection& projection) {
   gl_.UseProgram(program);
   const auto at = [&](const char* name) { return gl_.GetUniformLocation(program, name); };
-  gl_.UniformMatrix4fv(at("uViewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
+  gl_.UniformMatrix4fv(at("uViewProjection"), 1, GL_FALSE, glm::value_ptr(projection.viewProjection));
+  gl_.Uniform1f(at("uFar"), projection.far);
   gl_.Uniform3fv(at("uEye"), 1, glm::value_ptr(frame.camera.eye));
   gl_.Uniform1f(at("uExposureScale"), Encoder(frame.output).scale());
   gl_.Uniform1i(at("uSrgb"), frame.output.encoding == Encoding::kSrgb ? 1 : 0);
@@ -288,7 +287,7 @@ void RasterScene::draw(const FrameSettings& frame, const MaskSettings& mask) {
   gl_.DepthFunc(GL_LESS);
   gl_.Enable(GL_STENCIL_TEST);
   gl_.StencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);  // the visible object's flag wins
-  const glm::mat4 vp = viewProjection(frame);
+  const Projection vp = projection(frame);
   for (int spheres = 0; spheres < 2; ++spheres) {
     for (int traced = 0; traced < 2; ++traced) {
       bool uniformsSet = false;

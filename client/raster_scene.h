@@ -6,6 +6,7 @@
 #include <glm/mat4x4.hpp>
 
 #include "client/gl_api.h"
+#include "common/bounds.h"
 #include "common/scene.h"
 
 namespace glint::gl {
@@ -38,8 +39,15 @@ class RasterScene {
   void uploadMeshes();
   void uploadSpheres();
   void uploadTextures();
-  void setUniforms(unsigned program, const FrameSettings& frame, const glm::mat4& viewProjection);
-  glm::mat4 viewProjection(const FrameSettings& frame) const;
+  // The frame's view and projection, and its far plane: depth is written as
+  // the distance from the eye / far (linear, exact per fragment), so that
+  // depth precision does not fall with distance as the projection's does.
+  struct Projection {
+    glm::mat4 viewProjection;
+    float far;
+  };
+  void setUniforms(unsigned program, const FrameSettings& frame, const Projection& projection);
+  Projection projection(const FrameSettings& frame) const;
 
   const Api& gl_;
   const Scene& scene_;
@@ -47,6 +55,7 @@ class RasterScene {
   unsigned atlas_ = 0;
   std::vector<float> textureRows_;  // atlas row of each texture
   std::vector<Batch> batches_;
+  Bounds3 bounds_;  // every primitive's, for the far plane
 };
 
 }  // namespace glint::gl

@@ -18,9 +18,9 @@ std::string fragmentPrelude() {
 // which mirrors Encoder::byte before the rounding.
 const char* const kFragmentShading = R"(
 uniform vec3 uEye;
+uniform float uFar;            // depth = distance from the eye / uFar (RasterScene::Projection)
 uniform float uExposureScale;  // 2^exposure
 uniform bool uSrgb;
-uniform mat4 uViewProjection;
 uniform int uLightCount;
 uniform vec3 uLightPosition[MAX_LIGHTS];
 uniform vec3 uLightColor[MAX_LIGHTS];
@@ -131,6 +131,7 @@ in vec2 vUv;
 flat in vec3 vFaceNormal;
 flat in int vMaterial;
 void main() {
+  gl_FragDepth = length(vPosition - uEye) / uFar;
 #ifdef TRACED
   fragColor = vec4(0.0, 0.0, 0.0, 1.0);
 #else
@@ -180,8 +181,7 @@ void main() {
   vec3 p = uEye + t * d;
   vec3 n = normalize(p - vSphere.xyz);
   p = vSphere.xyz + vSphere.w * n;
-  vec4 clip = uViewProjection * vec4(p, 1.0);
-  gl_FragDepth = clip.z / clip.w * 0.5 + 0.5;
+  gl_FragDepth = length(p - uEye) / uFar;
 #ifdef TRACED
   fragColor = vec4(0.0, 0.0, 0.0, 1.0);
 #else
