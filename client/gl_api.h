@@ -66,11 +66,27 @@ namespace glint::gl {
   X(TexImage2D)                                    \
   X(TexParameteri)                              \
   X(ActiveTexture)                              \
-  X(DeleteTextures)
+  X(DeleteTextures)                            \
+  X(GetIntegerv)                                \
+  X(GenFramebuffers)                        \
+  X(BindFramebuffer)                        \
+  X(DeleteFramebuffers)                  \
+  X(CheckFramebufferStatus)          \
+  X(GenRenderbuffers)                      \
+  X(BindRenderbuffer)                      \
+  X(DeleteRenderbuffers)                \
+  X(RenderbufferStorageMultisample) \
+  X(FramebufferRenderbuffer)        \
+  X(BlitFramebuffer)
+
+// Entry points beyond OpenGL 3.3, used where the driver has them (null
+// where it has not): per-sample shading (4.0) for the raster's anti-aliasing.
+#define GLINT_GL_OPTIONAL_FUNCTIONS(X) X(MinSampleShading)
 
 struct Api {
 #define GLINT_GL_MEMBER(name) decltype(&::gl##name) name = nullptr;
   GLINT_GL_FUNCTIONS(GLINT_GL_MEMBER)
+  GLINT_GL_OPTIONAL_FUNCTIONS(GLINT_GL_MEMBER)
 #undef GLINT_GL_MEMBER
 };
 

@@ -104,6 +104,13 @@ void renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
     readPixels(gl, whole, h, GL_STENCIL_INDEX, 1, result.mask);
   }
   result.times.readbackMs = msSince(readStart);
+  // The raster's colour again, anti-aliased, where the frame takes several
+  // samples (the stencil mask stays the pixel centre's).
+  if (mask.rule != MaskRule::kAll) {
+    const Clock::time_point antialiasStart = Clock::now();
+    raster.drawAntialiased(frame);
+    result.times.rasterMs += msSince(antialiasStart);
+  }
 
   const std::vector<TileJob> jobs = maskedTiles(result.mask, w, window, tileSize, result.maskedPixels);
   result.tiles = static_cast<int>(jobs.size());

@@ -6,6 +6,7 @@
 #include <glm/mat4x4.hpp>
 
 #include "client/gl_api.h"
+#include "client/multisample_target.h"
 #include "common/bounds.h"
 #include "common/scene.h"
 
@@ -25,6 +26,13 @@ class RasterScene {
   RasterScene& operator=(const RasterScene&) = delete;
 
   void draw(const FrameSettings& frame, const MaskSettings& mask);
+  // With more than one sample a pixel, draws the frame again multisampled
+  // (up to what GL offers), every object shaded (an edge next to a masked
+  // object blends in GL's estimate of it, not black), and resolves it into
+  // the default framebuffer's colour; the stencil and depth of draw() stay.
+  // The masked pixels are replaced by the tracer's afterwards either way.
+  // False when the frame has one sample or GL offers no multisampling.
+  bool drawAntialiased(const FrameSettings& frame);
 
  private:
   struct Batch {
@@ -47,6 +55,9 @@ class RasterScene {
     float far;
   };
   void setUniforms(unsigned program, const FrameSettings& frame, const Projection& projection);
+  // Every batch; masked materials with the programs that shade nothing,
+  // except in the anti-aliased pass, which shades every object.
+  void drawBatches(const FrameSettings& frame, const MaskSettings& mask, bool antialiased);
   Projection projection(const FrameSettings& frame) const;
 
   const Api& gl_;
@@ -56,6 +67,7 @@ class RasterScene {
   std::vector<float> textureRows_;  // atlas row of each texture
   std::vector<Batch> batches_;
   Bounds3 bounds_;  // every primitive's, for the far plane
+  MultisampleTarget multisample_;
 };
 
 }  // namespace glint::gl
