@@ -30,7 +30,8 @@ constexpr const char* kRenderHelp =
     "whatever --threads and --tile-size are.";
 constexpr const char* kViewHelp =
     "Open a window on a scene: the hybrid frame, live. Left drag orbits, right drag pans, the wheel "
-    "zooms; M cycles the mask rule (auto, all, none), O shows the mask, Q or Escape closes.";
+    "zooms; M cycles the mask rule (auto, all, none), O shows the mask, Q or Escape closes. While the camera "
+    "moves each frame is a one-sample preview; at rest the scene's samples follow. The window may be resized.";
 
 void parseSize(const std::string& text, std::optional<int>& width, std::optional<int>& height) {
   static const std::regex pattern(R"((\d+)x(\d+))");

@@ -36,8 +36,18 @@ struct Controls {
   bool panning = false;
   double lastX = 0.0;
   double lastY = 0.0;
-  bool changed = true;
+  bool changed = true;  // the camera, the mask rule, an overlay or the size: a new preview
 };
+
+// While the camera moves, each frame is a preview: one sample at each
+// pixel's centre (cheap, and without the raster's second, multisampled
+// pass); once it stops, the frame with the scene's samples, equal to
+// `glint render`'s.
+FrameSettings previewOf(FrameSettings frame) {
+  frame.sampling.samples = 1;
+  frame.sampling.pattern = SamplePattern::kRegular;
+  return frame;
+}
 
 void orbit(CameraSpec& c, float yaw, float pitch) {
   glm::vec3 offset = c.eye - c.lookAt;
@@ -142,10 +152,11 @@ std::string whereLabel(TileBackend& backend, bool missing) {
 // same way says nothing new); then the overlays and the title. Returns
 // whether tiles are missing.
 bool showFrame(GLFWwindow* window, const gl::Api& api, gl::RasterScene& raster, TileBackend& backend,
-               const Controls& controls, int tileSize, HybridResult& last, std::string& reported) {
+               const Controls& controls, int tileSize, bool preview, HybridResult& last, std::string& reported) {
   FrameSettings frame = backend.scene().frame;
   glfwGetFramebufferSize(window, &frame.width, &frame.height);
   frame.camera = controls.camera;
+  if (preview) frame = previewOf(frame);
   MaskSettings mask = backend.scene().mask;
   mask.rule = controls.rule;
   bool missing = false;
@@ -167,8 +178,9 @@ bool showFrame(GLFWwindow* window, const gl::Api& api, gl::RasterScene& raster, 
   glfwSwapBuffers(window);
   char title[320];
   std::snprintf(title, sizeof title,
-                "glint view  |  mask %s%s  |  frame %.0f ms: raster %.0f, read %.0f, RT %.0f, compose %.0f  |  %s",
-                std::string(enumWord(controls.rule)).c_str(), controls.overlay ? " (shown)" : "", last.times.totalMs,
+                "glint view  |  mask %s%s  |  %s %.0f ms: raster %.0f, read %.0f, RT %.0f, compose %.0f  |  %s",
+                std::string(enumWord(controls.rule)).c_str(), controls.overlay ? " (shown)" : "",
+                preview ? "preview, 1 spp" : "frame", last.times.totalMs,
                 last.times.rasterMs, last.times.readbackMs, last.times.traceMs, last.times.composeMs,
                 whereLabel(backend, missing).c_str());
   glfwSetWindowTitle(window, title);
@@ -195,7 +207,7 @@ void runView(const ViewOptions& options) {
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_COMPAT_PROFILE);
   glfwWindowHint(GLFW_STENCIL_BITS, 8);
   glfwWindowHint(GLFW_DEPTH_BITS, 24);
-  glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
+  glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
   GLFWwindow* window = glfwCreateWindow(loaded.scene.frame.width, loaded.scene.frame.height, "glint view", nullptr, nullptr);
   if (!window) throw InputError("glint view: cannot open an OpenGL 3.3 compatibility window");
   glfwMakeContextCurrent(window);
@@ -211,20 +223,30 @@ void runView(const ViewOptions& options) {
   controls.rule = scene.mask.rule;
   glfwSetWindowUserPointer(window, &controls);
   installCallbacks(window);
+  glfwSetFramebufferSizeCallback(window, [](GLFWwindow* w, int, int) { controlsOf(w).changed = true; });
 
   constexpr double kRetrySeconds = 1.0;  // with no server left, a new frame this often
+  const bool progressive = scene.frame.sampling.samples > 1;
   int frames = 0;
   double retryAt = 0.0;
-  HybridResult last;  // the latest frame; reused by the next
+  bool refine = false;  // a preview is shown; the full frame is owed once the camera rests
+  HybridResult last;    // the latest frame; reused by the next
   std::string reported;
   while (!glfwWindowShouldClose(window)) {
-    if (controls.changed || options.frames > 0 || (retryAt > 0.0 && glfwGetTime() >= retryAt)) {
+    const bool moved = controls.changed;
+    if (moved || refine || options.frames > 0 || (retryAt > 0.0 && glfwGetTime() >= retryAt)) {
       controls.changed = false;
-      const bool missing = showFrame(window, api, raster, backend, controls, options.tileSize, last, reported);
+      const bool preview = progressive && moved;
+      const bool missing = showFrame(window, api, raster, backend, controls, options.tileSize, preview, last, reported);
+      refine = preview;
       retryAt = missing ? glfwGetTime() + kRetrySeconds : 0.0;
       if (options.frames > 0 && ++frames >= options.frames) break;
     }
-    glfwWaitEventsTimeout(0.1);
+    if (refine) {
+      glfwPollEvents();  // the full frame comes next unless the camera moved meanwhile
+    } else {
+      glfwWaitEventsTimeout(0.1);
+    }
   }
   if (!options.screenshot.empty()) writePng(options.screenshot, last.image);
   glfwDestroyWindow(window);

@@ -112,6 +112,8 @@ TEST_F(Cli, HybridRenderWritesImageMaskAndStepTimes) {
 
 // glint view in a real window (an X server in memory, Xvfb) shows exactly the
 // frame glint render writes.
+// The view converges to glint render's frame; its preview is the one-sample
+// frame.
 TEST_F(Cli, ViewShowsTheSameFrameAsRender) {
   if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed";
   const std::string args = scene("room.json") + " --size 160x120";
@@ -124,6 +126,14 @@ TEST_F(Cli, ViewShowsTheSameFrameAsRender) {
   const std::string renderBytes((std::istreambuf_iterator<char>(b)), std::istreambuf_iterator<char>());
   EXPECT_FALSE(viewBytes.empty());
   EXPECT_EQ(viewBytes, renderBytes);
+
+  // The view's first frame (the camera has just "moved") is the one-sample
+  // preview: glint render's frame at one sample a pixel, at its centre.
+  const Result preview = glint("view " + args + " --frames 1 --screenshot " + path("preview.png"), "xvfb-run -a ");
+  ASSERT_EQ(preview.status, 0) << preview.output;
+  ASSERT_EQ(glint("render " + args + " -o " + path("one.png") + " -q --samples 1 --pattern regular").status, 0);
+  EXPECT_EQ(decodePng(path("preview.png")).rgb, decodePng(path("one.png")).rgb);
+  EXPECT_NE(decodePng(path("preview.png")).rgb, decodePng(path("render.png")).rgb);
 }
 
 // Through two glintd, the view shows the same frame; with no server at all it
