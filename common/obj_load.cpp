@@ -1,7 +1,8 @@
 #include "common/obj_load.h"
 
+#include <array>
 #include <map>
-#include <sstream>
+#include <unordered_map>
 #include <tuple>
 
 #include <tiny_obj_loader.h>
@@ -13,19 +14,18 @@ namespace glint {
 namespace {
 
 // The first "mtllib NAME" of the file, or "" (tinyobjloader's string parser
-// ignores mtllib, so the loader reads the library itself).
+// ignores mtllib, so the loader reads the library itself). Found with find()
+// rather than line by line: a large mesh's text is tens of megabytes.
 std::string mtllibName(const std::string& text) {
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream words(line);
-    std::string keyword;
-    if (words >> keyword && keyword == "mtllib") {
-      std::string name;
-      std::getline(words >> std::ws, name);
-      while (!name.empty() && (name.back() == '\r' || name.back() == ' ')) name.pop_back();
-      return name;
-    }
+  for (std::size_t at = text.find("mtllib"); at != std::string::npos; at = text.find("mtllib", at + 6)) {
+    const std::size_t lineStart = text.find_last_not_of(" \t", at == 0 ? std::string::npos : at - 1);
+    if (at != 0 && lineStart != std::string::npos && text[lineStart] != '\n' && text[lineStart] != '\r') continue;
+    if (at + 6 < text.size() && text[at + 6] != ' ' && text[at + 6] != '\t') continue;
+    const std::size_t start = text.find_first_not_of(" \t", at + 6);
+    if (start == std::string::npos) return "";
+    std::string name = text.substr(start, text.find_first_of("\r\n", start) - start);
+    while (!name.empty() && (name.back() == ' ' || name.back() == '\t')) name.pop_back();
+    return name;
   }
   return "";
 }
@@ -53,11 +53,6 @@ Material toMaterial(const tinyobj::material_t& m) {
   if (mtlReflects(m.illum)) out.reflectivity = std::clamp(mean(m.specular), 0.0f, 1.0f);
   return out;
 }
-
-struct VertexKey {
-  int v, n, t;
-  auto operator<=>(const VertexKey&) const = default;
-};
 
 // Why a text cannot be an OBJ at all, or "".
 std::string notObjText(const std::string& text) {
@@ -128,36 +123,35 @@ void readMaterials(const tinyobj::ObjReader& reader, FileSource& files, const st
 }
 
 // The faces of one material become one mesh; a corner (position, normal, uv)
-// seen before reuses its vertex.
+// seen before in that material reuses its vertex, so vertices come in the
+// order their first corners do. Most positions are only ever used one way
+// (one material, one normal, one uv): the first use of each position is
+// kept in an array indexed by it, and only other uses go to a hash map
+// (the ordered map this replaced took two thirds of a large OBJ's load).
 class FaceGrouper {
  public:
-  explicit FaceGrouper(const tinyobj::attrib_t& attrib) : attrib_(attrib) {}
+  explicit FaceGrouper(const tinyobj::attrib_t& attrib) : attrib_(attrib), first_(attrib.vertices.size() / 3) {}
 
   // False when the corner refers to data the file does not have.
   bool addCorner(int material, const tinyobj::index_t& idx) {
-    if (idx.vertex_index < 0 || static_cast<std::size_t>(idx.vertex_index) >= attrib_.vertices.size() / 3 ||
+    if (idx.vertex_index < 0 || static_cast<std::size_t>(idx.vertex_index) >= first_.size() ||
         idx.normal_index >= static_cast<int>(attrib_.normals.size() / 3) ||
         idx.texcoord_index >= static_cast<int>(attrib_.texcoords.size() / 2)) {
       return false;
     }
-    MeshInput& group = groups_[material];
-    const VertexKey key{idx.vertex_index, idx.normal_index, idx.texcoord_index};
-    auto [it, inserted] = vertexMaps_[material].try_emplace(key, static_cast<std::uint32_t>(group.positions.size()));
-    if (inserted) {
-      const auto v = static_cast<std::size_t>(idx.vertex_index);
-      group.positions.emplace_back(attrib_.vertices[3 * v], attrib_.vertices[3 * v + 1], attrib_.vertices[3 * v + 2]);
-      const auto n = static_cast<std::size_t>(std::max(idx.normal_index, 0));
-      group.normals.push_back(idx.normal_index >= 0 ? glm::vec3(attrib_.normals[3 * n], attrib_.normals[3 * n + 1],
-                                                                attrib_.normals[3 * n + 2])
-                                                    : glm::vec3(0.0f));
-      const auto t = static_cast<std::size_t>(std::max(idx.texcoord_index, 0));
-      group.uvs.push_back(idx.texcoord_index >= 0
-                              ? glm::vec2(attrib_.texcoords[2 * t], attrib_.texcoords[2 * t + 1])
-                              : glm::vec2(0.0f));
-      auto [c, fresh] = complete_.try_emplace(material, true);
-      c->second = c->second && idx.normal_index >= 0;
+    Group& group = groupOf(material);
+    const auto next = static_cast<std::uint32_t>(group.mesh.positions.size());
+    FirstUse& first = first_[static_cast<std::size_t>(idx.vertex_index)];
+    std::uint32_t index = next;
+    if (first.material == kUnused) {
+      first = {material, idx.normal_index, idx.texcoord_index, next};
+    } else if (first.material == material && first.normal == idx.normal_index && first.uv == idx.texcoord_index) {
+      index = first.index;
+    } else {
+      index = others_.try_emplace({material, idx.vertex_index, idx.normal_index, idx.texcoord_index}, next).first->second;
     }
-    group.indices.push_back(it->second);
+    if (index == next) addVertex(group, idx);
+    group.mesh.indices.push_back(index);
     return true;
   }
 
@@ -165,18 +159,61 @@ class FaceGrouper {
   // from the faces instead.
   void finish(MeshModel& model) {
     for (auto& [mat, group] : groups_) {
-      if (!complete_[mat]) group.normals.clear();
-      group.material = static_cast<std::uint32_t>(mat);
-      model.meshes.push_back(std::move(group));
+      if (!group.complete) group.mesh.normals.clear();
+      group.mesh.material = static_cast<std::uint32_t>(mat);
+      model.meshes.push_back(std::move(group.mesh));
     }
   }
   bool uses(int material) const { return groups_.count(material) > 0; }
 
  private:
+  static constexpr int kUnused = -2;  // materials are >= 0
+  struct FirstUse {
+    int material = kUnused;
+    int normal = 0;
+    int uv = 0;
+    std::uint32_t index = 0;
+  };
+  struct Group {
+    MeshInput mesh;
+    bool complete = true;  // every corner has a normal
+  };
+  struct KeyHash {
+    std::size_t operator()(const std::array<int, 4>& k) const {
+      std::size_t h = 0;
+      for (const int v : k) h = h * 0x9E3779B97F4A7C15ull + static_cast<std::size_t>(static_cast<unsigned>(v));
+      return h;
+    }
+  };
+
+  Group& groupOf(int material) {
+    if (material != lastMaterial_ || !last_) {
+      last_ = &groups_[material];
+      lastMaterial_ = material;
+    }
+    return *last_;
+  }
+
+  void addVertex(Group& group, const tinyobj::index_t& idx) {
+    MeshInput& mesh = group.mesh;
+    const auto v = static_cast<std::size_t>(idx.vertex_index);
+    mesh.positions.emplace_back(attrib_.vertices[3 * v], attrib_.vertices[3 * v + 1], attrib_.vertices[3 * v + 2]);
+    const auto n = static_cast<std::size_t>(std::max(idx.normal_index, 0));
+    mesh.normals.push_back(idx.normal_index >= 0 ? glm::vec3(attrib_.normals[3 * n], attrib_.normals[3 * n + 1],
+                                                             attrib_.normals[3 * n + 2])
+                                                 : glm::vec3(0.0f));
+    const auto t = static_cast<std::size_t>(std::max(idx.texcoord_index, 0));
+    mesh.uvs.push_back(idx.texcoord_index >= 0 ? glm::vec2(attrib_.texcoords[2 * t], attrib_.texcoords[2 * t + 1])
+                                               : glm::vec2(0.0f));
+    group.complete = group.complete && idx.normal_index >= 0;
+  }
+
   const tinyobj::attrib_t& attrib_;
-  std::map<int, MeshInput> groups_;
-  std::map<int, std::map<VertexKey, std::uint32_t>> vertexMaps_;
-  std::map<int, bool> complete_;  // every corner has a normal
+  std::vector<FirstUse> first_;  // by position index
+  std::unordered_map<std::array<int, 4>, std::uint32_t, KeyHash> others_;  // (material, v, n, t) -> vertex
+  std::map<int, Group> groups_;  // by material; its nodes stay put, so last_ stays valid
+  Group* last_ = nullptr;
+  int lastMaterial_ = kUnused;
 };
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -31,8 +32,14 @@
 #include "tests/bench/bench_scenes.h"
 #include "tests/bench/distributed_section.h"
 #include "tests/bench/load_section.h"
+#include "tests/bench/mesh_file_section.h"
 
 namespace glint::bench {
+
+// The sections, in the order they run (all by default).
+constexpr std::array<const char*, 8> kSections{"bvh",    "room", "accuracy",    "protocol",
+                                               "hybrid", "load", "distributed", "meshfile"};
+
 namespace {
 
 struct Options {
@@ -41,19 +48,9 @@ struct Options {
   bool povray = true;
   int runs = 7;
   int tileSize = 64;
-  std::vector<std::string> sections = {"bvh", "room", "accuracy", "protocol", "hybrid", "load", "distributed"};
+  std::vector<std::string> sections{kSections.begin(), kSections.end()};
   bool wants(const std::string& s) const { return std::find(sections.begin(), sections.end(), s) != sections.end(); }
 };
-
-double medianMs(int runs, const std::function<void()>& work) {
-  std::vector<double> ms;
-  for (int i = 0; i < runs; ++i) {
-    const Clock::time_point start = Clock::now();
-    work();
-    ms.push_back(msSince(start));
-  }
-  return median(std::move(ms));
-}
 
 struct BvhResult {
   double buildMs;
@@ -351,9 +348,11 @@ int main(int argc, char** argv) {
   bool noPovray = false;
   app.add_flag("--no-povray", noPovray, "Skip the POV-Ray comparison");
   app.add_option("--tile-size", o.tileSize, "Tile edge for the glintd comparison")->check(CLI::Range(8, 1024));
-  app.add_option("--sections", o.sections, "Sections to run: bvh, room, accuracy, protocol, hybrid, load, distributed (default: all)")
+  std::string sectionList;
+  for (const char* s : bench::kSections) sectionList += (sectionList.empty() ? "" : ", ") + std::string(s);
+  app.add_option("--sections", o.sections, "Sections to run: " + sectionList + " (default: all)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"bvh", "room", "accuracy", "protocol", "hybrid", "load", "distributed"}));
+      ->check(CLI::IsMember(std::vector<std::string>(bench::kSections.begin(), bench::kSections.end())));
   CLI11_PARSE(app, argc, argv);
   o.povray = !noPovray;
   if (o.quick) o.runs = 1;
@@ -372,6 +371,7 @@ int main(int argc, char** argv) {
     if (o.wants("hybrid")) bench::hybridSection(o);
     if (o.wants("load")) bench::loadSection(o.scenes, o.quick);
     if (o.wants("distributed")) bench::distributedSection(o.scenes, o.quick);
+    if (o.wants("meshfile")) bench::meshFileSection(o.quick, o.runs);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "glint-bench: %s\n", e.what());
     return 1;

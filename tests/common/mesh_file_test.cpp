@@ -76,6 +76,45 @@ TEST(MeshFile, BackslashPathsAndMissingFilesAreWarningsOnce) {
   EXPECT_EQ(named("objects[0]:gone").color, glm::vec3(0, 0, 1));
 }
 
+// A corner reuses the vertex of an earlier corner of the same material with
+// the same position, normal and uv, and only that; vertices come in the
+// order of their first corners; a material with a corner lacking a normal
+// gets face normals (none stored).
+TEST(MeshFile, CornersShareVerticesOnlyWhereAllTheyNameIsTheSame) {
+  MemorySource files;
+  files.add("m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nvt 0 0\nvt 1 0\nvt 1 1\n"
+                     "vn 0 0 1\nvn 0 1 0\nusemtl a\nf 1/1/1 2/2/1 3/3/1\nf 1/1/2 3/3/2 4/2/2\nusemtl b\n"
+                     "f 1/1/1 2/2/1 5/3/1\nf 3 4 5\nusemtl a\nf 2/2/1 3/3/1 5/1/1\n");
+  files.add("m.mtl", "newmtl a\nKd 1 0 0\nnewmtl b\nKd 0 1 0\n");
+  const Scene s = loadScene(sceneWith({meshFile("m.obj")}), files);
+  ASSERT_EQ(s.geometry.triangles().size(), 5u);
+  const auto corners = [&s](std::size_t t) {
+    const auto& v = s.geometry.triangles()[t].v;
+    return std::vector<std::uint32_t>{v[0], v[1], v[2]};
+  };
+  // Material a's mesh first (7 vertices: 1/1/1 and 1/1/2 differ by normal),
+  // then b's (6), in the geometry's shared vertex list.
+  EXPECT_EQ(corners(0), (std::vector<std::uint32_t>{0, 1, 2}));
+  EXPECT_EQ(corners(1), (std::vector<std::uint32_t>{3, 4, 5}));
+  EXPECT_EQ(corners(2), (std::vector<std::uint32_t>{1, 2, 6}));
+  EXPECT_EQ(corners(3), (std::vector<std::uint32_t>{7, 8, 9}));
+  EXPECT_EQ(corners(4), (std::vector<std::uint32_t>{10, 11, 12}));
+  EXPECT_EQ(s.geometry.positions().size(), 13u);
+  EXPECT_EQ(s.geometry.normals()[3], glm::vec3(0, 1, 0));
+  EXPECT_EQ(s.geometry.normals()[7], glm::vec3(0));  // b lacks some normals: face normals
+}
+
+// The material library is the first mtllib line: after a comment naming
+// another, indented, with Windows line ends.
+TEST(MeshFile, MtllibIsFoundAsExportersWriteIt) {
+  MemorySource files;
+  files.add("m.obj", std::string("# mtllib wrong.mtl\r\n  mtllib  right.mtl  \r\n") + kSquare + "usemtl red\r\nf 1 2 3\r\n");
+  files.add("right.mtl", "newmtl red\nKd 1 0 0\n");
+  const Scene s = loadScene(sceneWith({meshFile("m.obj")}), files);
+  EXPECT_TRUE(s.warnings.empty());
+  EXPECT_EQ(s.materials[s.geometry.materialOf(0)].color, glm::vec3(1, 0, 0));
+}
+
 TEST(MeshFile, ReflectiveIlluminationModelsGiveReflectivity) {
   MemorySource files;
   files.add("a.obj", std::string("mtllib a.mtl\n") + kSquare + "usemtl shiny\nf 1 2 3\nusemtl matte\nf 1 3 4\n");

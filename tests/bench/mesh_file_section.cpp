@@ -1,0 +1,78 @@
+#include "tests/bench/mesh_file_section.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <vector>
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <tiny_obj_loader.h>
+
+#include "common/file_source.h"
+#include "common/obj_load.h"
+#include "common/timing.h"
+
+namespace glint::bench {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A sphere of n x n quads (2 n^2 triangles), its radius rippled.
+void writeSphere(const fs::path& path, int n) {
+  std::ofstream out(path);
+  char line[96];
+  for (int i = 0; i <= n; ++i) {
+    const double theta = M_PI * i / n;
+    for (int j = 0; j < n; ++j) {
+      const double phi = 2 * M_PI * j / n, r = 1 + 0.05 * std::sin(7 * theta) * std::cos(9 * phi);
+      std::snprintf(line, sizeof line, "v %.6f %.6f %.6f\n", r * std::sin(theta) * std::cos(phi), r * std::cos(theta),
+                    r * std::sin(theta) * std::sin(phi));
+      out << line;
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const int a = i * n + j + 1, b = i * n + (j + 1) % n + 1, c = a + n, d = b + n;
+      out << "f " << a << ' ' << c << ' ' << b << "\nf " << b << ' ' << c << ' ' << d << '\n';
+    }
+  }
+}
+
+}  // namespace
+
+void meshFileSection(bool quick, int runs) {
+  const int n = quick ? 100 : 700;
+  const fs::path dir = fs::temp_directory_path() / "glint-bench-meshfile";
+  fs::create_directories(dir);
+  writeSphere(dir / "sphere.obj", n);
+  const auto bytes = fs::file_size(dir / "sphere.obj");
+  std::size_t triangles = 0;
+  const double glint = medianMs(runs, [&] {
+    DirectorySource files(dir, std::size_t{1} << 30);
+    SceneBudget budget;
+    triangles = loadObj(files, "sphere.obj", "bench", budget, true).meshes.at(0).indices.size() / 3;
+  });
+  const double parse = medianMs(runs, [&] {
+    tinyobj::ObjReaderConfig config;
+    config.triangulate = true;
+    tinyobj::ObjReader reader;
+    reader.ParseFromFile((dir / "sphere.obj").string(), config);
+  });
+  const double assimp = medianMs(runs, [&] {
+    Assimp::Importer importer;
+    importer.ReadFile((dir / "sphere.obj").string(), aiProcess_Triangulate);
+  });
+  std::printf("\n## Reading a mesh file: %zu triangles, %.1f MB OBJ, median of %d\n\n", triangles,
+              static_cast<double>(bytes) / 1e6, runs);
+  std::printf("| reader | ms | Glint's / this |\n|---|---:|---:|\n");
+  std::printf("| Glint loadObj (parse + vertices grouped) | %.0f | 1.00 |\n", glint);
+  std::printf("| tinyobjloader parse alone | %.0f | %.2f |\n", parse, glint / parse);
+  std::printf("| Assimp 5.2, triangulate (a vertex per corner) | %.0f | %.2f |\n", assimp, glint / assimp);
+  fs::remove_all(dir);
+}
+
+}  // namespace glint::bench
