@@ -30,6 +30,9 @@ struct BvhSettings {
   int maxLeafSize = 4;     // a node with at most this many primitives may become a leaf
   int sahBins = 16;        // centroid bins per axis for the SAH
   float traversalCost = 1.0f;  // SAH cost of visiting a node, relative to one primitive test
+  // Threads the build may use (0: one per hardware thread): large subtrees
+  // near the root are built side by side. The tree is the same for any count.
+  int buildThreads = 0;
 };
 
 // One node of the 4-wide tree that traversal walks, 128 bytes. The builder

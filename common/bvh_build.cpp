@@ -4,6 +4,8 @@
 #include <limits>
 #include <optional>
 #include <span>
+#include <thread>
+#include <vector>
 
 #include "common/bvh.h"
 
@@ -18,53 +20,97 @@ struct BinaryNode {
   std::uint32_t count = 0;   // leaf: primitives; interior: 0 (the first child is the next node)
 };
 
+// A binary tree (or subtree) as built: its nodes depth-first, its leaves'
+// primitive ids, and its depth. Offsets count from its own start.
+struct BinaryTree {
+  std::vector<BinaryNode> nodes;
+  std::vector<std::uint32_t> primIds;
+  int depth = 0;
+
+  // Appends `other` (built on its own) after this tree's nodes and ids, as
+  // if it had been built here: its offsets move by what comes before it.
+  void append(const BinaryTree& other) {
+    const auto nodeBase = static_cast<std::uint32_t>(nodes.size());
+    const auto primBase = static_cast<std::uint32_t>(primIds.size());
+    for (BinaryNode node : other.nodes) {
+      node.offset += node.count > 0 ? primBase : nodeBase;
+      nodes.push_back(node);
+    }
+    primIds.insert(primIds.end(), other.primIds.begin(), other.primIds.end());
+    depth = std::max(depth, other.depth);
+  }
+};
+
+// Subtrees of at least this many primitives near the root are built on a
+// thread of their own (the second child's; the first stays on the caller's):
+// the same splits, and, appended in order, the same tree as one thread builds.
+constexpr std::size_t kParallelSubtree = 4096;
+
 }  // namespace
 
 // Builds the binary tree depth-first (a node is appended, its first child
-// follows it, and the second child's index is patched in afterwards), then
-// collapses it into 4-wide nodes.
+// follows it, and the second child's index is patched in afterwards), large
+// subtrees near the root on threads of their own, then collapses it into
+// 4-wide nodes.
 class BvhBuilderImpl {
  public:
-  BvhBuilderImpl(Bvh& bvh, const BvhSettings& settings) : bvh_(bvh), settings_(settings) {}
+  BvhBuilderImpl(Bvh& bvh, const BvhSettings& settings) : bvh_(bvh), settings_(settings) {
+    const unsigned threads = settings.buildThreads > 0 ? static_cast<unsigned>(settings.buildThreads)
+                                                       : std::max(1u, std::thread::hardware_concurrency());
+    forkLevels_ = static_cast<int>(std::bit_width(threads)) - 1;
+  }
 
   void build(std::span<BuildPrimitive> prims) {
-    binary_.reserve(2 * prims.size() / std::max(1, settings_.maxLeafSize) + 1);
-    split(prims, 0);
+    BinaryTree tree;
+    tree.nodes.reserve(2 * prims.size() / std::max(1, settings_.maxLeafSize) + 1);
+    tree.primIds.reserve(prims.size());
+    split(prims, 0, tree);
+    binary_ = std::move(tree.nodes);
+    bvh_.primIds_ = std::move(tree.primIds);
+    bvh_.depth_ = tree.depth;
     bvh_.nodes_.reserve(binary_.size() / 3 + 1);
     collapse(0);
   }
 
  private:
-  void split(std::span<BuildPrimitive> prims, int depth) {
-    bvh_.depth_ = std::max(bvh_.depth_, depth + 1);
-    const auto nodeIndex = static_cast<std::uint32_t>(binary_.size());
-    binary_.push_back({});
+  void split(std::span<BuildPrimitive> prims, int depth, BinaryTree& out) {
+    out.depth = std::max(out.depth, depth + 1);
+    const auto nodeIndex = static_cast<std::uint32_t>(out.nodes.size());
+    out.nodes.push_back({});
     Bounds3 bounds;
     Bounds3 centroids;
     for (const BuildPrimitive& p : prims) {
       bounds.expand(p.bounds);
       centroids.expand(p.bounds.centre());
     }
-    binary_[nodeIndex].bounds = bounds;
+    out.nodes[nodeIndex].bounds = bounds;
 
     const auto count = static_cast<int>(prims.size());
     std::size_t mid = 0;
     if (count > 1) mid = chooseSplit(prims, bounds, centroids, depth);
     if (mid == 0) {
-      makeLeaf(nodeIndex, prims);
+      makeLeaf(out, nodeIndex, prims);
       return;
     }
-    split(prims.first(mid), depth + 1);
-    const auto second = static_cast<std::uint32_t>(binary_.size());
-    split(prims.subspan(mid), depth + 1);
-    binary_[nodeIndex].offset = second;
+    if (depth < forkLevels_ && prims.size() - mid >= kParallelSubtree && mid >= kParallelSubtree) {
+      BinaryTree second;
+      std::thread worker([&] { split(prims.subspan(mid), depth + 1, second); });
+      split(prims.first(mid), depth + 1, out);
+      worker.join();
+      out.nodes[nodeIndex].offset = static_cast<std::uint32_t>(out.nodes.size());
+      out.append(second);
+      return;
+    }
+    split(prims.first(mid), depth + 1, out);
+    out.nodes[nodeIndex].offset = static_cast<std::uint32_t>(out.nodes.size());
+    split(prims.subspan(mid), depth + 1, out);
   }
 
-  void makeLeaf(std::uint32_t nodeIndex, std::span<BuildPrimitive> prims) {
-    BinaryNode& node = binary_[nodeIndex];
-    node.offset = static_cast<std::uint32_t>(bvh_.primIds_.size());
+  static void makeLeaf(BinaryTree& out, std::uint32_t nodeIndex, std::span<BuildPrimitive> prims) {
+    BinaryNode& node = out.nodes[nodeIndex];
+    node.offset = static_cast<std::uint32_t>(out.primIds.size());
     node.count = static_cast<std::uint32_t>(prims.size());
-    for (const BuildPrimitive& p : prims) bvh_.primIds_.push_back(p.id);
+    for (const BuildPrimitive& p : prims) out.primIds.push_back(p.id);
   }
 
   // Makes the 4-wide node for binary node `index` and, recursively, those
@@ -227,6 +273,7 @@ class BvhBuilderImpl {
   Bvh& bvh_;
   std::vector<BinaryNode> binary_;
   const BvhSettings& settings_;
+  int forkLevels_ = 0;  // levels that fork: log2 of the build threads
 };
 
 Bvh Bvh::build(const Geometry& geometry, const BvhSettings& settings) {
@@ -238,7 +285,6 @@ Bvh Bvh::build(const Geometry& geometry, const BvhSettings& settings) {
     prims.push_back({geometry.primitiveBounds(i), i});
   }
   if (prims.empty()) return bvh;  // traversal of an empty tree finds nothing
-  bvh.primIds_.reserve(prims.size());
   BvhBuilderImpl(bvh, settings).build(prims);
   return bvh;
 }
