@@ -195,12 +195,15 @@ bool ServerLink::sendMissingFiles(const wire::SceneStatus& status) {
       std::min(proto::kFileChunkBytes, maxMessageBytes_ > 2 * kChunkOverhead ? maxMessageBytes_ - kChunkOverhead
                                                                               : kChunkOverhead);
   if (!status.missing()) return true;
+  std::vector<bool> sent(files.size(), false);  // a server asking twice gets a file once
   for (const std::uint32_t i : *status.missing()) {
     if (i >= files.size()) {
       fail(LinkFailure::Kind::kBadBytes, "asked for file " + std::to_string(i) + " of a scene of " +
                                              std::to_string(files.size()) + " files");
       return false;
     }
+    if (sent[i]) continue;
+    sent[i] = true;
     for (auto& chunk : proto::encodeFileChunks(*files[i], chunkBytes)) write(std::move(chunk));
   }
   return true;

@@ -3,6 +3,8 @@
 // that server with a reason that names it, never a crash or a wrong image.
 #include "client/distributed_tile_service.h"
 
+#include <atomic>
+
 #include <gtest/gtest.h>
 
 #include "common/build_identity.h"
@@ -114,6 +116,40 @@ TEST(DistributedTileService, HelloWithoutABodyIsRefused) {
     EXPECT_NE(std::string(e.what()).find("server " + address + ": unreachable, sent a bad message"),
               std::string::npos)
         << e.what();
+  }
+}
+
+// A server that asks for a scene's files sends the client nothing it cannot
+// bound: asking for one file a thousand times gets it once, and asking for
+// a file the scene does not have loses the server, named.
+TEST(DistributedTileService, FilesAskedForTwiceAreSentOnceAndUnknownOnesRefused) {
+  const proto::SceneBundle bundle{"{}", {{"mesh.obj", std::string(5000, 'v')}}};
+  for (const bool unknown : {false, true}) {
+    std::atomic<int> chunks{0};
+    Peer peer([&](asio::ip::tcp::socket& socket) {
+      readFrame(socket);  // Hello
+      send(socket, proto::encodeHello(1 << 20, 1, "fake"));
+      readFrame(socket);  // SceneQuery
+      std::vector<std::uint32_t> missing(1000, 0);
+      if (unknown) missing.push_back(7);
+      send(socket, proto::encodeSceneStatus(bundle.hash(), false, missing));
+      for (std::vector<std::uint8_t> frame = readFrame(socket); !frame.empty(); frame = readFrame(socket)) {
+        const wire::Body type = flatbuffers::GetRoot<wire::Message>(frame.data())->body_type();  // our client's
+        if (type == wire::Body::FileChunk) ++chunks;
+        if (type == wire::Body::SceneUpload) send(socket, proto::encodeSceneReady(bundle.hash(), 1.0f));
+      }
+    });
+    const std::string address = addressOf(peer);
+    try {
+      DistributedTileService service(resolveServers({address}), bundle, quick());
+      EXPECT_FALSE(unknown) << "a server asking for file 7 of 1 was taken";
+    } catch (const InputError& e) {
+      EXPECT_TRUE(unknown) << e.what();
+      EXPECT_NE(std::string(e.what()).find("asked for file 7 of a scene of 1 files"), std::string::npos) << e.what();
+    }
+    if (!unknown) {
+      EXPECT_EQ(chunks.load(), 1);  // counted before SceneReady went out
+    }
   }
 }
 
