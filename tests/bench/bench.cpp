@@ -31,14 +31,15 @@
 #include "server/background_server.h"
 #include "tests/bench/bench_scenes.h"
 #include "tests/bench/distributed_section.h"
+#include "tests/bench/embree_section.h"
 #include "tests/bench/load_section.h"
 #include "tests/bench/mesh_file_section.h"
 
 namespace glint::bench {
 
 // The sections, in the order they run (all by default).
-constexpr std::array<const char*, 8> kSections{"bvh",    "room", "accuracy",    "protocol",
-                                               "hybrid", "load", "distributed", "meshfile"};
+constexpr std::array<const char*, 9> kSections{"bvh",  "room",        "accuracy", "protocol", "hybrid",
+                                               "load", "distributed", "meshfile", "embree"};
 
 namespace {
 
@@ -377,6 +378,7 @@ int main(int argc, char** argv) {
     if (o.wants("load")) bench::loadSection(o.scenes, o.quick);
     if (o.wants("distributed")) bench::distributedSection(o.scenes, o.quick);
     if (o.wants("meshfile")) bench::meshFileSection(o.quick, o.runs);
+    if (o.wants("embree")) bench::embreeSection(o.quick, o.runs);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "glint-bench: %s\n", e.what());
     return 1;
