@@ -277,14 +277,18 @@ void RasterScene::setUniforms(unsigned program, const FrameSettings& frame, cons
   gl_.Uniform1i(at("uAtlas"), 0);
 }
 
-void RasterScene::draw(const FrameSettings& frame, const MaskSettings& mask) {
+void RasterScene::beginPass(const FrameSettings& frame, GLbitfield clear) {
   gl_.Viewport(0, 0, frame.width, frame.height);
   gl_.ClearColor(scene_.background.r, scene_.background.g, scene_.background.b, 1.0f);
   gl_.ClearStencil(0);
   gl_.StencilMask(0xff);
-  gl_.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  gl_.Clear(clear);
   gl_.Enable(GL_DEPTH_TEST);
   gl_.DepthFunc(GL_LESS);
+}
+
+void RasterScene::draw(const FrameSettings& frame, const MaskSettings& mask) {
+  beginPass(frame, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
   gl_.Enable(GL_STENCIL_TEST);
   gl_.StencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);  // the visible object's flag wins
   drawBatches(frame, mask, false);
@@ -292,11 +296,7 @@ void RasterScene::draw(const FrameSettings& frame, const MaskSettings& mask) {
 
 bool RasterScene::drawAntialiased(const FrameSettings& frame) {
   if (frame.sampling.samples < 2 || !multisample_.bind(frame.width, frame.height, frame.sampling.samples)) return false;
-  gl_.Viewport(0, 0, frame.width, frame.height);
-  gl_.ClearColor(scene_.background.r, scene_.background.g, scene_.background.b, 1.0f);
-  gl_.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  gl_.Enable(GL_DEPTH_TEST);
-  gl_.DepthFunc(GL_LESS);
+  beginPass(frame, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   gl_.Disable(GL_STENCIL_TEST);
   drawBatches(frame, MaskSettings{}, true);
   multisample_.resolve();

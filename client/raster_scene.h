@@ -55,6 +55,8 @@ class RasterScene {
     float far;
   };
   void setUniforms(unsigned program, const FrameSettings& frame, const Projection& projection);
+  // The viewport, the background, `clear` cleared, the depth test on.
+  void beginPass(const FrameSettings& frame, GLbitfield clear);
   // Every batch; masked materials with the programs that shade nothing,
   // except in the anti-aliased pass, which shades every object.
   void drawBatches(const FrameSettings& frame, const MaskSettings& mask, bool antialiased);

@@ -136,15 +136,18 @@ void checkOutput(const char* option, const std::string& path, bool image, bool p
   }
 }
 
-void checkOutputs(const RenderOptions& o) {
+// Returns the format -o names.
+OutputFormat checkOutputs(const RenderOptions& o) {
   checkOutput("-o", o.output, true, false);
   checkOutput("--mask-out", o.maskOut, true, true);
   checkOutput("--provenance-out", o.provenanceOut, true, true);
   checkOutput("--stats", o.statsPath, false, false);
-  if (holdsFloats(outputFormat("-o", o.output)) && o.encoding == Encoding::kSrgb) {
+  const OutputFormat format = outputFormat("-o", o.output);
+  if (holdsFloats(format) && o.encoding == Encoding::kSrgb) {
     throw InputError("--encoding srgb: applies to 8-bit output; " + o.output +
                      " holds linear values (give a .png, or drop --encoding)");
   }
+  return format;
 }
 
 // The crop window lies inside the frame.
@@ -197,6 +200,7 @@ struct RenderRun {
   explicit RenderRun(const RenderOptions& o) : options(o) {}
   const RenderOptions& options;
   Clock::time_point start = Clock::now();
+  OutputFormat format = OutputFormat::kPng;  // of -o
   FrameSettings frame;
   EffectPlan plan;
   std::size_t dropped = 0;
@@ -219,7 +223,7 @@ std::optional<LinearImage> renderFrames(const RenderRun& run, TileBackend& backe
   const FrameSettings& frame = run.frame;
   const Scene& scene = backend.scene();
   const bool hybridPath = drawsWithGl(scene, options);
-  const bool linear = !hybridPath && backend.prepared() && holdsFloats(outputFormat("-o", options.output));
+  const bool linear = !hybridPath && backend.prepared() && holdsFloats(run.format);
   std::optional<gl::OffscreenContext> context;
   std::optional<gl::RasterScene> raster;
   if (hybridPath) {
@@ -265,9 +269,10 @@ std::optional<LinearImage> renderFrames(const RenderRun& run, TileBackend& backe
 
 // Writes -o (and --provenance-out). A float output of an 8-bit frame (a
 // hybrid frame, or tiles from servers) holds its values as byte / 255.
-void writeOutputs(const RenderOptions& options, TileBackend& backend, const HybridResult& r,
+void writeOutputs(const RenderRun& run, TileBackend& backend, const HybridResult& r,
                   const std::optional<LinearImage>& linear) {
-  const OutputFormat format = outputFormat("-o", options.output);
+  const RenderOptions& options = run.options;
+  const OutputFormat format = run.format;
   if (holdsFloats(format) && !linear) {
     writeOutput(options.output, format, r.image, fromBytes(r.image));
     if (!options.quiet) {
@@ -286,7 +291,7 @@ void writeOutputs(const RenderOptions& options, TileBackend& backend, const Hybr
 
 void runRender(const RenderOptions& options) {
   RenderRun run(options);
-  checkOutputs(options);
+  run.format = checkOutputs(options);
   proto::LoadedBundle loaded = proto::loadSceneBundle(options.scene);
   printSceneWarnings(options.scene, loaded.scene);
   applyOverrides(options, loaded.scene);
@@ -309,7 +314,7 @@ void runRender(const RenderOptions& options) {
   std::vector<HybridTimes> frameTimes;
   HybridResult r;  // reused: each frame overwrites it
   const std::optional<LinearImage> linear = renderFrames(run, backend, r, frameTimes);
-  writeOutputs(options, backend, r, linear);
+  writeOutputs(run, backend, r, linear);
   if (!options.quiet) {
     printSummary(options, run.frame, backend.where(), frameTimes, r.rays, drawsWithGl(backend.scene(), options));
     if (backend.distributed()) printServers(backend.distributed()->lastFrame(), !options.provenanceOut.empty());

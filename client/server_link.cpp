@@ -165,14 +165,14 @@ void ServerLink::onHello(const wire::Hello& hello) {
   maxMessageBytes_ = std::min<std::size_t>(maxMessageBytes_, hello.max_message_bytes());
   threads_ = static_cast<int>(std::clamp<std::uint32_t>(hello.threads(), 1, kMaxThreadsBelieved));
   state_ = State::kQuery;
-  write(proto::encodeSceneQuery(hash_, digest_.files));
+  write(proto::encodeSceneQuery(digest_.scene, digest_.files));
 }
 
 // The server lacks the scene: the files it lacks, in pieces within its
 // message limit, then the scene's text and file list.
 void ServerLink::onSceneStatus(const wire::SceneStatus& status) {
   if (status.present()) return becomeReady();
-  std::vector<std::uint8_t> upload = proto::encodeSceneUpload(hash_, bundle_);
+  std::vector<std::uint8_t> upload = proto::encodeSceneUpload(digest_.scene, bundle_, digest_.files);
   if (upload.size() - proto::kHeaderBytes > maxMessageBytes_) {
     fail(LinkFailure::Kind::kRefused, "the scene file's text (" + std::to_string(bundle_.text.size()) +
                                           " bytes) is over the server's message limit of " +
@@ -204,7 +204,7 @@ bool ServerLink::sendMissingFiles(const wire::SceneStatus& status) {
     }
     if (sent[i]) continue;
     sent[i] = true;
-    for (auto& chunk : proto::encodeFileChunks(*files[i], chunkBytes)) write(std::move(chunk));
+    for (auto& chunk : proto::encodeFileChunks(*files[i], digest_.files[i], chunkBytes)) write(std::move(chunk));
   }
   return true;
 }
@@ -234,7 +234,7 @@ void ServerLink::setupFrame(std::uint32_t frameId, const FrameSettings& frame) {
   if (frameId > proto::kFramesRemembered) {  // results of frames the server forgot will not come
     std::erase_if(pending_, [&](const auto& p) { return p.first >> 32 <= frameId - proto::kFramesRemembered; });
   }
-  write(proto::encodeFrameSetup(frameId, hash_, frame));
+  write(proto::encodeFrameSetup(frameId, digest_.scene, frame));
 }
 
 void ServerLink::request(std::uint32_t frameId, std::uint32_t tileId, const TileJob& job) {

@@ -111,8 +111,7 @@ class ServerLink : public std::enable_shared_from_this<ServerLink> {
   std::string name_;
   asio::ip::tcp::endpoint endpoint_;
   const proto::SceneBundle& bundle_;
-  const proto::BundleDigest& digest_;  // the scene's hash and its files'
-  const proto::SceneHash& hash_ = digest_.scene;
+  const proto::BundleDigest& digest_;  // the scene's hash and its files', computed once for every server
   LinkTimeouts timeouts_;
   LinkListener* listener_ = nullptr;
   State state_ = State::kConnecting;

@@ -46,17 +46,21 @@ class ByteStream : public Assimp::IOStream {
   size_t at_ = 0;
 };
 
-// Assimp's files come from the FileSource: nothing else is opened. The first
-// error of a read is kept (Assimp would only say "cannot open").
+// Assimp's files come from the FileSource: nothing else is opened; the mesh
+// file itself from the bytes already read. The first error of a read is
+// kept (Assimp would only say "cannot open").
 class SourceIo : public Assimp::IOSystem {
  public:
-  SourceIo(FileSource& files, std::string place) : files_(files), place_(std::move(place)) {}
+  SourceIo(FileSource& files, const std::string& path, std::string_view bytes, std::string place)
+      : files_(files), path_(normalisePath(path)), bytes_(bytes), place_(std::move(place)) {}
   bool Exists(const char* path) const override { return files_.has(normalisePath(path)); }
   char getOsSeparator() const override { return '/'; }
   Assimp::IOStream* Open(const char* path, const char* mode) override {
     if (std::strchr(mode, 'w') || std::strchr(mode, 'a')) return nullptr;
+    const std::string wanted = normalisePath(path);
+    if (wanted == path_) return new ByteStream(std::string(bytes_));
     try {
-      return new ByteStream(files_.readForImport(normalisePath(path), place_));
+      return new ByteStream(files_.readForImport(wanted, place_));
     } catch (const InputError& e) {
       if (error_.empty()) error_ = e.what();
       return nullptr;
@@ -67,6 +71,8 @@ class SourceIo : public Assimp::IOSystem {
 
  private:
   FileSource& files_;
+  std::string path_;
+  std::string_view bytes_;
   std::string place_;
   std::string error_;
 };
@@ -140,10 +146,10 @@ MeshInput toMesh(const aiMesh& m) {
 
 }  // namespace
 
-MeshModel importWithAssimp(FileSource& files, const std::string& path, const std::string& place,
-                           SceneBudget& budget) {
+MeshModel importWithAssimp(FileSource& files, const std::string& path, std::string_view bytes,
+                           const std::string& place, SceneBudget& budget) {
   Assimp::Importer importer;
-  auto* io = new SourceIo(files, place);
+  auto* io = new SourceIo(files, path, bytes, place);
   importer.SetIOHandler(io);  // the importer owns it
   const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_PreTransformVertices |
                                                      aiProcess_SortByPType | aiProcess_ValidateDataStructure);

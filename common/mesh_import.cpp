@@ -25,9 +25,10 @@ MeshModel importMeshFile(FileSource& files, const std::string& path, const std::
   if (!files.importsMeshes()) {
     model = decodeMeshBlob(files.read(path, place), place, budget);
   } else {
-    model = importWithAssimp(files, path, place, budget);
+    const std::string bytes = files.readForImport(path, place);  // once, for Assimp and the camera
+    model = importWithAssimp(files, path, bytes, place, budget);
     if (*format == MeshFormat::kGltf || *format == MeshFormat::kGlb) {
-      model.camera = gltfCamera(files.readForImport(path, place), place + ": '" + path + "'");
+      model.camera = gltfCamera(bytes, place + ": '" + path + "'");
     }
     files.keepImported(path, encodeMeshBlob(model));  // always with its materials, whoever asks next
   }

@@ -7,6 +7,7 @@
 
 #include <tiny_obj_loader.h>
 
+#include "common/array_hash.h"
 #include "common/error.h"
 #include "common/image_io.h"
 
@@ -178,13 +179,6 @@ class FaceGrouper {
     MeshInput mesh;
     bool complete = true;  // every corner has a normal
   };
-  struct KeyHash {
-    std::size_t operator()(const std::array<int, 4>& k) const {
-      std::size_t h = 0;
-      for (const int v : k) h = h * 0x9E3779B97F4A7C15ull + static_cast<std::size_t>(static_cast<unsigned>(v));
-      return h;
-    }
-  };
 
   Group& groupOf(int material) {
     if (material != lastMaterial_ || !last_) {
@@ -210,7 +204,7 @@ class FaceGrouper {
 
   const tinyobj::attrib_t& attrib_;
   std::vector<FirstUse> first_;  // by position index
-  std::unordered_map<std::array<int, 4>, std::uint32_t, KeyHash> others_;  // (material, v, n, t) -> vertex
+  std::unordered_map<std::array<int, 4>, std::uint32_t, ArrayHash> others_;  // (material, v, n, t) -> vertex
   std::map<int, Group> groups_;  // by material; its nodes stay put, so last_ stays valid
   Group* last_ = nullptr;
   int lastMaterial_ = kUnused;

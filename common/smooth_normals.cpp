@@ -2,11 +2,11 @@
 
 #include <array>
 #include <cmath>
-#include <map>
 #include <unordered_map>
 
 #include <glm/geometric.hpp>
 
+#include "common/array_hash.h"
 #include "common/float_bits.h"
 
 namespace glint {
@@ -19,12 +19,9 @@ Key3 bitsOf(const glm::vec3& v) {
   return {floatToBits(v.x + 0.0f), floatToBits(v.y + 0.0f), floatToBits(v.z + 0.0f)};
 }
 
-struct Key3Hash {
-  std::size_t operator()(const Key3& k) const {
-    return (static_cast<std::size_t>(k[0]) * 73856093u) ^ (static_cast<std::size_t>(k[1]) * 19349663u) ^
-           (static_cast<std::size_t>(k[2]) * 83492791u);
-  }
-};
+using Key4 = std::array<std::uint32_t, 4>;  // a vertex and its normal's bits
+
+
 
 // For each vertex, the point it stands at (equal positions, one point), and
 // for each point the faces around it (compressed rows).
@@ -36,7 +33,7 @@ struct PointFaces {
 
 PointFaces pointFaces(const MeshInput& mesh) {
   PointFaces pf;
-  std::unordered_map<Key3, std::uint32_t, Key3Hash> points;
+  std::unordered_map<Key3, std::uint32_t, ArrayHash> points;
   pf.pointOf.reserve(mesh.positions.size());
   for (const glm::vec3& p : mesh.positions) {
     pf.pointOf.push_back(points.try_emplace(bitsOf(p), static_cast<std::uint32_t>(points.size())).first->second);
@@ -67,7 +64,7 @@ void smoothNormals(MeshInput& mesh, float creaseDegrees) {
   const PointFaces pf = pointFaces(mesh);
   MeshInput out;
   out.material = mesh.material;
-  std::map<std::pair<std::uint32_t, Key3>, std::uint32_t> made;  // (vertex, normal) -> new vertex
+  std::unordered_map<Key4, std::uint32_t, ArrayHash> made;  // (vertex, normal) -> new vertex
   out.indices.reserve(mesh.indices.size());
   for (std::size_t c = 0; c < mesh.indices.size(); ++c) {
     const std::uint32_t v = mesh.indices[c];
@@ -80,7 +77,8 @@ void smoothNormals(MeshInput& mesh, float creaseDegrees) {
     }
     const float len = glm::length(sum);
     const glm::vec3 n = len > 0.0f ? sum / len : unit[f];
-    const auto [it, fresh] = made.try_emplace({v, bitsOf(n)}, static_cast<std::uint32_t>(out.positions.size()));
+    const Key3 nb = bitsOf(n);
+    const auto [it, fresh] = made.try_emplace(Key4{v, nb[0], nb[1], nb[2]}, static_cast<std::uint32_t>(out.positions.size()));
     if (fresh) {
       out.positions.push_back(mesh.positions[v]);
       out.normals.push_back(n);

@@ -58,11 +58,13 @@ std::vector<std::uint8_t> encodeSceneStatus(const SceneHash& hash, bool present,
                 wire::Body::SceneStatus);
 }
 
-std::vector<std::uint8_t> encodeSceneUpload(const SceneHash& hash, const SceneBundle& bundle) {
+std::vector<std::uint8_t> encodeSceneUpload(const SceneHash& hash, const SceneBundle& bundle,
+                                            std::span<const SceneHash> fileHashes) {
   FlatBufferBuilder b(bundle.text.size() + 1024);
   std::vector<flatbuffers::Offset<wire::SceneFile>> files;
+  std::size_t i = 0;
   for (const auto& [path, bytes] : bundle.files) {
-    const wire::Hash32 fileHash = toWire(sha256(bytes));
+    const wire::Hash32 fileHash = toWire(fileHashes[i++]);
     files.push_back(wire::CreateSceneFile(b, b.CreateString(path), &fileHash));
   }
   const auto upload = wire::CreateSceneUpload(b, b.CreateVector(hash.data(), hash.size()),
@@ -78,8 +80,12 @@ std::vector<std::uint8_t> encodeFileChunk(const SceneHash& file, std::uint64_t s
   return finish(b, wire::CreateFileChunk(b, &hash, size, offset, bytes), wire::Body::FileChunk);
 }
 
-std::vector<std::vector<std::uint8_t>> encodeFileChunks(std::string_view bytes, std::size_t chunkBytes) {
-  const SceneHash hash = sha256(bytes);
+std::vector<std::uint8_t> encodeSceneUpload(const SceneHash& hash, const SceneBundle& bundle) {
+  return encodeSceneUpload(hash, bundle, digest(bundle).files);
+}
+
+std::vector<std::vector<std::uint8_t>> encodeFileChunks(std::string_view bytes, const SceneHash& hash,
+                                                        std::size_t chunkBytes) {
   std::vector<std::vector<std::uint8_t>> chunks;
   std::size_t offset = 0;
   do {
@@ -91,11 +97,14 @@ std::vector<std::vector<std::uint8_t>> encodeFileChunks(std::string_view bytes, 
 }
 
 std::vector<std::vector<std::uint8_t>> encodeFullUpload(const SceneBundle& bundle, std::size_t chunkBytes) {
+  const BundleDigest d = digest(bundle);
   std::vector<std::vector<std::uint8_t>> frames;
+  std::size_t i = 0;
   for (const auto& [path, bytes] : bundle.files) {
-    for (auto& chunk : encodeFileChunks(bytes, chunkBytes)) frames.push_back(std::move(chunk));
+    for (auto& chunk : encodeFileChunks(bytes, d.files[i], chunkBytes)) frames.push_back(std::move(chunk));
+    ++i;
   }
-  frames.push_back(encodeSceneUpload(bundle.hash(), bundle));
+  frames.push_back(encodeSceneUpload(d.scene, bundle, d.files));
   return frames;
 }
 

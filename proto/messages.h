@@ -24,12 +24,18 @@ std::vector<std::uint8_t> encodeHello(std::uint32_t maxMessageBytes, std::uint32
 std::vector<std::uint8_t> encodeSceneQuery(const SceneHash& hash, std::span<const SceneHash> files = {});
 std::vector<std::uint8_t> encodeSceneStatus(const SceneHash& hash, bool present,
                                             std::span<const std::uint32_t> missing = {});
-// The scene's text and each file's path and hash; the bytes go in FileChunks.
+// The scene's text and each file's path and hash (`fileHashes`, in the
+// bundle's order, as BundleDigest::files); the bytes go in FileChunks.
+std::vector<std::uint8_t> encodeSceneUpload(const SceneHash& hash, const SceneBundle& bundle,
+                                            std::span<const SceneHash> fileHashes);
+// The same, hashing the files here.
 std::vector<std::uint8_t> encodeSceneUpload(const SceneHash& hash, const SceneBundle& bundle);
 std::vector<std::uint8_t> encodeFileChunk(const SceneHash& file, std::uint64_t size, std::uint64_t offset,
                                           std::string_view data);
-// A file as FileChunks of at most chunkBytes each (one, empty, for an empty file).
-std::vector<std::vector<std::uint8_t>> encodeFileChunks(std::string_view bytes, std::size_t chunkBytes);
+// A file (whose SHA-256 is `hash`) as FileChunks of at most chunkBytes each
+// (one, empty, for an empty file).
+std::vector<std::vector<std::uint8_t>> encodeFileChunks(std::string_view bytes, const SceneHash& hash,
+                                                        std::size_t chunkBytes);
 // A whole upload to a server that holds none of the bundle's files: every
 // file's chunks, then the SceneUpload.
 std::vector<std::vector<std::uint8_t>> encodeFullUpload(const SceneBundle& bundle,

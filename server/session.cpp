@@ -26,7 +26,9 @@ std::vector<std::uint8_t> traceTile(const TileWork& work) {
 Session::Session(SessionHost& host, const SessionStores& stores, const Settings& settings, std::string peer)
     : host_(host), stores_(stores), settings_(settings), peer_(std::move(peer)) {}
 
-Session::~Session() { stores_.uploads.give(partialBytes_); }
+Session::~Session() {
+  for (const auto& [hash, file] : partial_) stores_.uploads.give(file.taken);
+}
 
 void Session::handle(const wire::Message& message) {
   if (state_ == State::kEnded) return;
@@ -169,7 +171,6 @@ void Session::onFileChunk(const wire::FileChunk& chunk) {
                 stores_.uploads.name() + ")");
   }
   file.taken += n;
-  partialBytes_ += n;
   if (n > 0) file.bytes.append(reinterpret_cast<const char*>(chunk.data()->data()), n);
   if (file.bytes.size() < file.size) return;
   if (proto::sha256(file.bytes) != hash) return fail("its bytes do not match its hash");
@@ -183,7 +184,6 @@ void Session::dropPartial(const proto::SceneHash& hash) {
   const auto it = partial_.find(hash);
   if (it == partial_.end()) return;
   stores_.uploads.give(it->second.taken);
-  partialBytes_ -= it->second.taken;
   partial_.erase(it);
 }
 

@@ -111,8 +111,7 @@ class Session {
   std::string peer_;
   State state_ = State::kAwaitingHello;
   std::map<std::uint32_t, std::shared_ptr<const SessionFrame>> frames_;  // by frame id
-  std::map<proto::SceneHash, PartialFile> partial_;
-  std::size_t partialBytes_ = 0;  // taken from stores_.uploads
+  std::map<proto::SceneHash, PartialFile> partial_;  // given back to stores_.uploads when dropped
 };
 
 }  // namespace glint::server

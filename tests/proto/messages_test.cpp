@@ -86,14 +86,14 @@ TEST(Messages, SceneMessagesRoundTrip) {
   }
   {  // a file in pieces: each piece's offset and the whole size; an empty file is one empty piece
     const std::string bytes(10, 'x');
-    const auto chunks = encodeFileChunks(bytes, 4);
+    const auto chunks = encodeFileChunks(bytes, sha256(bytes), 4);
     ASSERT_EQ(chunks.size(), 3u);
     const auto* last = decode(chunks[2]).body_as_FileChunk();
     EXPECT_EQ(last->size(), 10u);
     EXPECT_EQ(last->offset(), 8u);
     EXPECT_EQ(last->data()->size(), 2u);
     EXPECT_EQ(decodeHash32(last->hash(), "hash"), sha256(bytes));
-    EXPECT_EQ(encodeFileChunks("", 4).size(), 1u);
+    EXPECT_EQ(encodeFileChunks("", sha256(""), 4).size(), 1u);
   }
   EXPECT_FLOAT_EQ(decode(encodeSceneReady(h, 12.5f)).body_as_SceneReady()->build_ms(), 12.5f);
 }
