@@ -74,7 +74,7 @@ LinearImage traceRow(Sweep& sweep, const FrameSettings& frame, AccuracyRow& row)
   return image;
 }
 
-// A hybrid row (mask_threshold): OpenGL draws, the tracer fills the mask.
+// A hybrid row (hybridKey): OpenGL draws, the tracer fills the mask.
 LinearImage hybridRow(Sweep& sweep, const FrameSettings& frame, const MaskSettings& mask, AccuracyRow& row) {
   if (!sweep.context) {
     sweep.context = std::make_unique<gl::OffscreenContext>(frame.width, frame.height);
@@ -172,7 +172,7 @@ void runAccuracy(const AccuracyOptions& o) {
       AccuracyRow row{std::string(enumWord(s.key)), value, value == currentValue(s.key, scene.frame, scene.mask),
                       0.0, {}, {}, std::string(enumWord(s.key)) + "-" + value + ".png"};
       const LinearImage image =
-          s.key == AccuracyKey::kMaskThreshold ? hybridRow(sweep, frame, mask, row) : traceRow(sweep, frame, row);
+          hybridKey(s.key) ? hybridRow(sweep, frame, mask, row) : traceRow(sweep, frame, row);
       row.error = compareImages(image, reference);
       writeRowImages(dir, row, image, reference);
       std::fprintf(stderr, "[%zu/%zu] %s = %s: %.1f ms, RMSE %.5f\n", ++done, total, row.name.c_str(),

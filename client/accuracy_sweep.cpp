@@ -24,6 +24,8 @@ std::string allowed(AccuracyKey key) {
     case AccuracyKey::kMinWeight:
     case AccuracyKey::kMaskThreshold:
       return "numbers in [0, 1]";
+    case AccuracyKey::kShadowMap:
+      return "whole numbers in [0, " + std::to_string(MaskSettings::kMaxShadowMap) + "]";
   }
   return "";
 }
@@ -50,6 +52,9 @@ bool takes(AccuracyKey key, const std::string& value) {
     case AccuracyKey::kMinWeight:
     case AccuracyKey::kMaskThreshold:
       return parseNumber(value, number) && number >= 0.0 && number <= 1.0;
+    case AccuracyKey::kShadowMap:
+      return parseNumber(value, number) && number == std::floor(number) && number >= 0 &&
+             number <= MaskSettings::kMaxShadowMap;
   }
   return false;
 }
@@ -88,8 +93,11 @@ std::vector<Series> defaultSweep() {
           {AccuracyKey::kFilter, {"box", "tent", "gaussian", "mitchell"}},
           {AccuracyKey::kMaxDepth, {"1", "2", "3", "5", "8"}},
           {AccuracyKey::kMinWeight, {"0.1", "0.01", "0.001", "0"}},
-          {AccuracyKey::kMaskThreshold, {"0", "0.1", "0.2", "0.5", "1"}}};
+          {AccuracyKey::kMaskThreshold, {"0", "0.1", "0.2", "0.5", "1"}},
+          {AccuracyKey::kShadowMap, {"0", "256", "1024", "4096"}}};
 }
+
+bool hybridKey(AccuracyKey key) { return key == AccuracyKey::kMaskThreshold || key == AccuracyKey::kShadowMap; }
 
 void applySetting(AccuracyKey key, const std::string& value, FrameSettings& frame, MaskSettings& mask) {
   switch (key) {
@@ -112,6 +120,10 @@ void applySetting(AccuracyKey key, const std::string& value, FrameSettings& fram
       mask.rule = MaskRule::kAuto;
       mask.minReflectivity = std::stof(value);
       return;
+    case AccuracyKey::kShadowMap:
+      mask.rule = MaskRule::kAuto;
+      mask.shadowMap = std::stoi(value);
+      return;
   }
 }
 
@@ -129,6 +141,8 @@ std::string currentValue(AccuracyKey key, const FrameSettings& frame, const Mask
       return formatNumber(frame.tracing.minWeight);
     case AccuracyKey::kMaskThreshold:
       return formatNumber(mask.minReflectivity);
+    case AccuracyKey::kShadowMap:
+      return std::to_string(mask.shadowMap);
   }
   return "";
 }

@@ -12,17 +12,18 @@
 namespace glint {
 
 // The settings `glint accuracy` can vary.
-enum class AccuracyKey { kSamples, kPattern, kFilter, kMaxDepth, kMinWeight, kMaskThreshold };
+enum class AccuracyKey { kSamples, kPattern, kFilter, kMaxDepth, kMinWeight, kMaskThreshold, kShadowMap };
 
 template <>
 struct EnumWords<AccuracyKey> {
-  static constexpr std::array<std::pair<AccuracyKey, std::string_view>, 6> kWords{
+  static constexpr std::array<std::pair<AccuracyKey, std::string_view>, 7> kWords{
       {{AccuracyKey::kSamples, "samples"},
        {AccuracyKey::kPattern, "pattern"},
        {AccuracyKey::kFilter, "filter"},
        {AccuracyKey::kMaxDepth, "max_depth"},
        {AccuracyKey::kMinWeight, "min_weight"},
-       {AccuracyKey::kMaskThreshold, "mask_threshold"}}};
+       {AccuracyKey::kMaskThreshold, "mask_threshold"},
+       {AccuracyKey::kShadowMap, "shadow_map"}}};
 };
 
 // One series of a sweep: one key, the values it takes in turn, every other
@@ -39,9 +40,13 @@ Series parseVary(const std::string& text);
 // Every key, around the thesis's settings (what `--vary` not given sweeps).
 std::vector<Series> defaultSweep();
 
+// Whether a key's rows are hybrid frames (OpenGL draws, the tracer fills
+// the mask under the auto rule): mask_threshold and shadow_map.
+bool hybridKey(AccuracyKey key);
+
 // Sets `value` of `key` in a frame and mask (mask_threshold: the auto rule's
-// reflectivity threshold; the frame becomes hybrid). Values are as parseVary
-// checked them.
+// reflectivity threshold; shadow_map: the shadow maps' size, 0 none). Values
+// are as parseVary checked them.
 void applySetting(AccuracyKey key, const std::string& value, FrameSettings& frame, MaskSettings& mask);
 
 // The scene's own value of `key`, written as the sweep writes values.

@@ -147,6 +147,13 @@ void addServerOptions(CLI::App* app, RemoteOptions& remote) {
   app->add_option("--tls-key", remote.tls.key, "The private key of --tls-cert (PEM)")->envname("GLINT_TLS_KEY");
 }
 
+void addShadowMapOption(CLI::App* command, std::optional<int>& size) {
+  command->add_option("--shadow-map", size,
+                      "Shadow map size in texels a cube face edge (default: the scene's, 1024): surfaces OpenGL "
+                      "draws get shadows, traced where the map cannot decide; 0: no shadows on them (the thesis)")
+      ->check(CLI::Range(0, MaskSettings::kMaxShadowMap));
+}
+
 // Declares `glint render`'s options; returns what runs once they are parsed.
 std::function<void()> declareRender(CLI::App* render) {
   auto options = std::make_shared<RenderOptions>();
@@ -164,6 +171,7 @@ std::function<void()> declareRender(CLI::App* render) {
                      "Under --mask auto: materials with reflectivity above this are ray traced")
       ->check(CLI::Range(0.0f, 1.0f));
   render->add_option("--mask-out", o.maskOut, "Also write the mask as a PNG (white: ray traced)");
+  addShadowMapOption(render, o.shadowMap);
   render->add_option("--threads", o.threads, "Render threads; 0 = one per hardware thread")
       ->check(CLI::Range(0, 1024))
       ->default_val(0);
@@ -224,6 +232,7 @@ std::function<void()> declareView(CLI::App* view) {
   view->add_option("scene", o.scene, "Scene file (.json)")->required()->check(CLI::ExistingFile);
   addServerOptions(view, o.remote);
   addEnumOption(view, "--mask", o.mask, "Initial mask rule (default: the scene's)");
+  addShadowMapOption(view, o.shadowMap);
   view->add_option("--threads", o.threads, "Tracing threads; 0 = one per hardware thread")->check(CLI::Range(0, 1024));
   addEnumOption(view, "--bvh", o.bvh, "BVH builder in process (default: sah; qsplit is the thesis's)");
   view->add_option("--tile-size", o.tileSize, "Tile edge in pixels")->check(CLI::Range(1, 4096));
@@ -239,7 +248,7 @@ std::function<void()> declareView(CLI::App* view) {
 constexpr const char* kAccuracyHelp =
     "Show what accuracy costs in time: render a converged reference of the scene, then the scene with one "
     "setting varied at a time (--vary KEY=V1,V2,...; KEY: samples, pattern, filter, max_depth, min_weight, "
-    "mask_threshold; none: a default sweep of every key), and write each setting's time and error against the "
+    "mask_threshold, shadow_map; none: a default sweep of every key), and write each setting's time and error against the "
     "reference (accuracy.csv), its images and error images, a plot and report.md to DIR.";
 
 // Declares `glint accuracy`'s options; returns what runs once they are parsed.

@@ -77,7 +77,14 @@ namespace glint::gl {
   X(DeleteRenderbuffers)                \
   X(RenderbufferStorageMultisample) \
   X(FramebufferRenderbuffer)        \
-  X(BlitFramebuffer)
+  X(BlitFramebuffer)                        \
+  X(GetStringi)                                  \
+  X(DrawBuffer)                                  \
+  X(ReadBuffer)                                  \
+  X(TexImage3D)                                  \
+  X(FramebufferTextureLayer)                \
+  X(Uniform1iv)                                  \
+  X(Uniform1fv)
 
 // Entry points beyond OpenGL 3.3, used where the driver has them (null
 // where it has not): per-sample shading (4.0) for the raster's anti-aliasing.

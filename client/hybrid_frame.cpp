@@ -27,29 +27,29 @@ void readPixels(const gl::Api& gl, const TileRect& window, int frameHeight, GLen
 // The tiles of the window with at least one masked pixel, each with its
 // mask bits; w is the frame's width.
 std::vector<TileJob> maskedTiles(const std::vector<std::uint8_t>& mask, int w, const TileRect& window, int tileSize,
-                                 std::size_t& maskedPixels) {
+                                 HybridResult& result) {
   std::vector<TileJob> jobs;
   for (const TileRect& rect : tileGrid(window, std::max(1, tileSize))) {
     TileJob job{rect, std::vector<std::uint8_t>(maskByteCount(rect), 0)};
     std::size_t count = 0;
     for (int y = 0; y < rect.height; ++y) {
       for (int x = 0; x < rect.width; ++x) {
-        if (!mask[static_cast<std::size_t>(rect.y + y) * static_cast<std::size_t>(w) +
-                  static_cast<std::size_t>(rect.x + x)]) {
-          continue;
-        }
+        const std::uint8_t mark =
+            mask[static_cast<std::size_t>(rect.y + y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(rect.x + x)];
+        if (mark == gl::kRasterPixel) continue;
         setMaskBit(job.mask, static_cast<std::size_t>(y * rect.width + x));
         ++count;
+        result.shadowEdgePixels += mark == gl::kShadowEdgePixel ? 1 : 0;
       }
     }
-    maskedPixels += count;
+    result.maskedPixels += count;
     if (count > 0) jobs.push_back(std::move(job));
   }
   return jobs;
 }
 
 // Draws one traced tile back (bottom-up rows for glDrawPixels); the stencil
-// test keeps GL's own pixels. `rect` is scratch space kept between tiles.
+// test keeps GL's own pixels (kRasterPixel). `rect` is scratch space kept between tiles.
 void drawTile(const gl::Api& gl, const TileJob& job, std::size_t index, const TileOutput& out, int frameHeight,
               std::vector<std::uint8_t>& rect) {
   const TileRect& r = job.rect;
@@ -89,17 +89,17 @@ void renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
   const int w = frame.width, h = frame.height;
   const TileRect whole{0, 0, w, h};
   const TileRect window = crop.value_or(whole);
-  result.maskedPixels = 0;
+  result.maskedPixels = result.shadowEdgePixels = 0;
   result.rays = RayStats{};
   result.times = HybridTimes{};
 
-  raster.draw(frame, mask);
+  result.times.shadowMapMs = raster.draw(frame, mask);
   gl.Finish();
   result.times.rasterMs = msSince(start);
 
   const Clock::time_point readStart = Clock::now();
   if (mask.rule == MaskRule::kAll) {
-    result.mask.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 1);
+    result.mask.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), gl::kMaskedPixel);
   } else {
     readPixels(gl, whole, h, GL_STENCIL_INDEX, 1, result.mask);
   }
@@ -112,7 +112,7 @@ void renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
     result.times.rasterMs += msSince(antialiasStart);
   }
 
-  const std::vector<TileJob> jobs = maskedTiles(result.mask, w, window, tileSize, result.maskedPixels);
+  const std::vector<TileJob> jobs = maskedTiles(result.mask, w, window, tileSize, result);
   result.tiles = static_cast<int>(jobs.size());
 
   const Clock::time_point traceStart = Clock::now();
@@ -132,7 +132,7 @@ void renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
     gl.Disable(GL_STENCIL_TEST);
   } else {
     gl.Enable(GL_STENCIL_TEST);
-    gl.StencilFunc(GL_EQUAL, 1, 0xff);
+    gl.StencilFunc(GL_NOTEQUAL, gl::kRasterPixel, 0xff);
     gl.StencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
   }
   gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);

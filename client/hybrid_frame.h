@@ -14,6 +14,7 @@ namespace glint {
 // Milliseconds spent in each step of a hybrid frame.
 struct HybridTimes {
   double rasterMs = 0.0;    // OpenGL draws the scene and marks the mask
+  double shadowMapMs = 0.0; // of rasterMs, drawing the shadow maps (the first frame that needs them)
   double readbackMs = 0.0;  // glReadPixels of the mask (stencil)
   double traceMs = 0.0;     // the tile service fills the masked pixels
   double networkMs = 0.0;   // of traceMs, not spent tracing: traceMs - compute / parallelism
@@ -26,8 +27,9 @@ double medianOf(const std::vector<HybridTimes>& frames, double HybridTimes::*ste
 
 struct HybridResult {
   FrameImage image;                // the frame, or the crop window of it
-  std::vector<std::uint8_t> mask;  // one byte per pixel, row 0 at the top: 1 traced, 0 OpenGL
-  std::size_t maskedPixels = 0;
+  std::vector<std::uint8_t> mask;  // one gl::StencilMark per pixel, row 0 at the top: 0 OpenGL, else traced
+  std::size_t maskedPixels = 0;    // traced pixels, shadow edges among them
+  std::size_t shadowEdgePixels = 0;  // traced because the shadow maps could not decide
   int tiles = 0;  // tiles sent to the tile service (those with a masked pixel)
   RayStats rays;
   HybridTimes times;

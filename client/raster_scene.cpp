@@ -13,6 +13,7 @@
 #include "common/encoding.h"
 #include "common/error.h"
 #include "common/mask_rule.h"
+#include "common/timing.h"
 
 namespace glint::gl {
 namespace {
@@ -34,9 +35,9 @@ unsigned compile(const Api& gl, GLenum type, std::initializer_list<const char*> 
 }
 
 // traced: the variant for masked objects, which shades nothing.
-unsigned link(const Api& gl, const char* vertex, const char* fragment, bool traced) {
+unsigned link(const Api& gl, const char* vertex, const char* fragment, bool traced, bool stencilExport) {
   const unsigned vs = compile(gl, GL_VERTEX_SHADER, {vertex});
-  const std::string prelude = fragmentPrelude();
+  const std::string prelude = fragmentPrelude(stencilExport);
   const unsigned fs =
       compile(gl, GL_FRAGMENT_SHADER, {prelude.c_str(), kFragmentShading, traced ? "#define TRACED\n" : "", fragment});
   const unsigned program = gl.CreateProgram();
@@ -82,9 +83,25 @@ void intAttribute(const Api& gl, unsigned index, std::size_t stride, std::size_t
   gl.VertexAttribIPointer(index, 1, GL_INT, static_cast<GLsizei>(stride), reinterpret_cast<const void*>(offset));
 }
 
+bool hasExtension(const Api& gl, const char* name) {
+  GLint count = 0;
+  gl.GetIntegerv(GL_NUM_EXTENSIONS, &count);
+  for (GLint i = 0; i < count; ++i) {
+    const auto* extension = reinterpret_cast<const char*>(gl.GetStringi(GL_EXTENSIONS, static_cast<GLuint>(i)));
+    if (extension && std::string(extension) == name) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
-RasterScene::RasterScene(const Api& api, const Scene& scene) : gl_(api), scene_(scene), multisample_(api) {
+RasterScene::RasterScene(const Api& api, const Scene& scene)
+    : gl_(api),
+      scene_(scene),
+      plan_(EffectPlan::derive(scene)),
+      stencilExport_(hasExtension(api, "GL_ARB_shader_stencil_export")),
+      multisample_(api),
+      shadowMaps_(api) {
   if (scene.lights.size() > kMaxLights) {
     throw InputError("the OpenGL path draws at most " + std::to_string(kMaxLights) + " lights; the scene has " +
                      std::to_string(scene.lights.size()));
@@ -95,8 +112,8 @@ RasterScene::RasterScene(const Api& api, const Scene& scene) : gl_(api), scene_(
   }
   for (std::uint32_t i = 0; i < scene.geometry.primitiveCount(); ++i) bounds_.expand(scene.geometry.primitiveBounds(i));
   for (int traced = 0; traced < 2; ++traced) {
-    programs_[0][traced] = link(gl_, kMeshVertexShader, kMeshFragmentShader, traced == 1);
-    programs_[1][traced] = link(gl_, kSphereVertexShader, kSphereFragmentShader, traced == 1);
+    programs_[0][traced] = link(gl_, kMeshVertexShader, kMeshFragmentShader, traced == 1, stencilExport_);
+    programs_[1][traced] = link(gl_, kSphereVertexShader, kSphereFragmentShader, traced == 1, stencilExport_);
   }
   uploadTextures();
   uploadMeshes();
@@ -223,12 +240,16 @@ RasterScene::Projection RasterScene::projection(const FrameSettings& frame) cons
   return {perspective * view, far};
 }
 
-void RasterScene::setUniforms(unsigned program, const FrameSettings& frame, const Projection& projection) {
+void RasterScene::setViewUniforms(unsigned program, const glm::mat4& viewProjection, const glm::vec3& eye, float far) {
   gl_.UseProgram(program);
+  gl_.UniformMatrix4fv(gl_.GetUniformLocation(program, "uViewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
+  gl_.Uniform1f(gl_.GetUniformLocation(program, "uFar"), far);
+  gl_.Uniform3fv(gl_.GetUniformLocation(program, "uEye"), 1, glm::value_ptr(eye));
+}
+
+void RasterScene::setUniforms(unsigned program, const FrameSettings& frame, const Projection& projection) {
+  setViewUniforms(program, projection.viewProjection, frame.camera.eye, projection.far);
   const auto at = [&](const char* name) { return gl_.GetUniformLocation(program, name); };
-  gl_.UniformMatrix4fv(at("uViewProjection"), 1, GL_FALSE, glm::value_ptr(projection.viewProjection));
-  gl_.Uniform1f(at("uFar"), projection.far);
-  gl_.Uniform3fv(at("uEye"), 1, glm::value_ptr(frame.camera.eye));
   gl_.Uniform1f(at("uExposureScale"), Encoder(frame.output).scale());
   gl_.Uniform1i(at("uSrgb"), frame.output.encoding == Encoding::kSrgb ? 1 : 0);
   std::vector<glm::vec3> positions, colors, attenuations;
@@ -275,6 +296,36 @@ void RasterScene::setUniforms(unsigned program, const FrameSettings& frame, cons
   gl_.ActiveTexture(GL_TEXTURE0);
   gl_.BindTexture(GL_TEXTURE_2D, atlas_);
   gl_.Uniform1i(at("uAtlas"), 0);
+  if (shadows_) {
+    shadowMaps_.setUniforms(program, 1);
+  } else {
+    const std::vector<int> none(scene_.lights.size(), -1);
+    if (!none.empty()) gl_.Uniform1iv(at("uShadowLayer"), static_cast<GLsizei>(none.size()), none.data());
+    gl_.Uniform1i(at("uShadowMaps"), 1);  // a unit of its own: samplers of two types may not share one
+  }
+  gl_.Uniform1i(at("uUndecidedStencil"), undecidedStencil_);
+}
+
+bool RasterScene::prepareShadows(const MaskSettings& mask) {
+  if (!rasterShadows(scene_, plan_, mask)) return false;
+  if (shadowMaps_.size() != mask.shadowMap) {
+    shadowMaps_.build(scene_.lights, plan_.lights, bounds_, mask.shadowMap,
+                      [this](const glm::mat4& vp, const glm::vec3& eye, float far) { drawDepth(vp, eye, far); });
+  }
+  return true;
+}
+
+void RasterScene::drawDepth(const glm::mat4& viewProjection, const glm::vec3& eye, float far) {
+  for (int spheres = 0; spheres < 2; ++spheres) {
+    setViewUniforms(programs_[spheres][1], viewProjection, eye, far);
+    for (const Batch& b : batches_) {
+      if (b.spheres != (spheres == 1)) continue;
+      gl_.BindVertexArray(b.vao);
+      gl_.DrawArrays(GL_TRIANGLES, 0, b.vertices);
+    }
+  }
+  gl_.BindVertexArray(0);
+  gl_.UseProgram(0);
 }
 
 void RasterScene::beginPass(const FrameSettings& frame, GLbitfield clear) {
@@ -287,11 +338,16 @@ void RasterScene::beginPass(const FrameSettings& frame, GLbitfield clear) {
   gl_.DepthFunc(GL_LESS);
 }
 
-void RasterScene::draw(const FrameSettings& frame, const MaskSettings& mask) {
+double RasterScene::draw(const FrameSettings& frame, const MaskSettings& mask) {
+  const Clock::time_point start = Clock::now();
+  shadows_ = prepareShadows(mask);
+  const double shadowMs = msSince(start);
+  undecidedStencil_ = mask.rule == MaskRule::kAuto ? kShadowEdgePixel : kRasterPixel;
   beginPass(frame, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
   gl_.Enable(GL_STENCIL_TEST);
   gl_.StencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);  // the visible object's flag wins
   drawBatches(frame, mask, false);
+  return shadowMs;
 }
 
 bool RasterScene::drawAntialiased(const FrameSettings& frame) {
@@ -324,7 +380,7 @@ void RasterScene::drawBatches(const FrameSettings& frame, const MaskSettings& ma
           setUniforms(programs_[spheres][traced], frame, vp);
           uniformsSet = true;
         }
-        gl_.StencilFunc(GL_ALWAYS, masked ? 1 : 0, 0xff);
+        gl_.StencilFunc(GL_ALWAYS, masked ? kMaskedPixel : kRasterPixel, 0xff);
         gl_.BindVertexArray(b.vao);
         gl_.DrawArrays(GL_TRIANGLES, 0, b.vertices);
       }

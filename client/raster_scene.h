@@ -7,17 +7,24 @@
 
 #include "client/gl_api.h"
 #include "client/multisample_target.h"
+#include "client/shadow_maps.h"
 #include "common/bounds.h"
+#include "common/effects.h"
 #include "common/scene.h"
 
 namespace glint::gl {
 
+// What draw() leaves in a pixel's stencil: the pixel is OpenGL's, the
+// tracer's because the mask names its material, or the tracer's because the
+// shadow maps cannot decide whether a light reaches it (rule auto only).
+enum StencilMark : std::uint8_t { kRasterPixel = 0, kMaskedPixel = 1, kShadowEdgePixel = 2 };
+
 // A scene uploaded to OpenGL once: triangle batches and sphere impostors,
-// grouped by material, the shader programs, and the texture atlas. draw()
-// renders one frame and marks each pixel's stencil with 1 where the visible
-// object's material is masked, 0 elsewhere (and for the background). Masked
-// objects are drawn by programs that write depth and stencil but shade
-// nothing (black): the tracer's pixels replace theirs.
+// grouped by material, the shader programs, the texture atlas and, drawn on
+// the first frame that needs them, the lights' shadow maps. draw() renders
+// one frame and marks each pixel's stencil (StencilMark). Masked objects are
+// drawn by programs that write depth and stencil but shade nothing (black):
+// the tracer's pixels replace theirs.
 class RasterScene {
  public:
   RasterScene(const Api& api, const Scene& scene);
@@ -25,7 +32,9 @@ class RasterScene {
   RasterScene(const RasterScene&) = delete;
   RasterScene& operator=(const RasterScene&) = delete;
 
-  void draw(const FrameSettings& frame, const MaskSettings& mask);
+  // Returns the milliseconds spent drawing shadow maps (0 but on the first
+  // frame that needs them, or another map size).
+  double draw(const FrameSettings& frame, const MaskSettings& mask);
   // With more than one sample a pixel, draws the frame again multisampled
   // (up to what GL offers), every object shaded (an edge next to a masked
   // object blends in GL's estimate of it, not black), and resolves it into
@@ -33,6 +42,9 @@ class RasterScene {
   // The masked pixels are replaced by the tracer's afterwards either way.
   // False when the frame has one sample or GL offers no multisampling.
   bool drawAntialiased(const FrameSettings& frame);
+  // Whether the driver lets a fragment write its stencil value: without it,
+  // pixels whose shadow the maps cannot decide keep the maps' estimate.
+  bool tracesShadowEdges() const { return stencilExport_; }
 
  private:
   struct Batch {
@@ -55,6 +67,11 @@ class RasterScene {
     float far;
   };
   void setUniforms(unsigned program, const FrameSettings& frame, const Projection& projection);
+  void setViewUniforms(unsigned program, const glm::mat4& viewProjection, const glm::vec3& eye, float far);
+  // The shadow maps `mask` calls for, drawn if they are not yet; false when
+  // it calls for none.
+  bool prepareShadows(const MaskSettings& mask);
+  void drawDepth(const glm::mat4& viewProjection, const glm::vec3& eye, float far);
   // The viewport, the background, `clear` cleared, the depth test on.
   void beginPass(const FrameSettings& frame, GLbitfield clear);
   // Every batch; masked materials with the programs that shade nothing,
@@ -64,12 +81,17 @@ class RasterScene {
 
   const Api& gl_;
   const Scene& scene_;
+  const EffectPlan plan_;
+  bool stencilExport_ = false;
+  bool shadows_ = false;           // the current frame reads the shadow maps
+  int undecidedStencil_ = 0;       // the current frame's StencilMark for undecided shadows
   unsigned programs_[2][2] = {};  // [spheres][traced]
   unsigned atlas_ = 0;
   std::vector<float> textureRows_;  // atlas row of each texture
   std::vector<Batch> batches_;
   Bounds3 bounds_;  // every primitive's, for the far plane
   MultisampleTarget multisample_;
+  ShadowMaps shadowMaps_;
 };
 
 }  // namespace glint::gl

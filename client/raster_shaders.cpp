@@ -5,17 +5,21 @@
 
 namespace glint::gl {
 
-std::string fragmentPrelude() {
+std::string fragmentPrelude(bool stencilExport) {
   std::string prelude = "#version 330\n";
-  const std::pair<const char*, int> limits[] = {
-      {"MAX_LIGHTS", kMaxLights}, {"MAX_MATERIALS", kMaxMaterials}, {"MAX_TEXTURES", kMaxTextures}};
+  if (stencilExport) prelude += "#extension GL_ARB_shader_stencil_export : require\n#define STENCIL_EXPORT\n";
+  const std::pair<const char*, int> limits[] = {{"MAX_LIGHTS", kMaxLights},
+                                                {"MAX_MATERIALS", kMaxMaterials},
+                                                {"MAX_TEXTURES", kMaxTextures},
+                                                {"SHADOW_RADIUS", kShadowRadius}};
   for (const auto& [name, value] : limits) prelude.append("#define ").append(name).append(" ").append(std::to_string(value)).append("\n");
   return prelude;
 }
 
 // Shared by both fragment shaders, after the prelude: material, texture and
-// light data, shade(), which mirrors Tracer::shade, and encodeOutput(),
-// which mirrors Encoder::byte before the rounding.
+// light data, shadowVisibility() (the shadow maps, client/shadow_maps.h),
+// shade(), which mirrors Tracer::shade, and encodeOutput(), which mirrors
+// Encoder::byte before the rounding.
 const char* const kFragmentShading = R"(
 uniform vec3 uEye;
 uniform float uFar;            // depth = distance from the eye / uFar (RasterScene::Projection)
@@ -32,7 +36,16 @@ uniform vec4 uTextureSize[MAX_TEXTURES];     // image width, height
 uniform vec3 uTextureColor0[MAX_TEXTURES];
 uniform vec3 uTextureColor1[MAX_TEXTURES];
 uniform sampler2D uAtlas;                    // every image texture, stacked rows, RGB float
+uniform sampler2DArray uShadowMaps;          // depth: distance from the light / uShadowFar
+uniform int uShadowSize;                     // texels a face edge
+uniform int uShadowLayer[MAX_LIGHTS];        // the light's first face, -1: no map
+uniform float uShadowFar[MAX_LIGHTS];
+uniform vec3 uShadowFaceS[6];
+uniform vec3 uShadowFaceT[6];
+uniform vec3 uShadowFaceM[6];
+uniform int uUndecidedStencil;               // the stencil of a pixel the maps cannot decide
 out vec4 fragColor;
+bool gShadowUndecided = false;               // set by shadowVisibility()
 
 vec3 encodeOutput(vec3 linear) {
   vec3 v = clamp(linear * uExposureScale, 0.0, 1.0);
@@ -71,6 +84,74 @@ vec3 textureColor(int t, vec2 uv) {
   return (1.0 - ty) * top + ty * bottom;
 }
 
+// The map texel a direction from the light falls on: x, y and the face.
+ivec3 shadowTexel(vec3 v) {
+  vec3 a = abs(v);
+  int f = a.x >= a.y && a.x >= a.z ? (v.x >= 0.0 ? 0 : 1) : a.y >= a.z ? (v.y >= 0.0 ? 2 : 3) : (v.z >= 0.0 ? 4 : 5);
+  vec2 c = vec2(dot(uShadowFaceS[f], v), dot(uShadowFaceT[f], v)) / dot(uShadowFaceM[f], v);
+  ivec2 xy = clamp(ivec2(floor((c * 0.5 + 0.5) * float(uShadowSize))), ivec2(0), ivec2(uShadowSize - 1));
+  return ivec3(xy, f);
+}
+
+// The direction (from the light, not normalized) through a texel's centre
+// of a face, or through where such a texel would lie beyond the face's edge.
+vec3 shadowTexelDirection(ivec2 xy, int f) {
+  vec2 c = (vec2(xy) + 0.5) / float(uShadowSize) * 2.0 - 1.0;
+  return uShadowFaceM[f] + c.x * uShadowFaceS[f] + c.y * uShadowFaceT[f];
+}
+
+// One texel's vote for shadowVisibility: u its centre's direction from the
+// light (not normalized), the tangent plane `plane` away from the light with
+// normal ng. Counts the texel in count, and in open unless it holds a surface
+// nearer than where u meets the plane (beyond the tolerance of the map's
+// float precision); a direction grazing the plane decides nothing.
+void shadowVote(int light, ivec3 texel, vec3 u, float plane, vec3 ng, inout int open, inout int count) {
+  float len = length(u);
+  float cosine = -dot(u, ng) / len;
+  if (cosine < 0.01) {
+    gShadowUndecided = true;
+    return;
+  }
+  float expected = plane / cosine;
+  float tolerance = expected * 1e-4 * (1.0 + 1.0 / cosine);
+  float stored = texelFetch(uShadowMaps, ivec3(texel.xy, uShadowLayer[light] + texel.z), 0).r * uShadowFar[light];
+  ++count;
+  if (stored >= expected - tolerance) ++open;
+}
+
+// Whether the light reaches p (ng faces the light): 1 lit, 0 shadowed, by
+// the map's texels around p's (across a face's edge onto the next face).
+// Each texel's centre direction meets p's tangent plane at a distance from
+// the light; a texel holding a nearer surface sees an occluder. All texels
+// open: lit; all occluded: shadowed; a mix (a shadow edge, or a receiver
+// curving towards the light) or a direction grazing the plane: undecided
+// (gShadowUndecided), and the fraction open.
+float shadowVisibility(int light, vec3 p, vec3 ng) {
+  if (uShadowLayer[light] < 0) return 1.0;
+  vec3 v = p - uLightPosition[light];
+  ivec3 own = shadowTexel(v);
+  float plane = -dot(v, ng);  // the light's distance from p's tangent plane
+  int open = 0, count = 0;
+  // The texels around p's on p's face (directions step by the face's axes);
+  // p within SHADOW_RADIUS texels of the face's edge is undecided (its
+  // neighbours clamped to the face for the estimate).
+  float step = 2.0 / float(uShadowSize);
+  vec3 s = step * uShadowFaceS[own.z], t = step * uShadowFaceT[own.z];
+  vec3 centre = shadowTexelDirection(own.xy, own.z);
+  for (int dy = -SHADOW_RADIUS; dy <= SHADOW_RADIUS; ++dy) {
+    for (int dx = -SHADOW_RADIUS; dx <= SHADOW_RADIUS; ++dx) {
+      ivec2 xy = clamp(own.xy + ivec2(dx, dy), ivec2(0), ivec2(uShadowSize - 1));
+      vec2 d = vec2(xy - own.xy);
+      shadowVote(light, ivec3(xy, own.z), centre + d.x * s + d.y * t, plane, ng, open, count);
+    }
+  }
+  if (any(lessThan(own.xy, ivec2(SHADOW_RADIUS))) || any(greaterThanEqual(own.xy, ivec2(uShadowSize - SHADOW_RADIUS)))) {
+    gShadowUndecided = true;
+  }
+  if (open != 0 && open != count) gShadowUndecided = true;
+  return count == 0 ? 1.0 : float(open) / float(count);
+}
+
 vec3 shade(vec3 p, vec3 ng, vec3 ns, vec2 uv, int material) {
   vec3 toViewer = normalize(uEye - p);
   if (dot(ng, toViewer) < 0.0) ng = -ng;
@@ -88,8 +169,10 @@ vec3 shade(vec3 p, vec3 ng, vec3 ns, vec2 uv, int material) {
     if (!(d > 0.0)) continue;
     vec3 l = toLight / d;
     if (dot(l, ng) <= 0.0 || dot(l, ns) <= 0.0) continue;
+    float visible = shadowVisibility(i, p, ng);
+    if (visible == 0.0) continue;
     vec3 a = uLightAttenuation[i];
-    vec3 lightI = uLightColor[i] / (a.x + a.y * d + a.z * d * d);
+    vec3 lightI = visible * uLightColor[i] / (a.x + a.y * d + a.z * d * d);
     float nl = dot(ns, l);
     result += lightI * c * (terms.y * nl);
     if (terms.z > 0.0) {
@@ -136,6 +219,9 @@ void main() {
   fragColor = vec4(0.0, 0.0, 0.0, 1.0);
 #else
   fragColor = vec4(encodeOutput(shade(vPosition, vFaceNormal, vNormal, vUv, vMaterial)), 1.0);
+#ifdef STENCIL_EXPORT
+  gl_FragStencilRefARB = gShadowUndecided ? uUndecidedStencil : 0;
+#endif
 #endif
 }
 )";
@@ -189,6 +275,9 @@ void main() {
   float v = acos(clamp(-n.y, -1.0, 1.0)) / 3.14159265;
   vec2 uv = vec2(u < 0.0 ? u + 1.0 : u, v);
   fragColor = vec4(encodeOutput(shade(p, n, n, uv, vMaterial)), 1.0);
+#ifdef STENCIL_EXPORT
+  gl_FragStencilRefARB = gShadowUndecided ? uUndecidedStencil : 0;
+#endif
 #endif
 }
 )";

@@ -5,11 +5,14 @@
 namespace glint::gl {
 
 // GLSL sources of the raster pass. The fragment shaders compute exactly the
-// tracer's direct lighting (common/shading.cpp, common/tracer.cpp Tracer::shade
-// without shadow rays): the same terms, face-forwarded normals, attenuation,
+// tracer's direct lighting (common/shading.cpp, common/tracer.cpp Tracer::shade;
+// shadow rays answered by the shadow maps where they can decide, see
+// client/shadow_maps.h): the same terms, face-forwarded normals, attenuation,
 // checker index and image lookups (common/texture.cpp).
 // Fragment shaders are fragmentPrelude(), kFragmentShading and their own main().
-std::string fragmentPrelude();  // #version and the array sizes below, as GLSL defines
+// With stencilExport (ARB_shader_stencil_export) a fragment whose shadow the
+// maps cannot decide writes the stencil uUndecidedStencil.
+std::string fragmentPrelude(bool stencilExport);  // #version, extensions and the limits below as GLSL defines
 extern const char* const kFragmentShading;
 extern const char* const kMeshVertexShader;
 extern const char* const kMeshFragmentShader;
@@ -20,5 +23,7 @@ extern const char* const kSphereFragmentShader;
 constexpr int kMaxLights = 16;
 constexpr int kMaxMaterials = 128;
 constexpr int kMaxTextures = 32;
+// Texels on each side of a point's own that its shadow test reads (1: 3 x 3).
+constexpr int kShadowRadius = 1;
 
 }  // namespace glint::gl

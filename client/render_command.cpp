@@ -191,6 +191,7 @@ void applyOverrides(const RenderOptions& o, Scene& scene) {
   if (o.crop) checkCrop(*o.crop, scene.frame);
   if (o.mask) scene.mask.rule = *o.mask;
   if (o.maskThreshold) scene.mask.minReflectivity = *o.maskThreshold;
+  if (o.shadowMap) scene.mask.shadowMap = *o.shadowMap;
 }
 
 namespace {
@@ -249,6 +250,7 @@ std::optional<LinearImage> renderFrames(const RenderRun& run, TileBackend& backe
                     .height = frame.height,
                     .crop = options.crop,
                     .maskedPixels = r.maskedPixels,
+                    .shadowEdgePixels = r.shadowEdgePixels,
                     .tiles = r.tiles,
                     .rays = r.rays,
                     .plan = &run.plan,

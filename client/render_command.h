@@ -20,6 +20,7 @@ struct RenderOptions {
   std::optional<MaskRule> mask;
   std::optional<float> maskThreshold;  // overrides the scene's min_reflectivity
   std::string maskOut;                 // PNG of the mask, "" none
+  std::optional<int> shadowMap;        // overrides the scene's mask.shadow_map
   int threads = 0;             // 0: every hardware thread
   int tileSize = 64;
   std::optional<int> samples;

@@ -49,6 +49,8 @@ nlohmann::json toJson(const FrameRecord& r) {
   if (r.plan) j["effects"] = toJson(*r.plan);
   if (r.hybrid) {
     j["raster_ms"] = r.hybrid->rasterMs;
+    j["shadow_map_ms"] = r.hybrid->shadowMapMs;
+    j["shadow_edge_pixels"] = r.shadowEdgePixels;
     j["readback_ms"] = r.hybrid->readbackMs;
     j["compose_ms"] = r.hybrid->composeMs;
   }

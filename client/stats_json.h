@@ -22,6 +22,7 @@ struct FrameRecord {
   int height = 0;
   std::optional<TileRect> crop;  // --crop: the window rendered
   std::size_t maskedPixels = 0;
+  std::size_t shadowEdgePixels = 0;  // of maskedPixels, traced where the shadow maps could not decide
   int tiles = 0;
   RayStats rays;
   const EffectPlan* plan = nullptr;

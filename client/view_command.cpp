@@ -195,6 +195,7 @@ void runView(const ViewOptions& options) {
   if (options.width) loaded.scene.frame.width = *options.width;
   if (options.height) loaded.scene.frame.height = *options.height;
   if (options.mask) loaded.scene.mask.rule = *options.mask;
+  if (options.shadowMap) loaded.scene.mask.shadowMap = *options.shadowMap;
 
   if (!glfwInit()) {
     throw InputError("glint view needs a display: cannot initialise GLFW (is DISPLAY set? glint render works headless)");

@@ -15,6 +15,7 @@ struct ViewOptions {
   std::string scene;
   RemoteOptions remote;        // --server ... (none traces in process), --stall-timeout, --tls-*
   std::optional<MaskRule> mask;  // unset: the scene's
+  std::optional<int> shadowMap;  // unset: the scene's
   int threads = 0;
   std::optional<BvhBuilder> bvh;  // in process only; unset: SAH
   int tileSize = 64;

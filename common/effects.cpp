@@ -5,6 +5,8 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include "common/mask_rule.h"
+
 namespace glint {
 namespace {
 
@@ -77,6 +79,14 @@ nlohmann::json toJson(const EffectPlan& plan) {
   for (bool l : plan.lights) active += l ? 1 : 0;
   j["active_lights"] = active;
   return j;
+}
+
+bool rasterShadows(const Scene& scene, const EffectPlan& plan, const MaskSettings& mask) {
+  if (!plan.shadows || mask.shadowMap <= 0 || mask.rule == MaskRule::kAll) return false;
+  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+    if (plan.materials[i].direct && !materialMasked(scene.materials[i], mask)) return true;
+  }
+  return false;
 }
 
 }  // namespace glint

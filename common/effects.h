@@ -37,4 +37,8 @@ struct EffectPlan {
 
 nlohmann::json toJson(const EffectPlan& plan);
 
+// Whether the raster pass needs shadow maps: shadows can occur, the mask
+// leaves a lit material to OpenGL, and the maps are not turned off.
+bool rasterShadows(const Scene& scene, const EffectPlan& plan, const MaskSettings& mask);
+
 }  // namespace glint

@@ -60,9 +60,13 @@ struct TracingSettings {
 };
 
 struct MaskSettings {
+  static constexpr int kMaxShadowMap = 4096;
   MaskRule rule = MaskRule::kAuto;
   float minReflectivity = 0.2f;
   float minTransparency = 0.0f;
+  // Texels along a shadow map's face edge (client/shadow_maps.h), 0: surfaces
+  // OpenGL draws get no shadows (the thesis's frame).
+  int shadowMap = 1024;
 };
 
 // What a frame's colour becomes in its output: scaled by 2^exposure (EV),

@@ -136,12 +136,13 @@ class SceneLoader {
   }
 
   void readMask(const JsonReader& r) {
-    r.allowKeys({"rule", "min_reflectivity", "min_transparency"});
+    r.allowKeys({"rule", "min_reflectivity", "min_transparency", "shadow_map"});
     if (auto rule = r.find("rule")) {
       scene_.mask.rule = choice<MaskRule>(*rule);
     }
     scene_.mask.minReflectivity = r.number("min_reflectivity", 0.2f, 0.0f, 1.0f);
     scene_.mask.minTransparency = r.number("min_transparency", 0.0f, 0.0f, 1.0f);
+    if (auto size = r.find("shadow_map")) scene_.mask.shadowMap = size->integer(0, MaskSettings::kMaxShadowMap);
   }
 
   void readTextures(const JsonReader& r) {

@@ -63,7 +63,7 @@ std::string varyError(const std::string& text) {
 }
 
 TEST(AccuracySweep, BadVaryValuesNameTheKeyAndWhatItTakes) {
-  EXPECT_NE(varyError("colour=1").find("KEY one of samples, pattern, filter, max_depth, min_weight, mask_threshold"),
+  EXPECT_NE(varyError("colour=1").find("KEY one of samples, pattern, filter, max_depth, min_weight, mask_threshold, shadow_map"),
             std::string::npos);
   EXPECT_NE(varyError("samples=4,0").find("samples does not take '0'; it takes whole numbers in [1, 4096]"),
             std::string::npos);

@@ -9,7 +9,7 @@ namespace glint {
 namespace {
 
 TEST(MaskRule, AutoFollowsReflectivityTransparencyAndRaytrace) {
-  const MaskSettings automatic{MaskRule::kAuto, 0.2f, 0.0f};
+  const MaskSettings automatic{MaskRule::kAuto, 0.2f, 0.0f, 0};
   Material m;
   EXPECT_FALSE(materialMasked(m, automatic));
   m.reflectivity = 0.2f;
@@ -24,8 +24,8 @@ TEST(MaskRule, AutoFollowsReflectivityTransparencyAndRaytrace) {
   Material forced;
   forced.raytrace = RaytraceRule::kAlways;
   EXPECT_TRUE(materialMasked(forced, automatic));
-  EXPECT_TRUE(materialMasked(Material{}, {MaskRule::kAll, 0.2f, 0.0f}));
-  EXPECT_FALSE(materialMasked(forced, {MaskRule::kNone, 0.2f, 0.0f}));
+  EXPECT_TRUE(materialMasked(Material{}, {MaskRule::kAll, 0.2f, 0.0f, 0}));
+  EXPECT_FALSE(materialMasked(forced, {MaskRule::kNone, 0.2f, 0.0f, 0}));
 }
 
 // The thesis's scenes: floor, mirror and sphere masked in scene 1; the
