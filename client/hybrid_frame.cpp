@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <span>
 #include <string>
 
 #include "client/image_rows.h"
@@ -75,6 +76,30 @@ void drawTile(const gl::Api& gl, const TileJob& job, std::size_t index, const Ti
   gl.DrawPixels(r.width, r.height, GL_RGB, GL_UNSIGNED_BYTE, rect.data());
 }
 
+// Sends the jobs to the service (in batches when the frame may be
+// cancelled) and collects their outputs; false when cancelled.
+bool traceTiles(TileService& service, const FrameSettings& frame, const std::vector<TileJob>& jobs,
+                const CancelCheck& cancelled, std::vector<TileOutput>& outputs, HybridResult& result) {
+  constexpr std::size_t kTilesPerThread = 4;  // a batch: enough to keep every thread busy
+  const std::size_t batch =
+      cancelled ? kTilesPerThread * static_cast<std::size_t>(std::max(1, service.parallelism())) : jobs.size();
+  outputs.assign(jobs.size(), {});
+  double computeMs = 0.0;
+  const Clock::time_point traceStart = Clock::now();
+  for (std::size_t first = 0; first < jobs.size(); first += batch) {
+    if (cancelled && cancelled()) return false;
+    const std::span<const TileJob> part(jobs.data() + first, std::min(batch, jobs.size() - first));
+    service.render(frame, part, [&](std::size_t i, TileOutput&& out) {
+      result.rays += out.rays;
+      computeMs += out.computeMs;
+      outputs[first + i] = std::move(out);
+    });
+  }
+  result.times.traceMs = msSince(traceStart);
+  result.times.networkMs = std::max(0.0, result.times.traceMs - computeMs / std::max(1, service.parallelism()));
+  return true;
+}
+
 }  // namespace
 
 double medianOf(const std::vector<HybridTimes>& frames, double HybridTimes::*step) {
@@ -83,8 +108,9 @@ double medianOf(const std::vector<HybridTimes>& frames, double HybridTimes::*ste
   return median(std::move(values));
 }
 
-void renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& service, const FrameSettings& frame,
-                  const MaskSettings& mask, int tileSize, HybridResult& result, const std::optional<TileRect>& crop) {
+bool renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& service, const FrameSettings& frame,
+                  const MaskSettings& mask, int tileSize, HybridResult& result, const std::optional<TileRect>& crop,
+                  const CancelCheck& cancelled) {
   const Clock::time_point start = Clock::now();
   const int w = frame.width, h = frame.height;
   const TileRect whole{0, 0, w, h};
@@ -115,16 +141,8 @@ void renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
   const std::vector<TileJob> jobs = maskedTiles(result.mask, w, window, tileSize, result);
   result.tiles = static_cast<int>(jobs.size());
 
-  const Clock::time_point traceStart = Clock::now();
-  std::vector<TileOutput> outputs(jobs.size());
-  double computeMs = 0.0;
-  service.render(frame, jobs, [&](std::size_t i, TileOutput&& out) {
-    result.rays += out.rays;
-    computeMs += out.computeMs;
-    outputs[i] = std::move(out);
-  });
-  result.times.traceMs = msSince(traceStart);
-  result.times.networkMs = std::max(0.0, result.times.traceMs - computeMs / std::max(1, service.parallelism()));
+  std::vector<TileOutput> outputs;
+  if (!traceTiles(service, frame, jobs, cancelled, outputs, result)) return false;
 
   const Clock::time_point composeStart = Clock::now();
   gl.Disable(GL_DEPTH_TEST);
@@ -144,6 +162,7 @@ void renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
   gl.Disable(GL_STENCIL_TEST);
   result.times.composeMs = msSince(composeStart);
   result.times.totalMs = msSince(start);
+  return true;
 }
 
 }  // namespace glint

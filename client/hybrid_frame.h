@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -35,6 +36,10 @@ struct HybridResult {
   HybridTimes times;
 };
 
+// Asked between batches of tiles: true abandons the frame (the camera has
+// moved on).
+using CancelCheck = std::function<bool()>;
+
 // The thesis's frame: OpenGL rasterizes the scene and marks masked pixels
 // in the stencil buffer, the mask is read back, tiles with masked pixels go
 // to the tile service, the traced pixels are drawn back with glDrawPixels
@@ -43,9 +48,13 @@ struct HybridResult {
 // passing the same object frame after frame keeps its image-sized buffers
 // (fresh megabyte buffers per frame cost more in page faults than the reads
 // themselves). With `crop`, only that window's masked pixels are traced and
-// the image is the window (the mask stays the whole frame's).
-void renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& service, const FrameSettings& frame,
+// the image is the window (the mask stays the whole frame's). With
+// `cancelled`, the tiles go to the service in batches of a few per thread it
+// traces with, and the frame is abandoned when cancelled() says so between
+// two: renderHybrid returns false, result.image still holds the previous
+// frame and the rest of result is the abandoned frame's.
+bool renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& service, const FrameSettings& frame,
                   const MaskSettings& mask, int tileSize, HybridResult& result,
-                  const std::optional<TileRect>& crop = std::nullopt);
+                  const std::optional<TileRect>& crop = std::nullopt, const CancelCheck& cancelled = {});
 
 }  // namespace glint

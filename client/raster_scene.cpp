@@ -247,7 +247,8 @@ void RasterScene::setViewUniforms(unsigned program, const glm::mat4& viewProject
   gl_.Uniform3fv(gl_.GetUniformLocation(program, "uEye"), 1, glm::value_ptr(eye));
 }
 
-void RasterScene::setUniforms(unsigned program, const FrameSettings& frame, const Projection& projection) {
+void RasterScene::setUniforms(unsigned program, const FrameSettings& frame, const Projection& projection,
+                              bool antialiased) {
   setViewUniforms(program, projection.viewProjection, frame.camera.eye, projection.far);
   const auto at = [&](const char* name) { return gl_.GetUniformLocation(program, name); };
   gl_.Uniform1f(at("uExposureScale"), Encoder(frame.output).scale());
@@ -303,7 +304,14 @@ void RasterScene::setUniforms(unsigned program, const FrameSettings& frame, cons
     if (!none.empty()) gl_.Uniform1iv(at("uShadowLayer"), static_cast<GLsizei>(none.size()), none.data());
     gl_.Uniform1i(at("uShadowMaps"), 1);  // a unit of its own: samplers of two types may not share one
   }
+  gl_.Uniform1i(at("uShadowRadius"), antialiased ? 0 : kShadowRadius);
   gl_.Uniform1i(at("uUndecidedStencil"), undecidedStencil_);
+}
+
+std::string RasterScene::shadowEdgeNote(const MaskSettings& mask) const {
+  if (stencilExport_ || mask.rule != MaskRule::kAuto || !rasterShadows(scene_, plan_, mask)) return "";
+  return "note: this OpenGL has no ARB_shader_stencil_export: the edges of shadows on surfaces OpenGL draws are "
+         "the shadow map's estimate, not traced";
 }
 
 bool RasterScene::prepareShadows(const MaskSettings& mask) {
@@ -377,7 +385,7 @@ void RasterScene::drawBatches(const FrameSettings& frame, const MaskSettings& ma
         const bool masked = !antialiased && materialMasked(scene_.materials[b.material], mask);
         if (b.spheres != (spheres == 1) || masked != (traced == 1)) continue;
         if (!uniformsSet) {
-          setUniforms(programs_[spheres][traced], frame, vp);
+          setUniforms(programs_[spheres][traced], frame, vp, antialiased);
           uniformsSet = true;
         }
         gl_.StencilFunc(GL_ALWAYS, masked ? kMaskedPixel : kRasterPixel, 0xff);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -42,9 +43,11 @@ class RasterScene {
   // The masked pixels are replaced by the tracer's afterwards either way.
   // False when the frame has one sample or GL offers no multisampling.
   bool drawAntialiased(const FrameSettings& frame);
-  // Whether the driver lets a fragment write its stencil value: without it,
-  // pixels whose shadow the maps cannot decide keep the maps' estimate.
-  bool tracesShadowEdges() const { return stencilExport_; }
+  // A line for the user where frames under `mask` fall short of the
+  // tracer's shadows: without ARB_shader_stencil_export a fragment cannot
+  // mark its pixel for tracing, and pixels whose shadow the maps cannot
+  // decide keep the maps' estimate. Empty otherwise.
+  std::string shadowEdgeNote(const MaskSettings& mask) const;
 
  private:
   struct Batch {
@@ -66,7 +69,7 @@ class RasterScene {
     glm::mat4 viewProjection;
     float far;
   };
-  void setUniforms(unsigned program, const FrameSettings& frame, const Projection& projection);
+  void setUniforms(unsigned program, const FrameSettings& frame, const Projection& projection, bool antialiased);
   void setViewUniforms(unsigned program, const glm::mat4& viewProjection, const glm::vec3& eye, float far);
   // The shadow maps `mask` calls for, drawn if they are not yet; false when
   // it calls for none.

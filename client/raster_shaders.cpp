@@ -10,8 +10,7 @@ std::string fragmentPrelude(bool stencilExport) {
   if (stencilExport) prelude += "#extension GL_ARB_shader_stencil_export : require\n#define STENCIL_EXPORT\n";
   const std::pair<const char*, int> limits[] = {{"MAX_LIGHTS", kMaxLights},
                                                 {"MAX_MATERIALS", kMaxMaterials},
-                                                {"MAX_TEXTURES", kMaxTextures},
-                                                {"SHADOW_RADIUS", kShadowRadius}};
+                                                {"MAX_TEXTURES", kMaxTextures}};
   for (const auto& [name, value] : limits) prelude.append("#define ").append(name).append(" ").append(std::to_string(value)).append("\n");
   return prelude;
 }
@@ -43,6 +42,7 @@ uniform float uShadowFar[MAX_LIGHTS];
 uniform vec3 uShadowFaceS[6];
 uniform vec3 uShadowFaceT[6];
 uniform vec3 uShadowFaceM[6];
+uniform int uShadowRadius;                   // texels read on each side of a point's own
 uniform int uUndecidedStencil;               // the stencil of a pixel the maps cannot decide
 out vec4 fragColor;
 bool gShadowUndecided = false;               // set by shadowVisibility()
@@ -133,19 +133,19 @@ float shadowVisibility(int light, vec3 p, vec3 ng) {
   float plane = -dot(v, ng);  // the light's distance from p's tangent plane
   int open = 0, count = 0;
   // The texels around p's on p's face (directions step by the face's axes);
-  // p within SHADOW_RADIUS texels of the face's edge is undecided (its
+  // p within uShadowRadius texels of the face's edge is undecided (its
   // neighbours clamped to the face for the estimate).
   float step = 2.0 / float(uShadowSize);
   vec3 s = step * uShadowFaceS[own.z], t = step * uShadowFaceT[own.z];
   vec3 centre = shadowTexelDirection(own.xy, own.z);
-  for (int dy = -SHADOW_RADIUS; dy <= SHADOW_RADIUS; ++dy) {
-    for (int dx = -SHADOW_RADIUS; dx <= SHADOW_RADIUS; ++dx) {
+  for (int dy = -uShadowRadius; dy <= uShadowRadius; ++dy) {
+    for (int dx = -uShadowRadius; dx <= uShadowRadius; ++dx) {
       ivec2 xy = clamp(own.xy + ivec2(dx, dy), ivec2(0), ivec2(uShadowSize - 1));
       vec2 d = vec2(xy - own.xy);
       shadowVote(light, ivec3(xy, own.z), centre + d.x * s + d.y * t, plane, ng, open, count);
     }
   }
-  if (any(lessThan(own.xy, ivec2(SHADOW_RADIUS))) || any(greaterThanEqual(own.xy, ivec2(uShadowSize - SHADOW_RADIUS)))) {
+  if (any(lessThan(own.xy, ivec2(uShadowRadius))) || any(greaterThanEqual(own.xy, ivec2(uShadowSize - uShadowRadius)))) {
     gShadowUndecided = true;
   }
   if (open != 0 && open != count) gShadowUndecided = true;

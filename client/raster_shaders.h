@@ -23,7 +23,10 @@ extern const char* const kSphereFragmentShader;
 constexpr int kMaxLights = 16;
 constexpr int kMaxMaterials = 128;
 constexpr int kMaxTextures = 32;
-// Texels on each side of a point's own that its shadow test reads (1: 3 x 3).
+// Texels on each side of a point's own that its shadow test reads (1: 3 x 3)
+// where it decides the mask; the anti-aliased pass reads the point's own
+// texel alone (a pixel it decided has the same answer there, and one it did
+// not is traced).
 constexpr int kShadowRadius = 1;
 
 }  // namespace glint::gl

@@ -149,10 +149,12 @@ std::string whereLabel(TileBackend& backend, bool missing) {
 // One frame of the view: the hybrid frame through the backend's service
 // or, when no server is left, the raster frame with the traced pixels
 // marked (`reported`: the last error printed, so that a retry that fails the
-// same way says nothing new); then the overlays and the title. Returns
-// whether tiles are missing.
-bool showFrame(GLFWwindow* window, const gl::Api& api, gl::RasterScene& raster, TileBackend& backend,
-               const Controls& controls, int tileSize, bool preview, HybridResult& last, std::string& reported) {
+// same way says nothing new); then the overlays and the title. A full frame
+// is abandoned, and the window left as it was, when the camera moves while
+// its tiles are traced.
+enum class Shown { kFrame, kMissingTiles, kAbandoned };
+Shown showFrame(GLFWwindow* window, const gl::Api& api, gl::RasterScene& raster, TileBackend& backend,
+                Controls& controls, int tileSize, bool preview, HybridResult& last, std::string& reported) {
   FrameSettings frame = backend.scene().frame;
   glfwGetFramebufferSize(window, &frame.width, &frame.height);
   frame.camera = controls.camera;
@@ -160,8 +162,15 @@ bool showFrame(GLFWwindow* window, const gl::Api& api, gl::RasterScene& raster, 
   MaskSettings mask = backend.scene().mask;
   mask.rule = controls.rule;
   bool missing = false;
+  const CancelCheck cameraMoved = [&] {
+    glfwPollEvents();
+    return controls.changed;
+  };
   try {
-    renderHybrid(api, raster, backend.service(), frame, mask, tileSize, last);
+    if (!renderHybrid(api, raster, backend.service(), frame, mask, tileSize, last, std::nullopt,
+                      preview ? CancelCheck{} : cameraMoved)) {
+      return Shown::kAbandoned;
+    }
     reported.clear();
   } catch (const InputError& e) {
     if (!backend.distributed()) throw;
@@ -184,7 +193,7 @@ bool showFrame(GLFWwindow* window, const gl::Api& api, gl::RasterScene& raster, 
                 last.times.rasterMs, last.times.readbackMs, last.times.traceMs, last.times.composeMs,
                 whereLabel(backend, missing).c_str());
   glfwSetWindowTitle(window, title);
-  return missing;
+  return missing ? Shown::kMissingTiles : Shown::kFrame;
 }
 
 }  // namespace
@@ -218,6 +227,8 @@ void runView(const ViewOptions& options) {
   TileBackend backend({options.remote, options.threads, options.bvh, false}, std::move(loaded));
   const Scene& scene = backend.scene();
   gl::RasterScene raster(api, scene);
+  const std::string note = raster.shadowEdgeNote(scene.mask);
+  if (!note.empty()) std::fprintf(stderr, "%s\n", note.c_str());
 
   Controls controls;
   controls.camera = scene.frame.camera;
@@ -238,9 +249,9 @@ void runView(const ViewOptions& options) {
     if (moved || refine || options.frames > 0 || (retryAt > 0.0 && glfwGetTime() >= retryAt)) {
       controls.changed = false;
       const bool preview = progressive && moved;
-      const bool missing = showFrame(window, api, raster, backend, controls, options.tileSize, preview, last, reported);
+      const Shown shown = showFrame(window, api, raster, backend, controls, options.tileSize, preview, last, reported);
       refine = preview;
-      retryAt = missing ? glfwGetTime() + kRetrySeconds : 0.0;
+      retryAt = shown == Shown::kMissingTiles ? glfwGetTime() + kRetrySeconds : 0.0;
       if (options.frames > 0 && ++frames >= options.frames) break;
     }
     if (refine) {

@@ -408,6 +408,62 @@ TEST(Hybrid, MaskedPixelsEqualTheFullTrace) {
   EXPECT_NE(here.rgb, full.rgb);
 }
 
+// Counts the tiles a service is given.
+class CountingService : public TileService {
+ public:
+  explicit CountingService(TileService& inner) : inner_(inner) {}
+  void render(const FrameSettings& frame, std::span<const TileJob> jobs,
+              const std::function<void(std::size_t, TileOutput&&)>& done) override {
+    tiles += jobs.size();
+    inner_.render(frame, jobs, done);
+  }
+  int parallelism() const override { return inner_.parallelism(); }
+  std::size_t tiles = 0;
+
+ private:
+  TileService& inner_;
+};
+
+// A frame the camera has left is abandoned between batches of tiles: the
+// service is given no tile after cancelled() says so, renderHybrid returns
+// false and the image stays the previous frame's; a check that never
+// cancels gives the frame a plain call gives, byte for byte.
+TEST(Hybrid, CancelledFrameStopsTracing) {
+  SceneSetup s = load("scenes/room.json", 320, 240);
+  s.frame.sampling.samples = 1;
+  const PreparedScene prepared(s.loaded.scene, BvhSettings{});
+  ThreadPool pool(2);
+  LocalTileService local(prepared, pool);
+  CountingService counting(local);
+  gl::OffscreenContext context(s.frame.width, s.frame.height);
+  gl::RasterScene raster(context.api(), prepared.scene());
+  const MaskSettings mask = prepared.scene().mask;
+  HybridResult plain, checked;
+  ASSERT_TRUE(renderHybrid(context.api(), raster, counting, s.frame, mask, 16, plain));
+  const std::size_t all = counting.tiles;
+  ASSERT_GT(all, 3 * 4 * 2u);  // more than three batches of 4 tiles a thread
+
+  int checks = 0;
+  counting.tiles = 0;
+  ASSERT_TRUE(renderHybrid(context.api(), raster, counting, s.frame, mask, 16, checked, std::nullopt, [&] {
+    ++checks;
+    return false;
+  }));
+  EXPECT_EQ(checked.image.rgb, plain.image.rgb);
+  EXPECT_EQ(counting.tiles, all);
+  EXPECT_GT(checks, 2);
+
+  FrameSettings moved = s.frame;
+  moved.camera.eye.x += 0.5f;
+  counting.tiles = 0;
+  checks = 0;
+  const bool finished = renderHybrid(context.api(), raster, counting, moved, mask, 16, checked, std::nullopt,
+                                     [&] { return ++checks > 1; });  // the camera moves during the first batch
+  EXPECT_FALSE(finished);
+  EXPECT_EQ(counting.tiles, 4 * 2u);
+  EXPECT_EQ(checked.image.rgb, plain.image.rgb);
+}
+
 // A result passed back frame after frame (to keep its buffers) holds each
 // frame as a fresh one would: nothing of the previous frame shows through,
 // whatever its mask rule or size. (Both in contexts of one size: llvmpipe

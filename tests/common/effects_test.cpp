@@ -73,6 +73,29 @@ TEST(Effects, BlackLightsAndUnlitMaterialsCastNoShadowRays) {
   EXPECT_GT(f2.stats.shadow, 0u);
 }
 
+// The raster pass draws shadow maps only where a shadow can fall on a
+// surface OpenGL draws: something casts one, a lit material is left to
+// OpenGL by the mask, and the maps are not turned off.
+TEST(Effects, ShadowMapsOnlyWhereARasterSurfaceCanBeShadowed) {
+  const Scene room = loadSceneFile(test::sourcePath("scenes/room.json"));
+  const EffectPlan plan = EffectPlan::derive(room);
+  MaskSettings mask = room.mask;
+  EXPECT_TRUE(rasterShadows(room, plan, mask));
+  mask.shadowMap = 0;
+  EXPECT_FALSE(rasterShadows(room, plan, mask));
+  mask = room.mask;
+  mask.rule = MaskRule::kAll;  // nothing is drawn by OpenGL
+  EXPECT_FALSE(rasterShadows(room, plan, mask));
+  mask.rule = MaskRule::kAuto;
+  mask.minReflectivity = -1.0f;  // every material traced (reflectivity >= 0 > -1)
+  EXPECT_FALSE(rasterShadows(room, plan, mask));
+  mask.rule = MaskRule::kNone;
+  EXPECT_TRUE(rasterShadows(room, plan, mask));
+
+  const Scene lone = test::sceneFromJson(sphereScene().dump());  // a sphere alone shadows nothing
+  EXPECT_FALSE(rasterShadows(lone, EffectPlan::derive(lone), lone.mask));
+}
+
 TEST(Effects, NoSecondaryRaysAtDepthOneOrBelowMinWeight) {
   Scene s = loadSceneFile(test::sourcePath("scenes/room.json"));
   s.frame.width = 64;
