@@ -18,7 +18,9 @@ doc="$docs/accuracy.md"
   echo "the frame's median time, the y axis its RMSE against a 256-sample reference (linear values in"
   echo "[0, 1]); lower left is better; the dashed line is the Pareto front, the circles the scene's own"
   echo "settings, the dotted line the reference's own error. The mask_threshold series is the thesis's"
-  echo "trade-off: hybrid frames, OpenGL drawing what the threshold leaves untraced."
+  echo "trade-off: hybrid frames, OpenGL drawing what the threshold leaves untraced. The shadow_map series"
+  echo "is the same hybrid frame with the surfaces OpenGL draws shadowed from maps of that size (0: none, the"
+  echo "thesis's raster), the pixels the maps cannot decide traced ([hybrid.md](hybrid.md))."
   for scene in "$@"; do
     dir="$out/$scene"
     echo
@@ -30,7 +32,7 @@ doc="$docs/accuracy.md"
     sed -e '1,2d' -e "s|(accuracy.png)|(images/accuracy-$scene.png)|" "$dir/report.md"
     echo
     echo "Where the error is (black none, blue 1/255, green 4/255, yellow 8/255, red 32/255 and more):"
-    echo "one sample per pixel (edges, the glass), and OpenGL alone (mask_threshold 1: no reflections or shadows):"
+    echo "one sample per pixel (edges, the glass), and OpenGL alone (mask_threshold 1: no reflections; shadows from the maps):"
     echo
     echo "![1 sample](images/accuracy-$scene-samples-1-error.png) ![OpenGL only](images/accuracy-$scene-mask-1-error.png)"
   done
