@@ -25,32 +25,50 @@ void readPixels(const gl::Api& gl, const TileRect& window, int frameHeight, GLen
 }
 
 
-// The tiles of the window with at least one masked pixel, each with its
-// mask bits; w is the frame's width.
-std::vector<TileJob> maskedTiles(const std::vector<std::uint8_t>& mask, int w, const TileRect& window, int tileSize,
-                                 HybridResult& result) {
+// The tiles of the window with at least one pixel marked `mark`, each with
+// the mask bits of those pixels; w is the frame's width. Adds their count
+// to `pixels`.
+std::vector<TileJob> markedTiles(const std::vector<std::uint8_t>& mask, int w, const TileRect& window, int tileSize,
+                                 gl::StencilMark mark, std::size_t& pixels) {
   std::vector<TileJob> jobs;
   for (const TileRect& rect : tileGrid(window, std::max(1, tileSize))) {
     TileJob job{rect, std::vector<std::uint8_t>(maskByteCount(rect), 0)};
     std::size_t count = 0;
     for (int y = 0; y < rect.height; ++y) {
       for (int x = 0; x < rect.width; ++x) {
-        const std::uint8_t mark =
-            mask[static_cast<std::size_t>(rect.y + y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(rect.x + x)];
-        if (mark == gl::kRasterPixel) continue;
+        if (mask[static_cast<std::size_t>(rect.y + y) * static_cast<std::size_t>(w) +
+                 static_cast<std::size_t>(rect.x + x)] != mark) {
+          continue;
+        }
         setMaskBit(job.mask, static_cast<std::size_t>(y * rect.width + x));
         ++count;
-        result.shadowEdgePixels += mark == gl::kShadowEdgePixel ? 1 : 0;
       }
     }
-    result.maskedPixels += count;
+    pixels += count;
     if (count > 0) jobs.push_back(std::move(job));
   }
   return jobs;
 }
 
+// Pixels traced with one frame's settings: the masked objects' with the
+// frame's own; the shadow edges' (pixels of surfaces OpenGL draws, traced
+// only because the shadow maps could not decide) with direct light alone,
+// as OpenGL draws their neighbours: the tracer's shadows, no reflected or
+// refracted rays (max depth 1), the frame's samples.
+struct TracedSet {
+  gl::StencilMark mark;
+  FrameSettings frame;
+  std::vector<TileJob> jobs;
+  std::vector<TileOutput> outputs;
+};
+
+FrameSettings directLightOf(FrameSettings frame) {
+  frame.tracing.maxDepth = 1;
+  return frame;
+}
+
 // Draws one traced tile back (bottom-up rows for glDrawPixels); the stencil
-// test keeps GL's own pixels (kRasterPixel). `rect` is scratch space kept between tiles.
+// test keeps the pixels that are not its set's. `rect` is scratch space kept between tiles.
 void drawTile(const gl::Api& gl, const TileJob& job, std::size_t index, const TileOutput& out, int frameHeight,
               std::vector<std::uint8_t>& rect) {
   const TileRect& r = job.rect;
@@ -76,10 +94,11 @@ void drawTile(const gl::Api& gl, const TileJob& job, std::size_t index, const Ti
   gl.DrawPixels(r.width, r.height, GL_RGB, GL_UNSIGNED_BYTE, rect.data());
 }
 
-// Sends the jobs to the service (in batches when the frame may be
+// Sends a set's jobs to the service (in batches when the frame may be
 // cancelled) and collects their outputs; false when cancelled.
-bool traceTiles(TileService& service, const FrameSettings& frame, const std::vector<TileJob>& jobs,
-                const CancelCheck& cancelled, std::vector<TileOutput>& outputs, HybridResult& result) {
+bool traceTiles(TileService& service, TracedSet& set, const CancelCheck& cancelled, HybridResult& result) {
+  const std::vector<TileJob>& jobs = set.jobs;
+  std::vector<TileOutput>& outputs = set.outputs;
   constexpr std::size_t kTilesPerThread = 4;  // a batch: enough to keep every thread busy
   const std::size_t batch =
       cancelled ? kTilesPerThread * static_cast<std::size_t>(std::max(1, service.parallelism())) : jobs.size();
@@ -89,14 +108,15 @@ bool traceTiles(TileService& service, const FrameSettings& frame, const std::vec
   for (std::size_t first = 0; first < jobs.size(); first += batch) {
     if (cancelled && cancelled()) return false;
     const std::span<const TileJob> part(jobs.data() + first, std::min(batch, jobs.size() - first));
-    service.render(frame, part, [&](std::size_t i, TileOutput&& out) {
+    service.render(set.frame, part, [&](std::size_t i, TileOutput&& out) {
       result.rays += out.rays;
       computeMs += out.computeMs;
       outputs[first + i] = std::move(out);
     });
   }
-  result.times.traceMs = msSince(traceStart);
-  result.times.networkMs = std::max(0.0, result.times.traceMs - computeMs / std::max(1, service.parallelism()));
+  const double traceMs = msSince(traceStart);
+  result.times.traceMs += traceMs;
+  result.times.networkMs += std::max(0.0, traceMs - computeMs / std::max(1, service.parallelism()));
   return true;
 }
 
@@ -138,11 +158,16 @@ bool renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
     result.times.rasterMs += msSince(antialiasStart);
   }
 
-  const std::vector<TileJob> jobs = maskedTiles(result.mask, w, window, tileSize, result);
-  result.tiles = static_cast<int>(jobs.size());
-
-  std::vector<TileOutput> outputs;
-  if (!traceTiles(service, frame, jobs, cancelled, outputs, result)) return false;
+  TracedSet sets[2] = {
+      {gl::kMaskedPixel, frame,
+       markedTiles(result.mask, w, window, tileSize, gl::kMaskedPixel, result.maskedPixels), {}},
+      {gl::kShadowEdgePixel, directLightOf(frame),
+       markedTiles(result.mask, w, window, tileSize, gl::kShadowEdgePixel, result.shadowEdgePixels), {}}};
+  result.maskedPixels += result.shadowEdgePixels;
+  result.tiles = static_cast<int>(sets[0].jobs.size() + sets[1].jobs.size());
+  for (TracedSet& set : sets) {
+    if (!traceTiles(service, set, cancelled, result)) return false;
+  }
 
   const Clock::time_point composeStart = Clock::now();
   gl.Disable(GL_DEPTH_TEST);
@@ -150,12 +175,14 @@ bool renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
     gl.Disable(GL_STENCIL_TEST);
   } else {
     gl.Enable(GL_STENCIL_TEST);
-    gl.StencilFunc(GL_NOTEQUAL, gl::kRasterPixel, 0xff);
     gl.StencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
   }
   gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
   std::vector<std::uint8_t> scratch;
-  for (std::size_t j = 0; j < jobs.size(); ++j) drawTile(gl, jobs[j], j, outputs[j], h, scratch);
+  for (const TracedSet& set : sets) {
+    gl.StencilFunc(GL_EQUAL, set.mark, 0xff);  // a tile's rectangle draws only its set's pixels
+    for (std::size_t j = 0; j < set.jobs.size(); ++j) drawTile(gl, set.jobs[j], j, set.outputs[j], h, scratch);
+  }
   result.image.width = window.width;
   result.image.height = window.height;
   readPixels(gl, window, h, GL_RGB, 3, result.image.rgb);

@@ -372,14 +372,19 @@ TEST(Hybrid, MaskFollowsTheObjectAtThePixelCentre) {
   EXPECT_EQ(h.shadowEdgePixels, marked(gl::kShadowEdgePixel));
 }
 
-// Masked pixels of the hybrid frame are the full trace's, byte for byte,
-// in process and through a glintd on loopback.
+// Masked pixels of the hybrid frame are the full trace's, byte for byte, in
+// process and through a glintd on loopback; the pixels traced for a shadow's
+// edge are the full trace's with direct light alone (max depth 1: the
+// tracer's shadows, no reflected rays, as OpenGL draws their neighbours).
 TEST(Hybrid, MaskedPixelsEqualTheFullTrace) {
   const SceneSetup s = load("scenes/room.json");
   const PreparedScene prepared(s.loaded.scene, BvhSettings{});
   ThreadPool pool(2);
   LocalTileService local(prepared, pool);
   const FrameImage full = renderFrame(local, s.frame, {}).image;
+  FrameSettings direct = s.frame;
+  direct.tracing.maxDepth = 1;
+  const FrameImage directFull = renderFrame(local, direct, {}).image;
 
   server::setLogging(false);
   server::ServerOptions o;
@@ -391,12 +396,24 @@ TEST(Hybrid, MaskedPixelsEqualTheFullTrace) {
 
   for (TileService* service : {static_cast<TileService*>(&local), static_cast<TileService*>(&remote)}) {
     const HybridResult h = hybrid(prepared.scene(), *service, s.frame, prepared.scene().mask);
-    int differing = 0;
+    int differing = 0, edges = 0, edgesDiffering = 0, edgesUnlikeFullTrace = 0;
     for (std::size_t i = 0; i < h.mask.size(); ++i) {
-      if (!h.mask[i]) continue;
-      for (int k = 0; k < 3; ++k) differing += h.image.rgb[3 * i + k] != full.rgb[3 * i + k] ? 1 : 0;
+      if (h.mask[i] == gl::kRasterPixel) continue;
+      const FrameImage& expected = h.mask[i] == gl::kMaskedPixel ? full : directFull;
+      edges += h.mask[i] == gl::kShadowEdgePixel ? 1 : 0;
+      for (int k = 0; k < 3; ++k) {
+        const bool off = h.image.rgb[3 * i + k] != expected.rgb[3 * i + k];
+        differing += off ? 1 : 0;
+        if (h.mask[i] == gl::kShadowEdgePixel) {
+          edgesDiffering += off ? 1 : 0;
+          edgesUnlikeFullTrace += h.image.rgb[3 * i + k] != full.rgb[3 * i + k] ? 1 : 0;
+        }
+      }
     }
     EXPECT_EQ(differing, 0);
+    EXPECT_EQ(edgesDiffering, 0);
+    EXPECT_GT(edges, 50);
+    EXPECT_GT(edgesUnlikeFullTrace, 0);  // the floor reflects in the full trace, not in direct light
     EXPECT_GT(h.maskedPixels, 5000u);
     EXPECT_GT(h.tiles, 0);
   }
