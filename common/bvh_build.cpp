@@ -232,7 +232,6 @@ class BvhBuilderImpl {
     float bestCost = std::numeric_limits<float>::infinity();
     int bestAxis = -1;
     int bestPlane = 0;
-    LeafLoad all;  // every primitive's, summed from the first axis's bins
     for (int a = 0; a < 3; ++a) {
       const float lo = centroids.min[a];
       const float extent = centroids.max[a] - lo;
@@ -243,9 +242,6 @@ class BvhBuilderImpl {
         const int b = binOf(p.bounds.centre()[a], lo, extent, bins);
         binLoads[b].add(p.id >= firstSphere_);
         binBounds[b].expand(p.bounds);
-      }
-      if (all.empty()) {
-        for (int b = 0; b < bins; ++b) all += binLoads[b];
       }
       // Sweep from the right to get the area and load right of each plane.
       std::array<float, kMaxBins> rightArea{};
@@ -275,6 +271,8 @@ class BvhBuilderImpl {
     if (bestAxis < 0) return prims.size() <= leafCapacity() ? std::nullopt : std::optional<std::size_t>(0);
     const float area = bounds.surfaceArea();
     const float splitCost = settings_.traversalCost + (area > 0.0f ? bestCost / area : 0.0f);
+    LeafLoad all;
+    for (const BuildPrimitive& p : prims) all.add(p.id >= firstSphere_);
     const float leafCost = all.cost();
     if (prims.size() <= leafCapacity() && leafCost <= splitCost) return std::nullopt;
     const float lo = centroids.min[bestAxis];
