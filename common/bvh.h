@@ -9,7 +9,6 @@
 #include "common/geometry.h"
 #include "common/enum_words.h"
 #include "common/ray.h"
-#include "common/triangle4.h"
 #include "common/wide_slab.h"
 
 namespace glint {
@@ -30,7 +29,7 @@ struct BvhSettings {
   BvhBuilder builder = BvhBuilder::kSah;
   int maxLeafSize = 4;     // a node with at most this many primitives may become a leaf
   int sahBins = 16;        // centroid bins per axis for the SAH
-  float traversalCost = 1.0f;  // SAH cost of visiting a node, relative to testing a block of four primitives
+  float traversalCost = 1.0f;  // SAH cost of visiting a node, relative to one primitive test
   // Threads the build may use (0: one per hardware thread): large subtrees
   // near the root are built side by side. The tree is the same for any count.
   int buildThreads = 0;
@@ -60,10 +59,6 @@ static_assert(sizeof(BvhNode) == 128, "BvhNode is documented as 128 bytes");
 // median splits before it could grow deeper); traversal sizes its stack by it.
 constexpr int kBvhMaxDepth = 64;
 
-// What primIds holds between leaves: each leaf's entries start at a multiple
-// of four, so that they fill blocks of four triangles (Triangles4) of their own.
-constexpr std::uint32_t kNoPrimitive = 0xffffffffu;
-
 // What the builder sees of a primitive.
 struct BuildPrimitive {
   Bounds3 bounds;
@@ -85,30 +80,15 @@ class Bvh {
   bool occluded(const Ray& ray, float tMax) const;
 
   const std::vector<BvhNode>& nodes() const { return nodes_; }
-  // The leaves' primitives; a leaf's first entry is a multiple of four, and
-  // the entries between leaves hold kNoPrimitive.
   const std::vector<std::uint32_t>& primIds() const { return primIds_; }
   // Levels of the binary tree the builder made (at most kBvhMaxDepth).
   int depth() const { return depth_; }
 
  private:
   friend class BvhBuilderImpl;
-  // Calls visit(hit) for the hits of the leaf's entries in order, each found
-  // with the limit limit() gives at that moment (as Geometry::intersect(
-  // primIds_[entry], ...) would), until visit returns true; returns whether
-  // it did. limit() must not grow within a leaf beyond `bound`.
-  template <typename Limit, typename Visit>
-  bool testLeaf(std::uint32_t offset, std::uint32_t count, const Ray& ray, const WatertightRay& w, float bound,
-                Limit limit, Visit visit) const;
-
   const Geometry* geometry_ = nullptr;
   std::vector<BvhNode> nodes_;
   std::vector<std::uint32_t> primIds_;
-  // The triangles of primIds_[4b .. 4b+3] (Geometry::positions copied, so
-  // that a leaf's triangles are read side by side), and which of those
-  // lanes are triangles (not spheres, not gaps).
-  std::vector<Triangles4> blocks_;
-  std::vector<std::uint8_t> blockTriangles_;
   int depth_ = 0;
 };
 

@@ -46,22 +46,6 @@ struct BinaryTree {
 // the same splits, and, appended in order, the same tree as one thread builds.
 constexpr std::size_t kParallelSubtree = 4096;
 
-// What a leaf would hold, and the SAH's cost of testing it: triangles four
-// at a time (a block of Triangles4, 1 to 4 cost one), spheres one by one.
-struct LeafLoad {
-  int triangles = 0;
-  int spheres = 0;
-
-  void add(bool sphere) { ++(sphere ? spheres : triangles); }
-  LeafLoad& operator+=(const LeafLoad& o) {
-    triangles += o.triangles;
-    spheres += o.spheres;
-    return *this;
-  }
-  bool empty() const { return triangles == 0 && spheres == 0; }
-  float cost() const { return static_cast<float>((triangles + 3) / 4 + spheres); }
-};
-
 }  // namespace
 
 // Builds the binary tree depth-first (a node is appended, its first child
@@ -70,9 +54,7 @@ struct LeafLoad {
 // 4-wide nodes.
 class BvhBuilderImpl {
  public:
-  // Primitive ids from firstSphere on are spheres (Geometry's numbering).
-  BvhBuilderImpl(Bvh& bvh, const BvhSettings& settings, std::uint32_t firstSphere)
-      : bvh_(bvh), settings_(settings), firstSphere_(firstSphere) {
+  BvhBuilderImpl(Bvh& bvh, const BvhSettings& settings) : bvh_(bvh), settings_(settings) {
     const unsigned threads = settings.buildThreads > 0 ? static_cast<unsigned>(settings.buildThreads)
                                                        : std::max(1u, std::thread::hardware_concurrency());
     forkLevels_ = static_cast<int>(std::bit_width(threads)) - 1;
@@ -129,7 +111,6 @@ class BvhBuilderImpl {
     node.offset = static_cast<std::uint32_t>(out.primIds.size());
     node.count = static_cast<std::uint32_t>(prims.size());
     for (const BuildPrimitive& p : prims) out.primIds.push_back(p.id);
-    while (out.primIds.size() % 4 != 0) out.primIds.push_back(kNoPrimitive);
   }
 
   // Makes the 4-wide node for binary node `index` and, recursively, those
@@ -237,30 +218,30 @@ class BvhBuilderImpl {
       const float extent = centroids.max[a] - lo;
       if (!(extent > 0.0f)) continue;
       std::array<Bounds3, kMaxBins> binBounds{};
-      std::array<LeafLoad, kMaxBins> binLoads{};
+      std::array<int, kMaxBins> binCounts{};
       for (const BuildPrimitive& p : prims) {
         const int b = binOf(p.bounds.centre()[a], lo, extent, bins);
-        binLoads[b].add(p.id >= firstSphere_);
+        ++binCounts[b];
         binBounds[b].expand(p.bounds);
       }
-      // Sweep from the right to get the area and load right of each plane.
+      // Sweep from the right to get the area and count right of each plane.
       std::array<float, kMaxBins> rightArea{};
-      std::array<LeafLoad, kMaxBins> rightLoad{};
+      std::array<int, kMaxBins> rightCount{};
       Bounds3 acc;
-      LeafLoad load;
+      int cnt = 0;
       for (int b = bins - 1; b > 0; --b) {
         acc.expand(binBounds[b]);
-        load += binLoads[b];
+        cnt += binCounts[b];
         rightArea[b] = acc.surfaceArea();
-        rightLoad[b] = load;
+        rightCount[b] = cnt;
       }
       acc = Bounds3{};
-      load = LeafLoad{};
+      cnt = 0;
       for (int plane = 1; plane < bins; ++plane) {
         acc.expand(binBounds[plane - 1]);
-        load += binLoads[plane - 1];
-        if (load.empty() || rightLoad[plane].empty()) continue;
-        const float cost = acc.surfaceArea() * load.cost() + rightArea[plane] * rightLoad[plane].cost();
+        cnt += binCounts[plane - 1];
+        if (cnt == 0 || rightCount[plane] == 0) continue;
+        const float cost = acc.surfaceArea() * cnt + rightArea[plane] * rightCount[plane];
         if (cost < bestCost) {
           bestCost = cost;
           bestAxis = a;
@@ -271,9 +252,7 @@ class BvhBuilderImpl {
     if (bestAxis < 0) return prims.size() <= leafCapacity() ? std::nullopt : std::optional<std::size_t>(0);
     const float area = bounds.surfaceArea();
     const float splitCost = settings_.traversalCost + (area > 0.0f ? bestCost / area : 0.0f);
-    LeafLoad all;
-    for (const BuildPrimitive& p : prims) all.add(p.id >= firstSphere_);
-    const float leafCost = all.cost();
+    const auto leafCost = static_cast<float>(prims.size());
     if (prims.size() <= leafCapacity() && leafCost <= splitCost) return std::nullopt;
     const float lo = centroids.min[bestAxis];
     const float extent = centroids.max[bestAxis] - lo;
@@ -294,7 +273,6 @@ class BvhBuilderImpl {
   Bvh& bvh_;
   std::vector<BinaryNode> binary_;
   const BvhSettings& settings_;
-  std::uint32_t firstSphere_;
   int forkLevels_ = 0;  // levels that fork: log2 of the build threads
 };
 
@@ -307,17 +285,7 @@ Bvh Bvh::build(const Geometry& geometry, const BvhSettings& settings) {
     prims.push_back({geometry.primitiveBounds(i), i});
   }
   if (prims.empty()) return bvh;  // traversal of an empty tree finds nothing
-  BvhBuilderImpl(bvh, settings, static_cast<std::uint32_t>(geometry.triangles().size())).build(prims);
-  bvh.blocks_.resize(bvh.primIds_.size() / 4);
-  bvh.blockTriangles_.assign(bvh.blocks_.size(), 0);
-  const auto& p = geometry.positions();
-  for (std::size_t i = 0; i < bvh.primIds_.size(); ++i) {
-    const std::uint32_t prim = bvh.primIds_[i];
-    if (prim == kNoPrimitive || geometry.isSphere(prim)) continue;
-    const Triangle& t = geometry.triangles()[prim];
-    bvh.blocks_[i / 4].set(static_cast<int>(i % 4), p[t.v[0]], p[t.v[1]], p[t.v[2]]);
-    bvh.blockTriangles_[i / 4] |= static_cast<std::uint8_t>(1u << (i % 4));
-  }
+  BvhBuilderImpl(bvh, settings).build(prims);
   return bvh;
 }
 

@@ -1,6 +1,4 @@
-#include <algorithm>
 #include <array>
-#include <bit>
 
 #include "common/bvh.h"
 #include "common/float_bits.h"
@@ -57,49 +55,21 @@ void walk(const std::vector<BvhNode>& nodes, const Ray& ray, float& tMax, Visit 
 
 }  // namespace
 
-template <typename Limit, typename Visit>
-bool Bvh::testLeaf(std::uint32_t offset, std::uint32_t count, const Ray& ray, const WatertightRay& w, float bound,
-                   Limit limit, Visit visit) const {
-  for (std::uint32_t first = offset; first < offset + count; first += 4) {
-    const std::uint32_t block = first / 4;
-    const std::uint32_t lanes = std::min(4u, offset + count - first);
-    const unsigned used = (1u << lanes) - 1u;
-    const unsigned triangles = blockTriangles_[block] & used;
-    ShearedTriangles4 sheared;
-    const unsigned candidates = triangles ? shearTriangles4(blocks_[block], ray, w, triangles, bound, sheared) : 0u;
-    // The lanes left to test, in order: the triangles the ray may hit, and spheres.
-    for (unsigned left = candidates | (used & ~triangles); left != 0; left &= left - 1) {
-      const auto lane = static_cast<unsigned>(std::countr_zero(left));
-      const std::uint32_t prim = primIds_[first + lane];
-      std::optional<Hit> hit;
-      if (geometry_->isSphere(prim)) {
-        hit = geometry_->intersect(prim, ray, w, limit());
-      } else if (const auto h = intersectSheared(sheared.lane(static_cast<int>(lane)), w, limit())) {
-        hit = Hit{h->t, prim, h->b0, h->b1, h->b2};
-      }
-      if (hit && visit(*hit)) return true;
-    }
-  }
-  return false;
-}
-
 std::optional<Hit> Bvh::intersect(const Ray& ray, float tMax) const {
   std::optional<Hit> nearest;
   const WatertightRay w(ray);  // per ray, not per triangle
   walk<true>(nodes_, ray, tMax, [&](std::uint32_t offset, std::uint32_t count) {
-    // One ulp beyond the nearest hit so far, so that a hit at exactly the
-    // same distance reaches the tie-break of closerHit.
-    const auto limit = [&] { return nearest ? nextFloatUp(tMax) : tMax; };
-    // A later limit is at most this one once a hit is known; before, the
-    // first hit's distance may round a little beyond tMax: no bound.
-    const float bound = nearest ? limit() : kInfinity;
-    return testLeaf(offset, count, ray, w, bound, limit, [&](const Hit& hit) {
-      if (!nearest || closerHit(hit, *nearest)) {
+    for (std::uint32_t i = offset; i < offset + count; ++i) {
+      // One ulp beyond the nearest hit so far, so that a hit at exactly the
+      // same distance reaches the tie-break of closerHit.
+      const float limit = nearest ? nextFloatUp(tMax) : tMax;
+      const std::optional<Hit> hit = geometry_->intersect(primIds_[i], ray, w, limit);
+      if (hit && (!nearest || closerHit(*hit, *nearest))) {
         nearest = hit;
-        tMax = hit.t;  // a later hit counts only if closer
+        tMax = hit->t;  // a later hit counts only if closer
       }
-      return false;
-    });
+    }
+    return false;
   });
   return nearest;
 }
@@ -108,8 +78,13 @@ bool Bvh::occluded(const Ray& ray, float tMax) const {
   bool found = false;
   const WatertightRay w(ray);
   walk<false>(nodes_, ray, tMax, [&](std::uint32_t offset, std::uint32_t count) {
-    found = testLeaf(offset, count, ray, w, tMax, [&] { return tMax; }, [](const Hit&) { return true; });
-    return found;
+    for (std::uint32_t i = offset; i < offset + count; ++i) {
+      if (geometry_->intersect(primIds_[i], ray, w, tMax)) {
+        found = true;
+        return true;
+      }
+    }
+    return false;
   });
   return found;
 }

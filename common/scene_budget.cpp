@@ -25,11 +25,10 @@ std::string mib(std::size_t bytes) {
 const std::size_t SceneBudget::kBytesPerVertex = 2 * sizeof(glm::vec3) + sizeof(glm::vec2);
 const std::size_t SceneBudget::kBytesPerTriangle = sizeof(Triangle) + sizeof(glm::vec3);
 const std::size_t SceneBudget::kBytesPerSphere = sizeof(Sphere);
-// The BVH: at most one 4-wide node, and four index entries and a block of
-// four triangles (a leaf of one fills a block alone) per primitive once built,
+// The BVH: at most one 4-wide node and one index per primitive once built,
 // and while it is built a BuildPrimitive and up to two 32-byte binary nodes.
 const std::size_t SceneBudget::kBvhBytesPerPrimitive =
-    sizeof(BvhNode) + 4 * sizeof(std::uint32_t) + sizeof(Triangles4) + 1 + sizeof(BuildPrimitive) + 2 * 32;
+    sizeof(BvhNode) + sizeof(std::uint32_t) + sizeof(BuildPrimitive) + 2 * 32;
 
 bool MemoryGauge::take(std::size_t bytes) {
   std::size_t used = used_.load();

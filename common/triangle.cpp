@@ -33,25 +33,17 @@ std::optional<TriangleHit> intersectTriangle(const Ray& ray, const glm::vec3& p0
 
 std::optional<TriangleHit> intersectTriangle(const Ray& ray, const WatertightRay& w, const glm::vec3& p0,
                                              const glm::vec3& p1, const glm::vec3& p2, float tMax) {
-  return intersectSheared(shearTriangle(ray, w, p0, p1, p2), w, tMax);
-}
+  glm::vec3 a = permute(p0 - ray.o, w.kx, w.ky, w.kz);
+  glm::vec3 b = permute(p1 - ray.o, w.kx, w.ky, w.kz);
+  glm::vec3 c = permute(p2 - ray.o, w.kx, w.ky, w.kz);
+  const float sx = w.sx, sy = w.sy, sz = w.sz;
+  a.x += sx * a.z;
+  a.y += sy * a.z;
+  b.x += sx * b.z;
+  b.y += sy * b.z;
+  c.x += sx * c.z;
+  c.y += sy * c.z;
 
-ShearedTriangle shearTriangle(const Ray& ray, const WatertightRay& w, const glm::vec3& p0, const glm::vec3& p1,
-                              const glm::vec3& p2) {
-  ShearedTriangle s{permute(p0 - ray.o, w.kx, w.ky, w.kz), permute(p1 - ray.o, w.kx, w.ky, w.kz),
-                    permute(p2 - ray.o, w.kx, w.ky, w.kz)};
-  for (glm::vec3* v : {&s.a, &s.b, &s.c}) {
-    v->x += w.sx * v->z;
-    v->y += w.sy * v->z;
-  }
-  return s;
-}
-
-std::optional<TriangleHit> intersectSheared(ShearedTriangle s, const WatertightRay& w, float tMax) {
-  glm::vec3& a = s.a;
-  glm::vec3& b = s.b;
-  glm::vec3& c = s.c;
-  const float sz = w.sz;
   float e0 = edge(b.x, c.y, b.y, c.x);
   float e1 = edge(c.x, a.y, c.y, a.x);
   float e2 = edge(a.x, b.y, a.y, b.x);

@@ -21,15 +21,6 @@ namespace glint {
 using Float4 = float __attribute__((vector_size(16)));
 using Mask4 = std::int32_t __attribute__((vector_size(16)));
 
-// Bit i set where lane i of a comparison's result is true.
-inline unsigned laneBits(Mask4 mask) {
-#if defined(__SSE__)
-  return static_cast<unsigned>(_mm_movemask_ps(reinterpret_cast<__m128>(mask)));  // one instruction
-#else
-  return static_cast<unsigned>((mask[0] & 1) | (mask[1] & 2) | (mask[2] & 4) | (mask[3] & 8));
-#endif
-}
-
 // Four boxes as a structure of arrays: planes[0..2] are min x, y, z and
 // planes[3..5] max x, y, z; lane i of each is box i. An unused lane holds the
 // empty box (min +inf, max -inf), which no ray enters.
@@ -99,8 +90,13 @@ inline unsigned intersectSlabs4(const Boxes4& boxes, const SlabRay4& r, float tM
     t0 = tNear > t0 ? tNear : t0;  // a NaN leaves the interval unchanged
     t1 = tFar < t1 ? tFar : t1;
   }
+  const Mask4 hit = t0 <= t1;
   *entry = t0;
-  return laneBits(t0 <= t1);
+#if defined(__SSE__)
+  return static_cast<unsigned>(_mm_movemask_ps(reinterpret_cast<__m128>(hit)));  // one instruction
+#else
+  return static_cast<unsigned>((hit[0] & 1) | (hit[1] & 2) | (hit[2] & 4) | (hit[3] & 8));
+#endif
 }
 
 }  // namespace glint

@@ -11,8 +11,7 @@ std::size_t memoryFootprint(const PreparedScene& p) {
   std::size_t bytes = g.positions().size() * SceneBudget::kBytesPerVertex +
                       g.triangles().size() * SceneBudget::kBytesPerTriangle +
                       g.spheres().size() * SceneBudget::kBytesPerSphere +
-                      p.bvh().nodes().size() * sizeof(BvhNode) +
-                      p.bvh().primIds().size() * (sizeof(std::uint32_t) + sizeof(Triangles4) / 4 + 1);
+                      p.bvh().nodes().size() * sizeof(BvhNode) + p.bvh().primIds().size() * sizeof(std::uint32_t);
   for (const Texture& t : s.textures) {
     if (t.image) bytes += t.image->rgb.size();
   }
