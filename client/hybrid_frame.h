@@ -31,7 +31,7 @@ struct HybridResult {
   std::vector<std::uint8_t> mask;  // one gl::StencilMark per pixel, row 0 at the top: 0 OpenGL, else traced
   std::size_t maskedPixels = 0;    // traced pixels, shadow edges among them
   std::size_t shadowEdgePixels = 0;  // traced because the shadow maps could not decide
-  int tiles = 0;  // tiles sent to the tile service (those with a masked pixel)
+  int tiles = 0;  // tiles sent to the tile service (masked objects and shadow edges apart)
   RayStats rays;
   HybridTimes times;
 };
