@@ -25,31 +25,6 @@ void readPixels(const gl::Api& gl, const TileRect& window, int frameHeight, GLen
 }
 
 
-// The tiles of the window with at least one pixel marked `mark`, each with
-// the mask bits of those pixels; w is the frame's width. Adds their count
-// to `pixels`.
-std::vector<TileJob> markedTiles(const std::vector<std::uint8_t>& mask, int w, const TileRect& window, int tileSize,
-                                 gl::StencilMark mark, std::size_t& pixels) {
-  std::vector<TileJob> jobs;
-  for (const TileRect& rect : tileGrid(window, std::max(1, tileSize))) {
-    TileJob job{rect, std::vector<std::uint8_t>(maskByteCount(rect), 0)};
-    std::size_t count = 0;
-    for (int y = 0; y < rect.height; ++y) {
-      for (int x = 0; x < rect.width; ++x) {
-        if (mask[static_cast<std::size_t>(rect.y + y) * static_cast<std::size_t>(w) +
-                 static_cast<std::size_t>(rect.x + x)] != mark) {
-          continue;
-        }
-        setMaskBit(job.mask, static_cast<std::size_t>(y * rect.width + x));
-        ++count;
-      }
-    }
-    pixels += count;
-    if (count > 0) jobs.push_back(std::move(job));
-  }
-  return jobs;
-}
-
 // Pixels traced with one frame's settings: the masked objects' with the
 // frame's own; the shadow edges' (pixels of surfaces OpenGL draws, traced
 // only because the shadow maps could not decide) with direct light alone,
@@ -58,9 +33,35 @@ std::vector<TileJob> markedTiles(const std::vector<std::uint8_t>& mask, int w, c
 struct TracedSet {
   gl::StencilMark mark;
   FrameSettings frame;
-  std::vector<TileJob> jobs;
+  std::vector<TileJob> jobs;  // the tiles holding pixels of `mark`, with those pixels' mask bits
   std::vector<TileOutput> outputs;
+  std::size_t pixels = 0;
 };
+
+// Cuts the window into tiles once and gives each set the tiles that hold
+// pixels of its mark; w is the frame's width.
+void collectTiles(const std::vector<std::uint8_t>& mask, int w, const TileRect& window, int tileSize,
+                  std::span<TracedSet> sets) {
+  for (const TileRect& rect : tileGrid(window, std::max(1, tileSize))) {
+    std::vector<TileJob> jobs(sets.size(), TileJob{rect, std::vector<std::uint8_t>(maskByteCount(rect), 0)});
+    std::vector<std::size_t> counts(sets.size(), 0);
+    for (int y = 0; y < rect.height; ++y) {
+      for (int x = 0; x < rect.width; ++x) {
+        const std::uint8_t mark =
+            mask[static_cast<std::size_t>(rect.y + y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(rect.x + x)];
+        for (std::size_t k = 0; k < sets.size(); ++k) {
+          if (mark != sets[k].mark) continue;
+          setMaskBit(jobs[k].mask, static_cast<std::size_t>(y * rect.width + x));
+          ++counts[k];
+        }
+      }
+    }
+    for (std::size_t k = 0; k < sets.size(); ++k) {
+      sets[k].pixels += counts[k];
+      if (counts[k] > 0) sets[k].jobs.push_back(std::move(jobs[k]));
+    }
+  }
+}
 
 FrameSettings directLightOf(FrameSettings frame) {
   frame.tracing.maxDepth = 1;
@@ -68,7 +69,8 @@ FrameSettings directLightOf(FrameSettings frame) {
 }
 
 // Draws one traced tile back (bottom-up rows for glDrawPixels); the stencil
-// test keeps the pixels that are not its set's. `rect` is scratch space kept between tiles.
+// test keeps the pixels that are not its set's. `rect` is scratch space
+// kept between tiles.
 void drawTile(const gl::Api& gl, const TileJob& job, std::size_t index, const TileOutput& out, int frameHeight,
               std::vector<std::uint8_t>& rect) {
   const TileRect& r = job.rect;
@@ -135,7 +137,6 @@ bool renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
   const int w = frame.width, h = frame.height;
   const TileRect whole{0, 0, w, h};
   const TileRect window = crop.value_or(whole);
-  result.maskedPixels = result.shadowEdgePixels = 0;
   result.rays = RayStats{};
   result.times = HybridTimes{};
 
@@ -158,12 +159,10 @@ bool renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
     result.times.rasterMs += msSince(antialiasStart);
   }
 
-  TracedSet sets[2] = {
-      {gl::kMaskedPixel, frame,
-       markedTiles(result.mask, w, window, tileSize, gl::kMaskedPixel, result.maskedPixels), {}},
-      {gl::kShadowEdgePixel, directLightOf(frame),
-       markedTiles(result.mask, w, window, tileSize, gl::kShadowEdgePixel, result.shadowEdgePixels), {}}};
-  result.maskedPixels += result.shadowEdgePixels;
+  TracedSet sets[2] = {{gl::kMaskedPixel, frame, {}, {}, 0}, {gl::kShadowEdgePixel, directLightOf(frame), {}, {}, 0}};
+  collectTiles(result.mask, w, window, tileSize, sets);
+  result.shadowEdgePixels = sets[1].pixels;
+  result.maskedPixels = sets[0].pixels + sets[1].pixels;
   result.tiles = static_cast<int>(sets[0].jobs.size() + sets[1].jobs.size());
   for (TracedSet& set : sets) {
     if (!traceTiles(service, set, cancelled, result)) return false;

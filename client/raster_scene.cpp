@@ -297,13 +297,7 @@ void RasterScene::setUniforms(unsigned program, const FrameSettings& frame, cons
   gl_.ActiveTexture(GL_TEXTURE0);
   gl_.BindTexture(GL_TEXTURE_2D, atlas_);
   gl_.Uniform1i(at("uAtlas"), 0);
-  if (shadows_) {
-    shadowMaps_.setUniforms(program, 1);
-  } else {
-    const std::vector<int> none(scene_.lights.size(), -1);
-    if (!none.empty()) gl_.Uniform1iv(at("uShadowLayer"), static_cast<GLsizei>(none.size()), none.data());
-    gl_.Uniform1i(at("uShadowMaps"), 1);  // a unit of its own: samplers of two types may not share one
-  }
+  shadowMaps_.setUniforms(program, 1, scene_.lights.size(), shadows_);  // unit 1: the atlas has 0
   gl_.Uniform1i(at("uShadowRadius"), antialiased ? 0 : kShadowRadius);
   gl_.Uniform1i(at("uUndecidedStencil"), undecidedStencil_);
 }

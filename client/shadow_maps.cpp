@@ -103,14 +103,12 @@ void ShadowMaps::build(const std::vector<PointLight>& lights, const std::vector<
   gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-void ShadowMaps::setUniforms(unsigned program, int unit) const {
+void ShadowMaps::setUniforms(unsigned program, int unit, std::size_t lights, bool enabled) const {
   const auto at = [&](const char* name) { return gl_.GetUniformLocation(program, name); };
-  std::vector<int> layers = firstLayer_;
-  if (!texture_) layers.assign(layers.size(), -1);
-  if (!layers.empty()) {
-    gl_.Uniform1iv(at("uShadowLayer"), static_cast<GLsizei>(layers.size()), layers.data());
-    gl_.Uniform1fv(at("uShadowFar"), static_cast<GLsizei>(far_.size()), far_.data());
-  }
+  const bool maps = enabled && texture_ && firstLayer_.size() == lights;
+  const std::vector<int> layers = maps ? firstLayer_ : std::vector<int>(lights, -1);
+  if (!layers.empty()) gl_.Uniform1iv(at("uShadowLayer"), static_cast<GLsizei>(layers.size()), layers.data());
+  if (maps) gl_.Uniform1fv(at("uShadowFar"), static_cast<GLsizei>(far_.size()), far_.data());
   gl_.Uniform1i(at("uShadowSize"), size_);
   glm::vec3 s[6], t[6], m[6];
   for (int f = 0; f < 6; ++f) {

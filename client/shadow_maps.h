@@ -38,8 +38,10 @@ class ShadowMaps {
              const DepthPass& drawDepth);
   int size() const { return size_; }  // 0: not built
   // Binds the maps to texture unit `unit` and sets the shaders' shadow
-  // uniforms (a light without a map is lit wherever it faces the surface).
-  void setUniforms(unsigned program, int unit) const;
+  // uniforms for a scene of `lights` lights; a light without a map (every
+  // light when the maps are not built or not `enabled`) is lit wherever it
+  // faces the surface.
+  void setUniforms(unsigned program, int unit, std::size_t lights, bool enabled) const;
 
  private:
   void release();
