@@ -59,12 +59,6 @@ static_assert(sizeof(BvhNode) == 128, "BvhNode is documented as 128 bytes");
 // median splits before it could grow deeper); traversal sizes its stack by it.
 constexpr int kBvhMaxDepth = 64;
 
-// What the builder sees of a primitive.
-struct BuildPrimitive {
-  Bounds3 bounds;
-  std::uint32_t id;
-};
-
 // A BVH over one Geometry, bound to it: its primitive ids mean nothing for
 // another, so the queries take only the ray. The geometry must outlive it and
 // stay where it is (PreparedScene keeps the two together).

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/bvh.h"
+#include "common/bvh_split.h"
 
 namespace glint {
 namespace {
@@ -64,7 +65,7 @@ class BvhBuilderImpl {
     BinaryTree tree;
     tree.nodes.reserve(2 * prims.size() / std::max(1, settings_.maxLeafSize) + 1);
     tree.primIds.reserve(prims.size());
-    split(prims, 0, tree);
+    split(prims, NodeBox::of(prims), 0, tree);
     binary_ = std::move(tree.nodes);
     bvh_.primIds_ = std::move(tree.primIds);
     bvh_.depth_ = tree.depth;
@@ -73,44 +74,38 @@ class BvhBuilderImpl {
   }
 
  private:
-  void split(std::span<BuildPrimitive> prims, int depth, BinaryTree& out) {
+  void split(std::span<BuildPrimitive> prims, const NodeBox& box, int depth, BinaryTree& out) {
     out.depth = std::max(out.depth, depth + 1);
     const auto nodeIndex = static_cast<std::uint32_t>(out.nodes.size());
     out.nodes.push_back({});
-    Bounds3 bounds;
-    Bounds3 centroids;
-    for (const BuildPrimitive& p : prims) {
-      bounds.expand(p.bounds);
-      centroids.expand(p.bounds.centre());
-    }
-    out.nodes[nodeIndex].bounds = bounds;
+    out.nodes[nodeIndex].bounds = box.bounds.bounds();
 
-    const auto count = static_cast<int>(prims.size());
-    std::size_t mid = 0;
-    if (count > 1) mid = chooseSplit(prims, bounds, centroids, depth);
+    Cut cut;
+    if (prims.size() > 1) cut = chooseSplit(prims, box, depth);
+    const std::size_t mid = cut.mid;
     if (mid == 0) {
       makeLeaf(out, nodeIndex, prims);
       return;
     }
     if (depth < forkLevels_ && prims.size() - mid >= kParallelSubtree && mid >= kParallelSubtree) {
       BinaryTree second;
-      std::thread worker([&] { split(prims.subspan(mid), depth + 1, second); });
-      split(prims.first(mid), depth + 1, out);
+      std::thread worker([&] { split(prims.subspan(mid), cut.sides[1], depth + 1, second); });
+      split(prims.first(mid), cut.sides[0], depth + 1, out);
       worker.join();
       out.nodes[nodeIndex].offset = static_cast<std::uint32_t>(out.nodes.size());
       out.append(second);
       return;
     }
-    split(prims.first(mid), depth + 1, out);
+    split(prims.first(mid), cut.sides[0], depth + 1, out);
     out.nodes[nodeIndex].offset = static_cast<std::uint32_t>(out.nodes.size());
-    split(prims.subspan(mid), depth + 1, out);
+    split(prims.subspan(mid), cut.sides[1], depth + 1, out);
   }
 
   static void makeLeaf(BinaryTree& out, std::uint32_t nodeIndex, std::span<BuildPrimitive> prims) {
     BinaryNode& node = out.nodes[nodeIndex];
     node.offset = static_cast<std::uint32_t>(out.primIds.size());
     node.count = static_cast<std::uint32_t>(prims.size());
-    for (const BuildPrimitive& p : prims) out.primIds.push_back(p.id);
+    for (const BuildPrimitive& p : prims) out.primIds.push_back(p.id());
   }
 
   // Makes the 4-wide node for binary node `index` and, recursively, those
@@ -160,31 +155,30 @@ class BvhBuilderImpl {
     return wideIndex;
   }
 
-  // Returns the size of the first half after partitioning prims (0: leaf).
-  std::size_t chooseSplit(std::span<BuildPrimitive> prims, const Bounds3& bounds,
-                          const Bounds3& centroids, int depth) {
+  // Partitions prims for a split and returns where the second half starts
+  // with both halves' boxes (mid 0: a leaf).
+  Cut chooseSplit(std::span<BuildPrimitive> prims, const NodeBox& box, int depth) {
     const std::size_t n = prims.size();
     const bool fitsLeaf = n <= leafCapacity();
     // Depth guard: a count-median split from here on always fits the
     // traversal stack, so switch to it before the tree could grow too deep.
     const int levelsLeft = kBvhMaxDepth - 1 - depth;
     if (static_cast<int>(std::bit_width(n)) < levelsLeft) {
-      const std::optional<std::size_t> mid = settings_.builder == BvhBuilder::kQSplit
-                                                 ? qsplit(prims, bounds, depth)
-                                                 : sah(prims, bounds, centroids);
-      if (!mid) return 0;
-      if (*mid > 0 && *mid < n) return *mid;
+      const std::optional<Cut> cut = settings_.builder == BvhBuilder::kQSplit ? qsplit(prims, box.bounds.bounds(), depth)
+                                                                               : sah(prims, box);
+      if (!cut) return {};
+      if (cut->mid > 0 && cut->mid < n) return *cut;
     }
-    if (fitsLeaf) return 0;
+    if (fitsLeaf) return {};
     // Median by centroid along the longest centroid axis: always halves, also
     // where every centroid is the same point.
-    const int a = centroids.longestAxis();
+    const int a = box.centroids.bounds().longestAxis();
     const std::size_t half = n / 2;
     std::nth_element(prims.begin(), prims.begin() + static_cast<std::ptrdiff_t>(half), prims.end(),
                      [a](const BuildPrimitive& x, const BuildPrimitive& y) {
-                       return x.bounds.centre()[a] < y.bounds.centre()[a];
+                       return x.box.centre()[a] < y.box.centre()[a];
                      });
-    return half;
+    return Cut::at(prims, half);
   }
 
   std::size_t leafCapacity() const {
@@ -195,51 +189,44 @@ class BvhBuilderImpl {
   // the middle of the node's box along the axis of this level (x, y, z, x...).
   // Returns nullopt for a leaf, else the partition point (0 or n when every
   // centroid fell on one side).
-  std::optional<std::size_t> qsplit(std::span<BuildPrimitive> prims, const Bounds3& bounds,
-                                    int depth) {
+  std::optional<Cut> qsplit(std::span<BuildPrimitive> prims, const Bounds3& bounds, int depth) {
     if (prims.size() <= leafCapacity()) return std::nullopt;
     const int a = depth % 3;
     const float middle = bounds.centre()[a];
-    const auto it = std::partition(prims.begin(), prims.end(), [a, middle](const BuildPrimitive& p) {
-      return p.bounds.centre()[a] < middle;
-    });
-    return static_cast<std::size_t>(it - prims.begin());
+    Cut cut;
+    cut.mid = partitionMeasured(
+        prims, [a, middle](const BuildPrimitive& p) { return p.box.centre()[a] < middle; }, cut.sides);
+    return cut;
   }
 
   // Binned SAH: sahBins buckets of centroids per axis, the cheapest plane of
   // all three axes; returns nullopt when a leaf is cheaper than any split.
-  std::optional<std::size_t> sah(std::span<BuildPrimitive> prims, const Bounds3& bounds, const Bounds3& centroids) {
-    const int bins = std::clamp(settings_.sahBins, 2, kMaxBins);
+  std::optional<Cut> sah(std::span<BuildPrimitive> prims, const NodeBox& box) {
+    const BinGrid grid(box.centroids, std::clamp(settings_.sahBins, 2, kMaxBins));
+    SahBins bins;  // uninitialised: only the bins in use are emptied
+    bins.reset(grid.bins);
+    bins.add(prims, grid);
     float bestCost = std::numeric_limits<float>::infinity();
     int bestAxis = -1;
     int bestPlane = 0;
     for (int a = 0; a < 3; ++a) {
-      const float lo = centroids.min[a];
-      const float extent = centroids.max[a] - lo;
-      if (!(extent > 0.0f)) continue;
-      std::array<Bounds3, kMaxBins> binBounds{};
-      std::array<int, kMaxBins> binCounts{};
-      for (const BuildPrimitive& p : prims) {
-        const int b = binOf(p.bounds.centre()[a], lo, extent, bins);
-        ++binCounts[b];
-        binBounds[b].expand(p.bounds);
-      }
+      if (!grid.usable[a]) continue;
       // Sweep from the right to get the area and count right of each plane.
       std::array<float, kMaxBins> rightArea{};
       std::array<int, kMaxBins> rightCount{};
       Bounds3 acc;
       int cnt = 0;
-      for (int b = bins - 1; b > 0; --b) {
-        acc.expand(binBounds[b]);
-        cnt += binCounts[b];
+      for (int b = grid.bins - 1; b > 0; --b) {
+        acc.expand(bins.bounds[a][b].bounds());
+        cnt += bins.counts[a][b];
         rightArea[b] = acc.surfaceArea();
         rightCount[b] = cnt;
       }
       acc = Bounds3{};
       cnt = 0;
-      for (int plane = 1; plane < bins; ++plane) {
-        acc.expand(binBounds[plane - 1]);
-        cnt += binCounts[plane - 1];
+      for (int plane = 1; plane < grid.bins; ++plane) {
+        acc.expand(bins.bounds[a][plane - 1].bounds());
+        cnt += bins.counts[a][plane - 1];
         if (cnt == 0 || rightCount[plane] == 0) continue;
         const float cost = acc.surfaceArea() * cnt + rightArea[plane] * rightCount[plane];
         if (cost < bestCost) {
@@ -249,22 +236,15 @@ class BvhBuilderImpl {
         }
       }
     }
-    if (bestAxis < 0) return prims.size() <= leafCapacity() ? std::nullopt : std::optional<std::size_t>(0);
-    const float area = bounds.surfaceArea();
+    if (bestAxis < 0) return prims.size() <= leafCapacity() ? std::nullopt : std::optional<Cut>(Cut{});
+    const float area = box.bounds.bounds().surfaceArea();
     const float splitCost = settings_.traversalCost + (area > 0.0f ? bestCost / area : 0.0f);
     const auto leafCost = static_cast<float>(prims.size());
     if (prims.size() <= leafCapacity() && leafCost <= splitCost) return std::nullopt;
-    const float lo = centroids.min[bestAxis];
-    const float extent = centroids.max[bestAxis] - lo;
-    const auto it = std::partition(prims.begin(), prims.end(), [&](const BuildPrimitive& p) {
-      return binOf(p.bounds.centre()[bestAxis], lo, extent, bins) < bestPlane;
-    });
-    return static_cast<std::size_t>(it - prims.begin());
-  }
-
-  static int binOf(float c, float lo, float extent, int bins) {
-    const int b = static_cast<int>(static_cast<float>(bins) * ((c - lo) / extent));
-    return std::clamp(b, 0, bins - 1);
+    Cut cut;
+    cut.mid = partitionMeasured(
+        prims, [&](const BuildPrimitive& p) { return grid.binOf(p)[bestAxis] < bestPlane; }, cut.sides);
+    return cut;
   }
 
   static constexpr int kMaxBins = 64;

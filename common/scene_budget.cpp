@@ -6,6 +6,7 @@
 #include <glm/vec3.hpp>
 
 #include "common/bvh.h"
+#include "common/bvh_split.h"
 #include "common/error.h"
 #include "common/geometry.h"
 
