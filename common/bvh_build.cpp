@@ -212,22 +212,30 @@ class BvhBuilderImpl {
     for (int a = 0; a < 3; ++a) {
       if (!grid.usable[a]) continue;
       // Sweep from the right to get the area and count right of each plane.
-      std::array<float, kMaxBins> rightArea{};
-      std::array<int, kMaxBins> rightCount{};
+      // An empty bin changes neither box nor count: the plane after it costs
+      // what the plane before it did, so it is neither measured nor priced
+      // (the first of equal costs wins anyway).
+      std::array<float, kMaxBins> rightArea;  // [1, bins) written before read
+      std::array<int, kMaxBins> rightCount;
       Bounds3 acc;
       int cnt = 0;
+      float area = 0.0f;
       for (int b = grid.bins - 1; b > 0; --b) {
-        acc.expand(bins.bounds[a][b].bounds());
-        cnt += bins.counts[a][b];
-        rightArea[b] = acc.surfaceArea();
+        if (bins.counts[a][b] > 0) {
+          acc.expand(bins.bounds[a][b].bounds());
+          cnt += bins.counts[a][b];
+          area = acc.surfaceArea();
+        }
+        rightArea[b] = area;
         rightCount[b] = cnt;
       }
       acc = Bounds3{};
       cnt = 0;
       for (int plane = 1; plane < grid.bins; ++plane) {
+        if (bins.counts[a][plane - 1] == 0) continue;
         acc.expand(bins.bounds[a][plane - 1].bounds());
         cnt += bins.counts[a][plane - 1];
-        if (cnt == 0 || rightCount[plane] == 0) continue;
+        if (rightCount[plane] == 0) continue;
         const float cost = acc.surfaceArea() * cnt + rightArea[plane] * rightCount[plane];
         if (cost < bestCost) {
           bestCost = cost;

@@ -111,23 +111,26 @@ struct BinGrid {
   }
 };
 
-// Per axis and bin: how many centroids fell in it and the box of their primitives.
+// Per axis and bin: how many centroids fell in it and the box of their
+// primitives. A bin's box means something only where its count is not 0 (the
+// first primitive sets it), so emptying the bins is zeroing the counts.
 struct SahBins {
   std::array<std::array<Box4, kMaxBins>, 3> bounds;
   std::array<std::array<int, kMaxBins>, 3> counts;
 
   // Empties the first `bins` bins of each axis (all a node uses).
   void reset(int bins) {
-    for (int a = 0; a < 3; ++a) {
-      std::fill_n(bounds[a].begin(), bins, Box4::empty());
-      std::fill_n(counts[a].begin(), bins, 0);
-    }
+    for (int a = 0; a < 3; ++a) std::fill_n(counts[a].begin(), bins, 0);
   }
 
   void add(const BuildPrimitive& p, Int4 bin) {
     for (int a = 0; a < 3; ++a) {
-      ++counts[a][bin[a]];
-      bounds[a][bin[a]].expand(p.box);
+      Box4& box = bounds[a][bin[a]];
+      if (counts[a][bin[a]]++ == 0) {
+        box = p.box;  // what the empty box's union with it gives, bit for bit
+      } else {
+        box.expand(p.box);
+      }
     }
   }
   void add(std::span<const BuildPrimitive> prims, const BinGrid& grid) {

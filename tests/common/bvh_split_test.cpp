@@ -118,6 +118,35 @@ TEST(BvhSplit, BinsOnThePlanesAreTheScalarFormulas) {
   EXPECT_GT(checked, 1000);
 }
 
+// Binning twice into the same bins (emptied in between): each bin's count
+// and, where it holds any, the scalar union of its primitives' boxes.
+TEST(BvhSplit, BinsHoldTheirCountsAndTheScalarUnionOfTheirBoxes) {
+  std::vector<Bounds3> boxes;
+  const std::vector<BuildPrimitive> prims = somePrimitives(boxes);
+  SahBins bins;
+  for (int round = 0; round < 2; ++round) {
+    const int binCount = round == 0 ? 64 : 5;
+    const BinGrid grid(NodeBox::of(prims).centroids, binCount);
+    bins.reset(binCount);
+    bins.add(prims, grid);
+    for (int a = 0; a < 3; ++a) {
+      std::vector<int> counts(binCount, 0);
+      std::vector<Bounds3> unions(binCount);
+      for (std::size_t i = 0; i < prims.size(); ++i) {
+        const int b = grid.binOf(prims[i])[a];
+        ++counts[b];
+        unions[b].expand(boxes[i]);
+      }
+      for (int b = 0; b < binCount; ++b) {
+        ASSERT_EQ(bins.counts[a][b], counts[b]) << "round " << round << " axis " << a << " bin " << b;
+        if (counts[b] > 0) {
+          EXPECT_TRUE(sameBits(bins.bounds[a][b].bounds(), unions[b])) << "axis " << a << " bin " << b;
+        }
+      }
+    }
+  }
+}
+
 TEST(BvhSplit, PartitionIsStdPartitionsOrderAndMeasuresBothSides) {
   std::vector<Bounds3> boxes;
   const std::vector<BuildPrimitive> prims = somePrimitives(boxes);
