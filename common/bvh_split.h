@@ -58,7 +58,7 @@ struct NodeBox {
   Box4 bounds = Box4::empty();
   Box4 centroids = Box4::empty();
 
-  void add(const BuildPrimitive& p) {
+  [[gnu::always_inline]] void add(const BuildPrimitive& p) {
     bounds.expand(p.box);
     centroids.expand(p.box.centre());
   }
