@@ -28,6 +28,13 @@ struct BinaryTree {
   std::vector<std::uint32_t> primIds;
   int depth = 0;
 
+  // Room for a tree over `prims` primitives, which never grows past it:
+  // leaves of one primitive or more make at most 2 prims - 1 nodes.
+  void reserveFor(std::size_t prims) {
+    nodes.reserve(2 * prims);
+    primIds.reserve(prims);
+  }
+
   // Appends `other` (built on its own) after this tree's nodes and ids, as
   // if it had been built here: its offsets move by what comes before it.
   void append(const BinaryTree& other) {
@@ -63,8 +70,7 @@ class BvhBuilderImpl {
 
   void build(std::span<BuildPrimitive> prims) {
     BinaryTree tree;
-    tree.nodes.reserve(2 * prims.size() / std::max(1, settings_.maxLeafSize) + 1);
-    tree.primIds.reserve(prims.size());
+    tree.reserveFor(prims.size());
     split(prims, NodeBox::of(prims), 0, tree);
     binary_ = std::move(tree.nodes);
     bvh_.primIds_ = std::move(tree.primIds);
@@ -89,6 +95,7 @@ class BvhBuilderImpl {
     }
     if (depth < forkLevels_ && prims.size() - mid >= kParallelSubtree && mid >= kParallelSubtree) {
       BinaryTree second;
+      second.reserveFor(prims.size() - mid);
       std::thread worker([&] { split(prims.subspan(mid), cut.sides[1], depth + 1, second); });
       split(prims.first(mid), cut.sides[0], depth + 1, out);
       worker.join();
