@@ -2,9 +2,11 @@
 #include <array>
 #include <bit>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <span>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 #include "common/bvh.h"
@@ -14,44 +16,28 @@ namespace glint {
 namespace {
 
 // A node of the binary tree the splits make, before it is collapsed into the
-// 4-wide nodes that traversal walks.
+// 4-wide nodes that traversal walks. Trivial, so that the builder's array of
+// them costs nothing until written.
 struct BinaryNode {
-  Bounds3 bounds;
-  std::uint32_t offset = 0;  // leaf: first entry in primIds; interior: the second child
-  std::uint32_t count = 0;   // leaf: primitives; interior: 0 (the first child is the next node)
+  glm::vec3 min;  // the node's box (GLM's vectors are trivial too)
+  glm::vec3 max;
+  std::uint32_t offset;  // leaf: first entry in primIds; interior: the second child
+  std::uint32_t count;   // leaf: primitives; interior: 0 (the first child is the next node)
+
+  Bounds3 bounds() const { return {min, max}; }
 };
+static_assert(std::is_trivially_default_constructible_v<BinaryNode> && sizeof(BinaryNode) == 32);
 
-// A binary tree (or subtree) as built: its nodes depth-first, its leaves'
-// primitive ids, and its depth. Offsets count from its own start.
-struct BinaryTree {
-  std::vector<BinaryNode> nodes;
-  std::vector<std::uint32_t> primIds;
+// Where a split writes its nodes: the next free one in its range, and the
+// deepest level it reached.
+struct Cursor {
+  std::uint32_t next = 0;
   int depth = 0;
-
-  // Room for a tree over `prims` primitives, which never grows past it:
-  // leaves of one primitive or more make at most 2 prims - 1 nodes.
-  void reserveFor(std::size_t prims) {
-    nodes.reserve(2 * prims);
-    primIds.reserve(prims);
-  }
-
-  // Appends `other` (built on its own) after this tree's nodes and ids, as
-  // if it had been built here: its offsets move by what comes before it.
-  void append(const BinaryTree& other) {
-    const auto nodeBase = static_cast<std::uint32_t>(nodes.size());
-    const auto primBase = static_cast<std::uint32_t>(primIds.size());
-    for (BinaryNode node : other.nodes) {
-      node.offset += node.count > 0 ? primBase : nodeBase;
-      nodes.push_back(node);
-    }
-    primIds.insert(primIds.end(), other.primIds.begin(), other.primIds.end());
-    depth = std::max(depth, other.depth);
-  }
 };
 
 // Subtrees of at least this many primitives near the root are built on a
 // thread of their own (the second child's; the first stays on the caller's):
-// the same splits, and, appended in order, the same tree as one thread builds.
+// the same splits, and the same 4-wide tree as one thread builds.
 constexpr std::size_t kParallelSubtree = 4096;
 
 }  // namespace
@@ -69,50 +55,54 @@ class BvhBuilderImpl {
   }
 
   void build(std::span<BuildPrimitive> prims) {
-    BinaryTree tree;
-    tree.reserveFor(prims.size());
-    split(prims, NodeBox::of(prims), 0, tree);
-    binary_ = std::move(tree.nodes);
-    bvh_.primIds_ = std::move(tree.primIds);
-    bvh_.depth_ = tree.depth;
-    bvh_.nodes_.reserve(binary_.size() / 3 + 1);
+    // The binary tree, its nodes depth-first, each subtree's in a range of
+    // its own: a subtree over n primitives has at most 2 n - 1 nodes, so a
+    // subtree built on another thread starts where its sibling's range ends
+    // and both write in place. (The nodes between two such ranges are never
+    // read: the collapse follows the links, and the 4-wide tree is the one
+    // a single thread makes.)
+    const auto tree = std::make_unique_for_overwrite<BinaryNode[]>(2 * prims.size());
+    binary_ = tree.get();
+    first_ = prims.data();
+    Cursor cursor;
+    split(prims, NodeBox::of(prims), 0, cursor);
+    // Leaves were made in place: a leaf's primitives are its range of the
+    // partitioned array.
+    bvh_.primIds_.reserve(prims.size());
+    for (const BuildPrimitive& p : prims) bvh_.primIds_.push_back(p.id());
+    bvh_.depth_ = cursor.depth;
+    bvh_.nodes_.reserve(cursor.next / 3 + 1);
     collapse(0);
   }
 
  private:
-  void split(std::span<BuildPrimitive> prims, const NodeBox& box, int depth, BinaryTree& out) {
-    out.depth = std::max(out.depth, depth + 1);
-    const auto nodeIndex = static_cast<std::uint32_t>(out.nodes.size());
-    out.nodes.push_back({});
-    out.nodes[nodeIndex].bounds = box.bounds.bounds();
+  void split(std::span<BuildPrimitive> prims, const NodeBox& box, int depth, Cursor& cursor) {
+    cursor.depth = std::max(cursor.depth, depth + 1);
+    const std::uint32_t nodeIndex = cursor.next++;
+    BinaryNode& node = binary_[nodeIndex];
+    const Bounds3 bounds = box.bounds.bounds();
+    node = {bounds.min, bounds.max, 0, 0};
 
     Cut cut;
     if (prims.size() > 1) cut = chooseSplit(prims, box, depth);
     const std::size_t mid = cut.mid;
     if (mid == 0) {
-      makeLeaf(out, nodeIndex, prims);
+      node.offset = static_cast<std::uint32_t>(prims.data() - first_);
+      node.count = static_cast<std::uint32_t>(prims.size());
       return;
     }
     if (depth < forkLevels_ && prims.size() - mid >= kParallelSubtree && mid >= kParallelSubtree) {
-      BinaryTree second;
-      second.reserveFor(prims.size() - mid);
+      Cursor second{nodeIndex + 2 * static_cast<std::uint32_t>(mid), 0};  // after the first half's 2 mid - 1
       std::thread worker([&] { split(prims.subspan(mid), cut.sides[1], depth + 1, second); });
-      split(prims.first(mid), cut.sides[0], depth + 1, out);
+      split(prims.first(mid), cut.sides[0], depth + 1, cursor);
       worker.join();
-      out.nodes[nodeIndex].offset = static_cast<std::uint32_t>(out.nodes.size());
-      out.append(second);
+      node.offset = nodeIndex + 2 * static_cast<std::uint32_t>(mid);
+      cursor = {second.next, std::max(cursor.depth, second.depth)};
       return;
     }
-    split(prims.first(mid), cut.sides[0], depth + 1, out);
-    out.nodes[nodeIndex].offset = static_cast<std::uint32_t>(out.nodes.size());
-    split(prims.subspan(mid), cut.sides[1], depth + 1, out);
-  }
-
-  static void makeLeaf(BinaryTree& out, std::uint32_t nodeIndex, std::span<BuildPrimitive> prims) {
-    BinaryNode& node = out.nodes[nodeIndex];
-    node.offset = static_cast<std::uint32_t>(out.primIds.size());
-    node.count = static_cast<std::uint32_t>(prims.size());
-    for (const BuildPrimitive& p : prims) out.primIds.push_back(p.id());
+    split(prims.first(mid), cut.sides[0], depth + 1, cursor);
+    node.offset = cursor.next;
+    split(prims.subspan(mid), cut.sides[1], depth + 1, cursor);
   }
 
   // Makes the 4-wide node for binary node `index` and, recursively, those
@@ -135,7 +125,7 @@ class BvhBuilderImpl {
       for (int i = 0; i < n; ++i) {
         const BinaryNode& c = binary_[children[i]];
         if (c.count > 0) continue;
-        const float area = c.bounds.surfaceArea();
+        const float area = c.bounds().surfaceArea();
         if (area > widestArea) {
           widest = i;
           widestArea = area;
@@ -155,7 +145,7 @@ class BvhBuilderImpl {
       // The recursion appends nodes: index the vector afresh after it.
       const std::uint32_t offset = c.count > 0 ? c.offset : collapse(children[lane]);
       BvhNode& node = bvh_.nodes_[wideIndex];
-      node.boxes.set(lane, c.bounds);
+      node.boxes.set(lane, c.bounds());
       node.offset[lane] = offset;
       node.count[lane] = static_cast<std::uint16_t>(c.count);
     }
@@ -266,7 +256,8 @@ class BvhBuilderImpl {
   static constexpr int kMaxLeafPrims = 255;  // BvhNode::count must hold it
 
   Bvh& bvh_;
-  std::vector<BinaryNode> binary_;
+  BinaryNode* binary_ = nullptr;            // the tree being built, then collapsed
+  const BuildPrimitive* first_ = nullptr;   // the primitives' array, where primIds start
   const BvhSettings& settings_;
   int forkLevels_ = 0;  // levels that fork: log2 of the build threads
 };
