@@ -2,6 +2,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "common/lanes.h"
+
 namespace glint {
 
 // A ray o + t d. d is unit length for every ray the tracer makes; invD is
@@ -14,8 +16,12 @@ struct Ray {
   glm::vec3 invD{1.0f / 0.0f, 1.0f / 0.0f, 1.0f};
 
   Ray() = default;
-  Ray(const glm::vec3& origin, const glm::vec3& direction)
-      : o(origin), d(direction), invD(1.0f / direction.x, 1.0f / direction.y, 1.0f / direction.z) {}
+  Ray(const glm::vec3& origin, const glm::vec3& direction) : o(origin), d(direction) {
+    // The three divisions as one four-lane division: each lane rounds as the
+    // scalar 1.0f / d would.
+    const Float4 inverse = Float4{1.0f, 1.0f, 1.0f, 1.0f} / Float4{direction.x, direction.y, direction.z, 1.0f};
+    invD = glm::vec3(inverse[0], inverse[1], inverse[2]);
+  }
 };
 
 }  // namespace glint

@@ -11,15 +11,10 @@
 
 #include "common/bounds.h"
 #include "common/float_bits.h"
+#include "common/lanes.h"
 #include "common/ray.h"
 
 namespace glint {
-
-// Four lanes of float arithmetic (GCC / Clang vector extensions: SSE on
-// x86-64, NEON on ARM, plain loops elsewhere). Each lane rounds exactly as
-// the scalar operation would.
-using Float4 = float __attribute__((vector_size(16)));
-using Mask4 = std::int32_t __attribute__((vector_size(16)));
 
 // Four boxes as a structure of arrays: planes[0..2] are min x, y, z and
 // planes[3..5] max x, y, z; lane i of each is box i. An unused lane holds the
