@@ -252,7 +252,6 @@ class BvhBuilderImpl {
     return cut;
   }
 
-  static constexpr int kMaxBins = 64;
   static constexpr int kMaxLeafPrims = 255;  // BvhNode::count must hold it
 
   Bvh& bvh_;

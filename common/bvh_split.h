@@ -81,8 +81,6 @@ struct Cut {
   }
 };
 
-using Int4 = std::int32_t __attribute__((vector_size(16)));
-
 // Where centroids fall among the SAH bins of a node, on all three axes at
 // once (lane 3 unused). An axis whose centroids all lie in one plane is not
 // usable: nothing can be split along it.

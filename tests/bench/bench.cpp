@@ -347,8 +347,10 @@ void hybridSection(const Options& o) {
       for (int f = 0; f < frames + 1; ++f) {
         if (o.povray && !o.quick && index == 0 && service == &local && f % 4 == 0) {
           const PovrayTimes pov = povrayTimes(o, 640, 480, 1);
-          if (pov.traceMs > 0.0) povTimes.push_back(pov.traceMs);
-          if (pov.traceMs > 0.0) povProcessTimes.push_back(pov.processMs);
+          if (pov.traceMs > 0.0) {
+            povTimes.push_back(pov.traceMs);
+            povProcessTimes.push_back(pov.processMs);
+          }
         }
         renderHybrid(context.api(), raster, *service, frame, prepared.scene().mask, 64, r);
         if (f > 0) times.push_back(r.times);  // the first frame compiles the shaders
