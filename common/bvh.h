@@ -2,13 +2,16 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "common/bounds.h"
 #include "common/geometry.h"
 #include "common/enum_words.h"
 #include "common/ray.h"
+#include "common/triangle4.h"
 #include "common/wide_slab.h"
 
 namespace glint {
@@ -43,7 +46,8 @@ struct BvhSettings {
 //   bytes  96-111  offset per child: an interior child's node index, or a
 //                  leaf child's first entry in Bvh::primIds
 //   bytes 112-119  count per child: a leaf child's primitives (>= 1), 0 for
-//                  an interior child
+//                  an interior child; with kBlockLeaf set, the leaf is a
+//                  TriangleBlock and its offset an index in Bvh::blocks
 //   byte  120      children in use (1 to 4; unused lanes hold empty boxes)
 //   bytes 121-127  padding
 // The root is node 0.
@@ -54,6 +58,17 @@ struct BvhNode {
   std::uint8_t children;
 };
 static_assert(sizeof(BvhNode) == 128, "BvhNode is documented as 128 bytes");
+
+// A leaf of two to four triangles tested together, four lanes at once: their
+// vertices side by side and their primitive ids, lanes from the leaf's count
+// on unused. 160 bytes.
+struct TriangleBlock {
+  Triangles4 vertices;
+  std::array<std::uint32_t, 4> prims;
+};
+
+// The bit of BvhNode::count that marks a block leaf (counts are at most 255).
+constexpr std::uint16_t kBlockLeaf = 0x8000;
 
 // The builder's binary tree is at most this deep (a depth guard switches to
 // median splits before it could grow deeper); traversal sizes its stack by it.
@@ -74,7 +89,10 @@ class Bvh {
   bool occluded(const Ray& ray, float tMax) const;
 
   const std::vector<BvhNode>& nodes() const { return nodes_; }
+  // Every primitive once, each leaf's a range (a block leaf's too, though
+  // traversal reads its ids from the block).
   const std::vector<std::uint32_t>& primIds() const { return primIds_; }
+  std::span<const TriangleBlock> blocks() const { return {blocks_.get(), blockCount_}; }
   // Levels of the binary tree the builder made (at most kBvhMaxDepth).
   int depth() const { return depth_; }
 
@@ -83,6 +101,8 @@ class Bvh {
   const Geometry* geometry_ = nullptr;
   std::vector<BvhNode> nodes_;
   std::vector<std::uint32_t> primIds_;
+  std::unique_ptr<TriangleBlock[]> blocks_;
+  std::size_t blockCount_ = 0;
   int depth_ = 0;
 };
 

@@ -1,4 +1,5 @@
 #include <array>
+#include <bit>
 
 #include "common/bvh.h"
 #include "common/float_bits.h"
@@ -9,13 +10,13 @@ namespace {
 // A child waiting on the traversal stack: where it is, whether it is a leaf,
 // and where the ray enters its box.
 struct Pending {
-  std::uint32_t offset;  // node index, or first entry in primIds for a leaf
-  std::uint32_t count;   // primitives of a leaf; 0 for a node
+  std::uint32_t offset;  // node index, or a leaf's first entry in primIds or its block
+  std::uint32_t count;   // a leaf's BvhNode::count; 0 for a node
   float entry;
 };
 
-// Depth-first walk of the 4-wide tree with a fixed stack. visitLeaf(offset,
-// count) is called for each leaf whose box the ray enters before tMax; it
+// Depth-first walk of the 4-wide tree with a fixed stack. visitLeaf(leaf)
+// is called for each leaf whose box the ray enters before tMax; it
 // returns true to stop the walk, and may lower tMax. With Nearest, the
 // children of a node are visited nearest entry first, so that a close hit
 // prunes the boxes behind it; a child whose entry now lies beyond tMax is
@@ -32,7 +33,7 @@ void walk(const std::vector<BvhNode>& nodes, const Ray& ray, float& tMax, Visit 
     const Pending current = stack[--top];
     if (current.entry > tMax) continue;
     if (current.count > 0) {
-      if (visitLeaf(current.offset, current.count)) return;
+      if (visitLeaf(current)) return;
       continue;
     }
     const BvhNode& node = nodes[current.offset];
@@ -53,21 +54,51 @@ void walk(const std::vector<BvhNode>& nodes, const Ray& ray, float& tMax, Visit 
   }
 }
 
+// Calls visit(hit) for the hits of a block leaf's triangles, each found with
+// the limit that limit() gives at that moment (as the scalar test would with
+// it), until visit returns true; returns whether it did. limit() must not
+// grow within the leaf beyond `bound`. The lanes that the ray may hit are
+// found four at a time, then finished one by one by the scalar test's second
+// step from the same sheared vertices: the same bits as the scalar test.
+template <typename Limit, typename Visit>
+bool testBlock(const TriangleBlock* blocks, const Pending& leaf, const Ray& ray, const WatertightRay& w,
+               float bound, Limit limit, Visit visit) {
+  const TriangleBlock& block = blocks[leaf.offset];
+  ShearedTriangles4 sheared;
+  const unsigned used = (1u << (leaf.count & ~kBlockLeaf)) - 1u;
+  for (unsigned left = shearTriangles4(block.vertices, ray, w, used, bound, sheared); left != 0; left &= left - 1) {
+    const int lane = std::countr_zero(left);
+    if (const auto h = intersectSheared(sheared.lane(lane), w, limit())) {
+      if (visit(Hit{h->t, block.prims[static_cast<std::size_t>(lane)], h->b0, h->b1, h->b2})) return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 std::optional<Hit> Bvh::intersect(const Ray& ray, float tMax) const {
   std::optional<Hit> nearest;
   const WatertightRay w(ray);  // per ray, not per triangle
-  walk<true>(nodes_, ray, tMax, [&](std::uint32_t offset, std::uint32_t count) {
-    for (std::uint32_t i = offset; i < offset + count; ++i) {
-      // One ulp beyond the nearest hit so far, so that a hit at exactly the
-      // same distance reaches the tie-break of closerHit.
-      const float limit = nearest ? nextFloatUp(tMax) : tMax;
-      const std::optional<Hit> hit = geometry_->intersect(primIds_[i], ray, w, limit);
-      if (hit && (!nearest || closerHit(*hit, *nearest))) {
-        nearest = hit;
-        tMax = hit->t;  // a later hit counts only if closer
-      }
+  // One ulp beyond the nearest hit so far, so that a hit at exactly the
+  // same distance reaches the tie-break of closerHit.
+  const auto limit = [&] { return nearest ? nextFloatUp(tMax) : tMax; };
+  const auto keep = [&](const Hit& hit) {
+    if (!nearest || closerHit(hit, *nearest)) {
+      nearest = hit;
+      tMax = hit.t;  // a later hit counts only if closer
+    }
+    return false;
+  };
+  walk<true>(nodes_, ray, tMax, [&](const Pending& leaf) {
+    if (leaf.count & kBlockLeaf) {
+      // A later limit is at most this one once a hit is known; before, the
+      // first hit's distance may round a little beyond tMax: no bound.
+      return testBlock(blocks_.get(), leaf, ray, w, nearest ? limit() : kInfinity, limit, keep);
+    }
+    for (std::uint32_t i = leaf.offset; i < leaf.offset + leaf.count; ++i) {
+      const std::optional<Hit> hit = geometry_->intersect(primIds_[i], ray, w, limit());
+      if (hit) keep(*hit);
     }
     return false;
   });
@@ -75,10 +106,15 @@ std::optional<Hit> Bvh::intersect(const Ray& ray, float tMax) const {
 }
 
 bool Bvh::occluded(const Ray& ray, float tMax) const {
-  bool found = false;
   const WatertightRay w(ray);
-  walk<false>(nodes_, ray, tMax, [&](std::uint32_t offset, std::uint32_t count) {
-    for (std::uint32_t i = offset; i < offset + count; ++i) {
+  bool found = false;
+  walk<false>(nodes_, ray, tMax, [&](const Pending& leaf) {
+    if (leaf.count & kBlockLeaf) {
+      const auto stop = [](const Hit&) { return true; };
+      found = testBlock(blocks_.get(), leaf, ray, w, tMax, [&] { return tMax; }, stop);
+      return found;
+    }
+    for (std::uint32_t i = leaf.offset; i < leaf.offset + leaf.count; ++i) {
       if (geometry_->intersect(primIds_[i], ray, w, tMax)) {
         found = true;
         return true;

@@ -26,10 +26,12 @@ std::string mib(std::size_t bytes) {
 const std::size_t SceneBudget::kBytesPerVertex = 2 * sizeof(glm::vec3) + sizeof(glm::vec2);
 const std::size_t SceneBudget::kBytesPerTriangle = sizeof(Triangle) + sizeof(glm::vec3);
 const std::size_t SceneBudget::kBytesPerSphere = sizeof(Sphere);
-// The BVH: at most one 4-wide node and one index per primitive once built,
-// and while it is built a BuildPrimitive and up to two 32-byte binary nodes.
+// The BVH: at most one 4-wide node, one index and half a triangle block (a
+// block holds two triangles or more) per primitive once built, and while it
+// is built a BuildPrimitive, up to two 32-byte binary nodes and half a
+// block's 8-byte range.
 const std::size_t SceneBudget::kBvhBytesPerPrimitive =
-    sizeof(BvhNode) + sizeof(std::uint32_t) + sizeof(BuildPrimitive) + 2 * 32;
+    sizeof(BvhNode) + sizeof(std::uint32_t) + sizeof(TriangleBlock) / 2 + sizeof(BuildPrimitive) + 2 * 32 + 4;
 
 bool MemoryGauge::take(std::size_t bytes) {
   std::size_t used = used_.load();

@@ -24,26 +24,14 @@ float edgeDouble(float ax, float by, float ay, float bx) {
   return static_cast<float>(double(ax) * double(by) - double(ay) * double(bx));
 }
 
-}  // namespace
-
-std::optional<TriangleHit> intersectTriangle(const Ray& ray, const glm::vec3& p0,
-                                             const glm::vec3& p1, const glm::vec3& p2, float tMax) {
-  return intersectTriangle(ray, WatertightRay(ray), p0, p1, p2, tMax);
-}
-
-std::optional<TriangleHit> intersectTriangle(const Ray& ray, const WatertightRay& w, const glm::vec3& p0,
-                                             const glm::vec3& p1, const glm::vec3& p2, float tMax) {
-  glm::vec3 a = permute(p0 - ray.o, w.kx, w.ky, w.kz);
-  glm::vec3 b = permute(p1 - ray.o, w.kx, w.ky, w.kz);
-  glm::vec3 c = permute(p2 - ray.o, w.kx, w.ky, w.kz);
-  const float sx = w.sx, sy = w.sy, sz = w.sz;
-  a.x += sx * a.z;
-  a.y += sy * a.z;
-  b.x += sx * b.z;
-  b.y += sy * b.z;
-  c.x += sx * c.z;
-  c.y += sy * c.z;
-
+// intersectSheared's body, inlined into both tests (a call here costs
+// the scalar test several percent).
+[[gnu::always_inline]] inline std::optional<TriangleHit> finishSheared(ShearedTriangle s, const WatertightRay& w,
+                                                                       float tMax) {
+  glm::vec3& a = s.a;
+  glm::vec3& b = s.b;
+  glm::vec3& c = s.c;
+  const float sz = w.sz;
   float e0 = edge(b.x, c.y, b.y, c.x);
   float e1 = edge(c.x, a.y, c.y, a.x);
   float e2 = edge(a.x, b.y, a.y, b.x);
@@ -83,6 +71,29 @@ std::optional<TriangleHit> intersectTriangle(const Ray& ray, const WatertightRay
   if (t <= deltaT) return std::nullopt;
 
   return TriangleHit{t, e0 * invDet, e1 * invDet, e2 * invDet};
+}
+
+}  // namespace
+
+std::optional<TriangleHit> intersectTriangle(const Ray& ray, const glm::vec3& p0,
+                                             const glm::vec3& p1, const glm::vec3& p2, float tMax) {
+  return intersectTriangle(ray, WatertightRay(ray), p0, p1, p2, tMax);
+}
+
+std::optional<TriangleHit> intersectTriangle(const Ray& ray, const WatertightRay& w, const glm::vec3& p0,
+                                             const glm::vec3& p1, const glm::vec3& p2, float tMax) {
+  return finishSheared(shearTriangle(ray, w, p0, p1, p2), w, tMax);
+}
+
+ShearedTriangle shearTriangle(const Ray& ray, const WatertightRay& w, const glm::vec3& p0, const glm::vec3& p1,
+                              const glm::vec3& p2) {
+  const auto shear = [&w](glm::vec3 v) { return glm::vec3(v.x + w.sx * v.z, v.y + w.sy * v.z, v.z); };
+  return {shear(permute(p0 - ray.o, w.kx, w.ky, w.kz)), shear(permute(p1 - ray.o, w.kx, w.ky, w.kz)),
+          shear(permute(p2 - ray.o, w.kx, w.ky, w.kz))};
+}
+
+std::optional<TriangleHit> intersectSheared(ShearedTriangle s, const WatertightRay& w, float tMax) {
+  return finishSheared(s, w, tMax);
 }
 
 }  // namespace glint

@@ -52,4 +52,17 @@ struct WatertightRay {
 std::optional<TriangleHit> intersectTriangle(const Ray& ray, const WatertightRay& w, const glm::vec3& p0,
                                              const glm::vec3& p1, const glm::vec3& p2, float tMax);
 
+// The test in its two steps (intersectTriangle is the second applied to the
+// first). A triangle in the ray's frame: the vertices translated to the ray
+// origin, permuted so that the ray's dominant axis is z, x and y sheared so
+// that the ray runs along z (z itself not yet scaled).
+struct ShearedTriangle {
+  glm::vec3 a, b, c;
+};
+ShearedTriangle shearTriangle(const Ray& ray, const WatertightRay& w, const glm::vec3& p0, const glm::vec3& p1,
+                              const glm::vec3& p2);
+// The edge functions (in double where one comes out zero), the inside test,
+// the distance and its error bound.
+std::optional<TriangleHit> intersectSheared(ShearedTriangle s, const WatertightRay& w, float tMax);
+
 }  // namespace glint

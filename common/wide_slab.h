@@ -5,9 +5,6 @@
 #include <cstring>
 
 #include <glm/gtc/type_ptr.hpp>
-#if defined(__SSE__)
-#include <xmmintrin.h>
-#endif
 
 #include "common/bounds.h"
 #include "common/float_bits.h"
@@ -85,13 +82,8 @@ inline unsigned intersectSlabs4(const Boxes4& boxes, const SlabRay4& r, float tM
     t0 = tNear > t0 ? tNear : t0;  // a NaN leaves the interval unchanged
     t1 = tFar < t1 ? tFar : t1;
   }
-  const Mask4 hit = t0 <= t1;
   *entry = t0;
-#if defined(__SSE__)
-  return static_cast<unsigned>(_mm_movemask_ps(reinterpret_cast<__m128>(hit)));  // one instruction
-#else
-  return static_cast<unsigned>((hit[0] & 1) | (hit[1] & 2) | (hit[2] & 4) | (hit[3] & 8));
-#endif
+  return laneBits(t0 <= t1);
 }
 
 }  // namespace glint

@@ -11,7 +11,8 @@ std::size_t memoryFootprint(const PreparedScene& p) {
   std::size_t bytes = g.positions().size() * SceneBudget::kBytesPerVertex +
                       g.triangles().size() * SceneBudget::kBytesPerTriangle +
                       g.spheres().size() * SceneBudget::kBytesPerSphere +
-                      p.bvh().nodes().size() * sizeof(BvhNode) + p.bvh().primIds().size() * sizeof(std::uint32_t);
+                      p.bvh().nodes().size() * sizeof(BvhNode) + p.bvh().primIds().size() * sizeof(std::uint32_t) +
+                      p.bvh().blocks().size() * sizeof(TriangleBlock);
   for (const Texture& t : s.textures) {
     if (t.image) bytes += t.image->rgb.size();
   }

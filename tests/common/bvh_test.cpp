@@ -42,6 +42,70 @@ Geometry randomSoup(int triangles, int spheres, unsigned seed) {
   return g;
 }
 
+// A mesh whose vertices lie on exact binary fractions (an 8 x 8 grid of
+// squares, heights varying), so that many triangles touch node faces exactly.
+Geometry gridMesh() {
+  Geometry g;
+  MeshInput mesh;
+  constexpr int kN = 8;
+  for (int z = 0; z <= kN; ++z) {
+    for (int x = 0; x <= kN; ++x) {
+      mesh.positions.emplace_back(x * 0.25f, ((x * 7 + z * 3) % 5) * 0.125f, z * 0.25f);
+    }
+  }
+  for (int z = 0; z < kN; ++z) {
+    for (int x = 0; x < kN; ++x) {
+      const std::uint32_t i = static_cast<std::uint32_t>(z * (kN + 1) + x);
+      mesh.indices.insert(mesh.indices.end(), {i, i + 1, i + kN + 1, i + 1, i + kN + 2, i + kN + 1});
+    }
+  }
+  g.addMesh(std::move(mesh));
+  return g;
+}
+
+// The primitives of every leaf lane of every node: each primitive exactly
+// once, a leaf of at most maxLeafSize; a block leaf holds two to four
+// triangles, each lane's vertices those of its triangle bit for bit, the
+// unused lanes zero. Returns the number of block leaves.
+int expectEachPrimitiveInOneLeaf(const Geometry& g, const Bvh& bvh, int maxLeafSize) {
+  std::vector<int> seen(g.primitiveCount(), 0);
+  int blockLeaves = 0;
+  for (const BvhNode& node : bvh.nodes()) {
+    for (int lane = 0; lane < node.children; ++lane) {
+      const std::uint32_t count = node.count[lane] & ~kBlockLeaf;
+      if (node.count[lane] == 0) continue;
+      EXPECT_LE(count, static_cast<std::uint32_t>(maxLeafSize));
+      if (!(node.count[lane] & kBlockLeaf)) {
+        for (std::uint32_t i = node.offset[lane]; i < node.offset[lane] + count; ++i) ++seen.at(bvh.primIds().at(i));
+        continue;
+      }
+      ++blockLeaves;
+      EXPECT_GE(count, 2u);
+      const TriangleBlock& block = bvh.blocks()[node.offset[lane]];
+      for (std::uint32_t k = 0; k < 4; ++k) {
+        Triangles4 expected{};
+        if (k < count) {
+          const std::uint32_t prim = block.prims[k];
+          ++seen.at(prim);
+          if (g.isSphere(prim)) {
+            ADD_FAILURE() << "sphere " << prim << " in a block";
+            continue;
+          }
+          const Triangle& t = g.triangles()[prim];
+          expected.set(static_cast<int>(k), g.positions()[t.v[0]], g.positions()[t.v[1]], g.positions()[t.v[2]]);
+        }
+        for (int v = 0; v < 3; ++v) {
+          for (int axis = 0; axis < 3; ++axis) {
+            EXPECT_EQ(std::memcmp(&block.vertices.v[v][axis][k], &expected.v[v][axis][k], sizeof(float)), 0);
+          }
+        }
+      }
+    }
+  }
+  for (int count : seen) EXPECT_EQ(count, 1);
+  return blockLeaves;
+}
+
 std::vector<Ray> randomRays(int n, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> pos(-14.0f, 14.0f);
@@ -79,36 +143,30 @@ TEST_P(BvhBuilders, NearestHitAndOcclusionEqualBruteForce) {
   EXPECT_GT(hits, 5000);  // the comparison covers many hits, not only misses
 }
 
-// Trees of 1 to 12 primitives: a root that is one leaf, nodes with fewer
+// Trees of 1 to 24 primitives: a root that is one leaf, nodes with fewer
 // than four children and empty lanes. Every primitive sits in exactly one
 // leaf, every lane in use has a box, unused lanes are empty, and hits equal
 // the brute-force loop.
 TEST_P(BvhBuilders, SmallTreesHaveWellFormedWideNodes) {
-  for (int n = 1; n <= 12; ++n) {
+  for (int n = 1; n <= 24; ++n) {
     const Geometry g = randomSoup(n - n / 3, n / 3, static_cast<unsigned>(n));
     BvhSettings settings;
     settings.builder = GetParam();
-    settings.maxLeafSize = 1;
+    const int leafSize = n <= 12 ? 1 : 4;  // leaves of one primitive, then blocks too
+    settings.maxLeafSize = leafSize;
     const Bvh bvh = Bvh::build(g, settings);
-    std::vector<int> seen(g.primitiveCount(), 0);
     for (const BvhNode& node : bvh.nodes()) {
       ASSERT_GE(node.children, 1);
       ASSERT_LE(node.children, 4);
       for (int lane = 0; lane < 4; ++lane) {
         const Bounds3 box = node.boxes.get(lane);
         EXPECT_EQ(box.empty(), lane >= node.children) << "n " << n << " lane " << lane;
-        if (lane >= node.children) continue;
-        if (node.count[lane] == 0) {
+        if (lane < node.children && node.count[lane] == 0) {
           EXPECT_LT(node.offset[lane], bvh.nodes().size());
-          continue;
-        }
-        for (std::uint32_t i = node.offset[lane]; i < node.offset[lane] + node.count[lane]; ++i) {
-          ++seen[bvh.primIds()[i]];
-          EXPECT_FALSE(g.primitiveBounds(bvh.primIds()[i]).empty());
         }
       }
     }
-    for (int count : seen) EXPECT_EQ(count, 1) << "n " << n;
+    expectEachPrimitiveInOneLeaf(g, bvh, leafSize);
     for (const Ray& ray : randomRays(2000, static_cast<unsigned>(100 + n))) {
       const auto expected = bruteForce(g, ray);
       const auto got = bvh.intersect(ray, 1e30f);
@@ -121,27 +179,16 @@ TEST_P(BvhBuilders, SmallTreesHaveWellFormedWideNodes) {
   }
 }
 
-// A mesh whose vertices lie on exact binary fractions, so that many triangles
-// touch node faces exactly, shot at with axis-parallel and random rays.
+// The grid mesh shot at with axis-parallel and random rays: its small
+// triangles go into block leaves, tested four lanes at once, and every hit
+// has the bits of the brute-force loop's scalar tests.
 TEST_P(BvhBuilders, GridMeshOnNodeFacesEqualsBruteForce) {
-  Geometry g;
-  MeshInput mesh;
   constexpr int kN = 8;
-  for (int z = 0; z <= kN; ++z) {
-    for (int x = 0; x <= kN; ++x) {
-      mesh.positions.emplace_back(x * 0.25f, ((x * 7 + z * 3) % 5) * 0.125f, z * 0.25f);
-    }
-  }
-  for (int z = 0; z < kN; ++z) {
-    for (int x = 0; x < kN; ++x) {
-      const std::uint32_t i = static_cast<std::uint32_t>(z * (kN + 1) + x);
-      mesh.indices.insert(mesh.indices.end(), {i, i + 1, i + kN + 1, i + 1, i + kN + 2, i + kN + 1});
-    }
-  }
-  g.addMesh(std::move(mesh));
+  const Geometry g = gridMesh();
   BvhSettings settings;
   settings.builder = GetParam();
   const Bvh bvh = Bvh::build(g, settings);
+  EXPECT_GT(expectEachPrimitiveInOneLeaf(g, bvh, settings.maxLeafSize), 8);
   std::mt19937 rng(9);
   std::uniform_int_distribution<int> cell(-4, 4 * kN + 4);
   std::normal_distribution<float> dir;
@@ -155,8 +202,7 @@ TEST_P(BvhBuilders, GridMeshOnNodeFacesEqualsBruteForce) {
     const auto expected = bruteForce(g, ray);
     const auto got = bvh.intersect(ray, 1e30f);
     hits += expected ? 1 : 0;
-    if (expected.has_value() != got.has_value() ||
-        (expected && (expected->t != got->t || expected->prim != got->prim))) {
+    if (expected.has_value() != got.has_value() || (expected && std::memcmp(&*expected, &*got, sizeof(Hit)) != 0)) {
       ++mismatches;
     }
   }
@@ -170,7 +216,8 @@ INSTANTIATE_TEST_SUITE_P(Builders, BvhBuilders, ::testing::Values(BvhBuilder::kQ
                          });
 
 // Subtrees built on threads of their own give the tree one thread builds:
-// the same nodes, byte for byte, and the same primitive order.
+// the same nodes, byte for byte, the same primitive order and the same
+// blocks (filled on a thread of their own).
 TEST_P(BvhBuilders, ParallelBuildEqualsSerialBuild) {
   const Geometry g = randomSoup(60000, 500, 11);
   BvhSettings settings;
@@ -184,6 +231,9 @@ TEST_P(BvhBuilders, ParallelBuildEqualsSerialBuild) {
     EXPECT_EQ(std::memcmp(parallel.nodes().data(), serial.nodes().data(), serial.nodes().size() * sizeof(BvhNode)), 0)
         << threads;
     EXPECT_EQ(parallel.primIds(), serial.primIds()) << threads;
+    ASSERT_EQ(parallel.blocks().size(), serial.blocks().size()) << threads;
+    const std::size_t blockBytes = serial.blocks().size() * sizeof(TriangleBlock);
+    EXPECT_EQ(std::memcmp(parallel.blocks().data(), serial.blocks().data(), blockBytes), 0) << threads;
     EXPECT_EQ(parallel.depth(), serial.depth()) << threads;
   }
 }

@@ -1,0 +1,110 @@
+// The four-lane leaf test (common/triangle4.h) against the scalar
+// watertight test, lane by lane: the same sheared vertices bit for bit, and
+// for every lane the same hit or miss, with the same bits, as
+// intersectTriangle gives.
+#include "common/triangle4.h"
+
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "common/float_bits.h"
+
+namespace glint {
+namespace {
+
+bool sameBits(const glm::vec3& a, const glm::vec3& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+bool sameHit(const std::optional<TriangleHit>& a, const std::optional<TriangleHit>& b) {
+  if (a.has_value() != b.has_value()) return false;
+  return !a || std::memcmp(&*a, &*b, sizeof(TriangleHit)) == 0;
+}
+
+// Every lane of every block of four consecutive triangles against every ray,
+// hits up to tMax. Returns how many (ray, triangle) pairs hit.
+int expectLanesEqualScalar(const std::vector<glm::vec3>& vertices, const std::vector<Ray>& rays, float tMax) {
+  int hits = 0, mismatches = 0;
+  for (std::size_t first = 0; first + 12 <= vertices.size(); first += 12) {
+    Triangles4 block;
+    for (int lane = 0; lane < 4; ++lane) {
+      block.set(lane, vertices[first + 3 * lane], vertices[first + 3 * lane + 1], vertices[first + 3 * lane + 2]);
+    }
+    for (const Ray& ray : rays) {
+      const WatertightRay w(ray);
+      ShearedTriangles4 sheared;
+      const unsigned candidates = shearTriangles4(block, ray, w, 0xfu, tMax, sheared);
+      for (int lane = 0; lane < 4; ++lane) {
+        const glm::vec3& p0 = vertices[first + 3 * lane];
+        const glm::vec3& p1 = vertices[first + 3 * lane + 1];
+        const glm::vec3& p2 = vertices[first + 3 * lane + 2];
+        const ShearedTriangle expected = shearTriangle(ray, w, p0, p1, p2);
+        const ShearedTriangle got = sheared.lane(lane);
+        const bool sameShear =
+            sameBits(got.a, expected.a) && sameBits(got.b, expected.b) && sameBits(got.c, expected.c);
+        const std::optional<TriangleHit> scalar = intersectTriangle(ray, w, p0, p1, p2, tMax);
+        const std::optional<TriangleHit> wide =
+            (candidates >> lane) & 1u ? intersectSheared(got, w, tMax) : std::nullopt;
+        hits += scalar ? 1 : 0;
+        if ((!sameShear || !sameHit(scalar, wide)) && mismatches++ < 5) {
+          ADD_FAILURE() << "triangle " << first / 3 + lane << ": shear " << (sameShear ? "same" : "differs")
+                        << ", scalar " << (scalar ? "hit" : "miss") << ", four-lane " << (wide ? "hit" : "miss");
+        }
+      }
+    }
+  }
+  EXPECT_EQ(mismatches, 0);
+  return hits;
+}
+
+TEST(Triangles4, RandomTrianglesAndRaysEqualTheScalarTest) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  std::vector<glm::vec3> vertices;
+  for (int i = 0; i < 3 * 64; ++i) vertices.emplace_back(u(rng), u(rng), u(rng));
+  std::vector<Ray> rays;
+  for (int i = 0; i < 2000; ++i) {
+    const glm::vec3 o(3.0f * u(rng), 3.0f * u(rng), 3.0f * u(rng));
+    rays.emplace_back(o, glm::normalize(glm::vec3(0.3f * u(rng), 0.3f * u(rng), 0.3f * u(rng)) - o));
+  }
+  EXPECT_GT(expectLanesEqualScalar(vertices, rays, kInfinity), 1000);
+  // Bounded: some hits lie beyond 3.5, and are rejected by both.
+  const int bounded = expectLanesEqualScalar(vertices, rays, 3.5f);
+  EXPECT_GT(bounded, 100);
+  EXPECT_LT(bounded, expectLanesEqualScalar(vertices, rays, kInfinity));
+}
+
+// The hard lanes: rays through shared edges and vertices (edge functions
+// exactly zero, recomputed in double), degenerate triangles (zero area, a
+// repeated vertex, a point), axis-parallel rays, far from the origin.
+TEST(Triangles4, EdgesVerticesAndDegenerateTrianglesEqualTheScalarTest) {
+  for (const glm::vec3 offset : {glm::vec3(0.0f), glm::vec3(1e5f, -3e4f, 2e5f)}) {
+    const glm::vec3 o = offset;
+    const std::vector<glm::vec3> vertices = {
+        o + glm::vec3(0, 0, 0), o + glm::vec3(1, 0, 0), o + glm::vec3(1, 1, 0),    // a square's two halves
+        o + glm::vec3(0, 0, 0), o + glm::vec3(1, 1, 0), o + glm::vec3(0, 1, 0),    // sharing the diagonal
+        o + glm::vec3(0, 0, 0), o + glm::vec3(0, 0, 0), o + glm::vec3(1, 1, 0),    // a repeated vertex
+        o + glm::vec3(0, 0, 0), o + glm::vec3(0.5f, 0.5f, 0), o + glm::vec3(1, 1, 0),  // zero area
+        o + glm::vec3(0.5f, 0.5f, 0), o + glm::vec3(0.5f, 0.5f, 0), o + glm::vec3(0.5f, 0.5f, 0),  // a point
+        o + glm::vec3(0, 0, 1), o + glm::vec3(1, 0, 1), o + glm::vec3(0, 1, 1),
+        o + glm::vec3(0, 0, -1), o + glm::vec3(0, 1, -1), o + glm::vec3(1, 1, -1),
+        o + glm::vec3(0, 0, 0), o + glm::vec3(0, 1, 0), o + glm::vec3(0, 1, 1),  // edge-on to z rays
+    };
+    std::vector<Ray> rays;
+    for (int i = 0; i <= 16; ++i) {
+      for (int j = 0; j <= 16; ++j) {
+        const glm::vec3 target = o + glm::vec3(i / 16.0f, j / 16.0f, 0.0f);  // grid points: on edges and vertices
+        rays.emplace_back(target + glm::vec3(0, 0, 5), glm::vec3(0, 0, -1));
+        rays.emplace_back(target + glm::vec3(3, 2, 5), glm::normalize(glm::vec3(-3, -2, -5)));
+        rays.emplace_back(target + glm::vec3(-4, 0, 0.5f), glm::normalize(glm::vec3(4, 0, -0.5f)));
+      }
+    }
+    EXPECT_GT(expectLanesEqualScalar(vertices, rays, kInfinity), 100);
+    EXPECT_GT(expectLanesEqualScalar(vertices, rays, 5.0f), 0);
+  }
+}
+
+}  // namespace
+}  // namespace glint
