@@ -41,7 +41,9 @@ struct BvhSettings {
 // One node of the 4-wide tree that traversal walks, 128 bytes. The builder
 // makes a binary tree (QSplit or SAH) and collapses it: each node takes up to
 // four of the binary tree's nodes below it as children, so that one 4-lane
-// slab test replaces up to three levels of binary box tests.
+// slab test replaces up to three levels of binary box tests; a child that is
+// a leaf of two to four triangles, or a subtree of at most four that the SAH
+// prices cheaper as one leaf, becomes a block leaf (TriangleBlock).
 //   bytes   0-95   the children's boxes, structure of arrays (Boxes4)
 //   bytes  96-111  offset per child: an interior child's node index, or a
 //                  leaf child's first entry in Bvh::primIds
