@@ -15,6 +15,28 @@ struct Pending {
   float entry;
 };
 
+// Asks for the memory of a child the ray enters while the walk goes on: a
+// node's two cache lines, or the three or four a 160-byte block straddles
+// (a scalar leaf's primitives lie elsewhere). Measured: 6-10 % more rays
+// per second on the terrain (docs/performance.md). Always inlined: GCC
+// takes a function of nothing but prefetches for one without effect and
+// drops its calls.
+[[gnu::always_inline]] inline void prefetch(const std::vector<BvhNode>& nodes, const TriangleBlock* blocks,
+                                            const Pending& child) {
+  static_assert(sizeof(BvhNode) == 128 && sizeof(TriangleBlock) == 160, "the lines asked for below");
+  if (child.count == 0) {
+    const char* node = reinterpret_cast<const char*>(&nodes[child.offset]);
+    __builtin_prefetch(node);
+    __builtin_prefetch(node + 64);
+  } else if (child.count & kBlockLeaf) {
+    const char* block = reinterpret_cast<const char*>(blocks + child.offset);
+    __builtin_prefetch(block);
+    __builtin_prefetch(block + 64);
+    __builtin_prefetch(block + 128);
+    __builtin_prefetch(block + 159);
+  }
+}
+
 // Depth-first walk of the 4-wide tree with a fixed stack. visitLeaf(leaf)
 // is called for each leaf whose box the ray enters before tMax; it
 // returns true to stop the walk, and may lower tMax. With Nearest, the
@@ -22,7 +44,8 @@ struct Pending {
 // prunes the boxes behind it; a child whose entry now lies beyond tMax is
 // dropped when popped, which is the same decision its box test would make.
 template <bool Nearest, typename Visit>
-void walk(const std::vector<BvhNode>& nodes, const Ray& ray, float& tMax, Visit visitLeaf) {
+void walk(const std::vector<BvhNode>& nodes, const TriangleBlock* blocks, const Ray& ray, float& tMax,
+          Visit visitLeaf) {
   if (nodes.empty()) return;  // all geometry may have been invalid
   const SlabRay4 slabRay(ray);
   // Each level leaves at most three siblings behind; a node adds four.
@@ -45,6 +68,7 @@ void walk(const std::vector<BvhNode>& nodes, const Ray& ray, float& tMax, Visit 
     for (int lane = 0; lane < 4; ++lane) {
       if (!(hits & (1u << lane))) continue;
       Pending p{node.offset[lane], node.count[lane], entry[lane]};
+      prefetch(nodes, blocks, p);
       int i = top++;
       if constexpr (Nearest) {
         for (; i > first && stack[i - 1].entry < p.entry; --i) stack[i] = stack[i - 1];
@@ -90,7 +114,7 @@ std::optional<Hit> Bvh::intersect(const Ray& ray, float tMax) const {
     }
     return false;
   };
-  walk<true>(nodes_, ray, tMax, [&](const Pending& leaf) {
+  walk<true>(nodes_, blocks_.get(), ray, tMax, [&](const Pending& leaf) {
     if (leaf.count & kBlockLeaf) {
       // A later limit is at most this one once a hit is known; before, the
       // first hit's distance may round a little beyond tMax: no bound.
@@ -108,7 +132,7 @@ std::optional<Hit> Bvh::intersect(const Ray& ray, float tMax) const {
 bool Bvh::occluded(const Ray& ray, float tMax) const {
   const WatertightRay w(ray);
   bool found = false;
-  walk<false>(nodes_, ray, tMax, [&](const Pending& leaf) {
+  walk<false>(nodes_, blocks_.get(), ray, tMax, [&](const Pending& leaf) {
     if (leaf.count & kBlockLeaf) {
       const auto stop = [](const Hit&) { return true; };
       found = testBlock(blocks_.get(), leaf, ray, w, tMax, [&] { return tMax; }, stop);
