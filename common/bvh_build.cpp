@@ -164,9 +164,7 @@ class BvhBuilderImpl {
   // The leaf that binary node `index` becomes in the 4-wide tree, or nullopt
   // for a node. A binary leaf of two to four triangles becomes a block. A
   // subtree of at most four triangles becomes one block leaf where that is
-  // cheaper, by the surface area heuristic, than a node over its leaves
-  // (where the triangles are small against the subtree's box: not the big
-  // quads of a room, whose leaves a ray can skip).
+  // cheaper, by the surface area heuristic, than a node over its leaves.
   std::optional<Leaf> leafOf(std::uint32_t index) {
     SmallSubtree small;
     const bool fits = gather(index, small) && small.triangles;
