@@ -100,6 +100,7 @@ class Bvh {
 
  private:
   friend class BvhBuilderImpl;
+  friend class BvhCollapse;
   const Geometry* geometry_ = nullptr;
   std::vector<BvhNode> nodes_;
   std::vector<std::uint32_t> primIds_;

@@ -1,0 +1,86 @@
+#pragma once
+
+// The builder's second step (bvh_build.cpp makes the binary tree, this makes
+// the tree traversal walks): the binary tree collapsed into 4-wide nodes,
+// small groups of triangles into block leaves.
+
+#include <array>
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <type_traits>
+
+#include <glm/vec3.hpp>
+
+#include "common/bounds.h"
+#include "common/bvh.h"
+
+namespace glint {
+
+// A node of the binary tree the splits make, before it is collapsed into the
+// 4-wide nodes that traversal walks. Trivial, so that the builder's array of
+// them costs nothing until written. Nodes are depth-first: an interior
+// node's first child is the next node, and a subtree's primitives are one
+// range of Bvh::primIds.
+struct BinaryNode {
+  glm::vec3 min;  // the node's box (GLM's vectors are trivial too)
+  glm::vec3 max;
+  std::uint32_t offset;  // leaf: first entry in primIds; interior: the second child
+  std::uint32_t count;   // leaf: primitives; interior: 0 (the first child is the next node)
+
+  Bounds3 bounds() const { return {min, max}; }
+};
+static_assert(std::is_trivially_default_constructible_v<BinaryNode> && sizeof(BinaryNode) == 32);
+
+// Fills bvh's nodes and blocks from the binary tree rooted at binary[0],
+// whose leaves index bvh's primIds (already written).
+class BvhCollapse {
+ public:
+  // leafCapacity: the most primitives a leaf may hold (a block, at most
+  // four); twoThreads: whether the blocks may be filled on a second thread.
+  BvhCollapse(Bvh& bvh, const BinaryNode* binary, std::size_t leafCapacity, bool twoThreads)
+      : bvh_(bvh), binary_(binary), leafCapacity_(leafCapacity), twoThreads_(twoThreads) {}
+
+  // Collapses the tree over primCount primitives and fills its blocks.
+  void run(std::size_t primCount);
+
+ private:
+  // What a 4-wide node's lane holds when it is a leaf.
+  struct Leaf {
+    std::uint32_t offset;  // in primIds, or a block's index
+    std::uint32_t count;
+    bool block;
+  };
+  // The leaves of a subtree of at most four primitives (contiguous in
+  // primIds), and the SAH cost of testing them one leaf at a time.
+  struct SmallSubtree {
+    std::uint32_t first = UINT32_MAX;
+    std::uint32_t count = 0;
+    bool triangles = true;  // no sphere among them
+    float leafCost = 0.0f;  // sum over the leaves of area x cost of its test
+  };
+  struct BlockRange {
+    std::uint32_t first;  // in primIds
+    std::uint32_t count;
+  };
+
+  std::uint32_t collapse(std::uint32_t index);
+  std::optional<Leaf> leafOf(std::uint32_t index);
+  bool gather(std::uint32_t index, SmallSubtree& small, int level = 0) const;
+  std::uint32_t addBlock(std::uint32_t first, std::uint32_t count);
+  void fillBlocks(std::size_t begin, std::size_t end);
+
+  Bvh& bvh_;
+  const BinaryNode* binary_;
+  std::size_t leafCapacity_;
+  bool twoThreads_;
+  // The block leaves made so far, by index (blocksMade_ of them, published
+  // to the filler thread).
+  std::unique_ptr<BlockRange[]> blockRanges_;
+  std::atomic<std::size_t> blocksMade_{0};
+  std::atomic<bool> collapsed_{false};
+};
+
+}  // namespace glint
