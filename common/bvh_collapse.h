@@ -34,6 +34,13 @@ struct BinaryNode {
 };
 static_assert(std::is_trivially_default_constructible_v<BinaryNode> && sizeof(BinaryNode) == 32);
 
+// A block leaf's primitives while the collapse has chosen it and the filler
+// not yet written it: a range of Bvh::primIds.
+struct BlockRange {
+  std::uint32_t first;
+  std::uint32_t count;
+};
+
 // Fills bvh's nodes and blocks from the binary tree rooted at binary[0],
 // whose leaves index bvh's primIds (already written).
 class BvhCollapse {
@@ -61,11 +68,6 @@ class BvhCollapse {
     bool triangles = true;  // no sphere among them
     float leafCost = 0.0f;  // sum over the leaves of area x cost of its test
   };
-  struct BlockRange {
-    std::uint32_t first;  // in primIds
-    std::uint32_t count;
-  };
-
   std::uint32_t collapse(std::uint32_t index);
   std::optional<Leaf> leafOf(std::uint32_t index);
   bool gather(std::uint32_t index, SmallSubtree& small, int level = 0) const;
