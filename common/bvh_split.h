@@ -83,14 +83,18 @@ struct Cut {
 
 // Where centroids fall among the SAH bins of a node, on all three axes at
 // once (lane 3 unused). An axis whose centroids all lie in one plane is not
-// usable: nothing can be split along it.
+// usable: nothing can be split along it. A centroid's bin is
+// (c - lo) * (bins / extent): the quotient once per node and a product per
+// primitive, where bins * ((c - lo) / extent) divided per primitive and cost
+// 7 % of the build (the two may differ by one bin within an ulp of a plane).
 struct BinGrid {
   int bins;
   Float4 lo;
-  Float4 extent;
+  Float4 scale;  // bins / extent per axis
   std::array<bool, 3> usable;
 
   BinGrid(const Box4& centroids, int binCount) : bins(binCount) {
+    Float4 extent;
     for (int a = 0; a < 3; ++a) {
       const float e = centroids.hi[a] - centroids.lo[a];
       usable[static_cast<std::size_t>(a)] = e > 0.0f;
@@ -99,10 +103,11 @@ struct BinGrid {
     }
     lo[3] = 0.0f;
     extent[3] = 1.0f;
+    scale = static_cast<float>(bins) / extent;
   }
-  // Per axis: bins * ((c - lo) / extent), truncated and clamped to a bin.
+  // Per axis: (c - lo) * scale, truncated and clamped to a bin.
   Int4 binOf(const BuildPrimitive& p) const {
-    const Float4 t = static_cast<float>(bins) * ((p.box.centre() - lo) / extent);
+    const Float4 t = (p.box.centre() - lo) * scale;
     Int4 i = __builtin_convertvector(t, Int4);
     i = i < 0 ? 0 : i;
     return i > bins - 1 ? bins - 1 : i;

@@ -74,7 +74,7 @@ TEST(BvhSplit, BinsAreTheScalarFormulasOnEveryAxis) {
       const Int4 lanes = grid.binOf(prims[i]);
       for (int a = 0; a < 3; ++a) {
         const float c = boxes[i].centre()[a], lo = centroids.min[a], extent = centroids.max[a] - lo;
-        const int scalar = std::clamp(static_cast<int>(static_cast<float>(bins) * ((c - lo) / extent)), 0, bins - 1);
+        const int scalar = std::clamp(static_cast<int>((c - lo) * (static_cast<float>(bins) / extent)), 0, bins - 1);
         ASSERT_EQ(lanes[a], scalar) << "primitive " << i << " axis " << a << " bins " << bins;
       }
     }
@@ -109,7 +109,8 @@ TEST(BvhSplit, BinsOnThePlanesAreTheScalarFormulas) {
       const Int4 lanes = grid.binOf(prims[i]);
       for (int a = 0; a < 3; ++a) {
         const float lo = centroids.min[a], extent = centroids.max[a] - lo;
-        const int scalar = std::clamp(static_cast<int>(static_cast<float>(bins) * ((points[i][a] - lo) / extent)), 0, bins - 1);
+        const float scale = static_cast<float>(bins) / extent;
+        const int scalar = std::clamp(static_cast<int>((points[i][a] - lo) * scale), 0, bins - 1);
         ASSERT_EQ(lanes[a], scalar) << "point " << i << " axis " << a << " bins " << bins;
         ++checked;
       }
