@@ -137,13 +137,14 @@ struct SahBins {
     }
   }
   // Bins prims a run at a time: the run's bins first, then the updates.
-  // Updating each bin as soon as it was computed took 2.8x as long (1M
-  // terrain triangles: 12.4 ms, now 3.6): most likely, an update's load ran
-  // before the previous update's store knew its address, was guessed not to
-  // alias it, and was thrown away and redone where it did (neighbouring
-  // primitives share bins). With the bins in memory, every address is known early.
+  // Updating each bin as soon as it was computed took 3x as long (1M
+  // terrain triangles: 12.4 ms, now 3.6-4.1): most likely, an update's load
+  // ran before the previous update's store knew its address, was guessed not
+  // to alias it, and was thrown away and redone where it did (neighbouring
+  // primitives share bins). With the bins in memory, every address is known
+  // early. Runs of 8 to 256 measured: 16 to 64 alike in the whole build.
   void add(std::span<const BuildPrimitive> prims, const BinGrid& grid) {
-    constexpr std::size_t kRun = 16;  // measured best of 8, 16, 32, 64 and 256
+    constexpr std::size_t kRun = 32;
     std::array<Int4, kRun> run;
     for (std::size_t first = 0; first < prims.size(); first += kRun) {
       const std::span<const BuildPrimitive> part = prims.subspan(first, std::min(kRun, prims.size() - first));
