@@ -412,7 +412,7 @@ int main(int argc, char** argv) {
     if (o.wants("load")) bench::loadSection(o.scenes, o.quick);
     if (o.wants("distributed")) bench::distributedSection(o.scenes, o.quick);
     if (o.wants("meshfile")) bench::meshFileSection(o.quick, o.runs);
-    if (o.wants("embree")) bench::embreeSection(o.quick, o.runs);
+    if (o.wants("embree")) bench::embreeSection(o.scenes, o.quick, o.runs);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "glint-bench: %s\n", e.what());
     return 1;

@@ -5,7 +5,9 @@
 #if GLINT_BENCH_EMBREE
 
 #include <cmath>
+#include <filesystem>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -13,16 +15,16 @@
 
 #include "common/bvh.h"
 #include "common/camera.h"
+#include "common/scene_load.h"
 #include "common/timing.h"
 #include "tests/bench/bench_scenes.h"
 
 namespace glint::bench {
 namespace {
 
-// The geometry's triangles as one Embree scene (its own copy of the
+// The geometry's triangles as one Embree geometry (its own copy of the
 // vertices and indices).
-RTCScene embreeScene(RTCDevice device, const Geometry& g) {
-  RTCScene scene = rtcNewScene(device);
+RTCGeometry embreeTriangles(RTCDevice device, const Geometry& g) {
   RTCGeometry mesh = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(mesh, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                                3 * sizeof(float), g.positions().size()));
@@ -34,9 +36,32 @@ RTCScene embreeScene(RTCDevice device, const Geometry& g) {
   for (std::size_t t = 0; t < g.triangles().size(); ++t) {
     for (int k = 0; k < 3; ++k) indices[3 * t + static_cast<std::size_t>(k)] = g.triangles()[t].v[static_cast<std::size_t>(k)];
   }
-  rtcCommitGeometry(mesh);
-  rtcAttachGeometry(scene, mesh);
-  rtcReleaseGeometry(mesh);
+  return mesh;
+}
+
+// The geometry's spheres as Embree's sphere points (centre and radius).
+RTCGeometry embreeSpheres(RTCDevice device, const Geometry& g) {
+  RTCGeometry points = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(points, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
+                                                               4 * sizeof(float), g.spheres().size()));
+  for (std::size_t i = 0; i < g.spheres().size(); ++i) {
+    const Sphere& sphere = g.spheres()[i];
+    for (int k = 0; k < 3; ++k) vertices[4 * i + static_cast<std::size_t>(k)] = sphere.centre[k];
+    vertices[4 * i + 3] = sphere.radius;
+  }
+  return points;
+}
+
+// The geometry as one Embree scene, not yet committed.
+RTCScene embreeScene(RTCDevice device, const Geometry& g) {
+  RTCScene scene = rtcNewScene(device);
+  for (RTCGeometry geometry : {g.triangles().empty() ? nullptr : embreeTriangles(device, g),
+                               g.spheres().empty() ? nullptr : embreeSpheres(device, g)}) {
+    if (!geometry) continue;
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometry(scene, geometry);
+    rtcReleaseGeometry(geometry);
+  }
   return scene;
 }
 
@@ -58,18 +83,29 @@ float embreeHit(RTCScene scene, const Ray& ray) {
   return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? -1.0f : rh.ray.tfar;
 }
 
-// Primary rays of a width x height view over the terrain, and from each
-// primary hit one ray in a random direction of the upper half-space.
-void makeRays(const Bvh& bvh, int width, int height, std::vector<Ray>& primary, std::vector<Ray>& incoherent) {
-  const Camera camera({{0.0f, 25.0f, 60.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 50.0f}, width, height);
+// One scene of the comparison: its geometry and the view its primary rays
+// come from. From each primary hit one ray leaves in a random direction:
+// of the upper half-space over the terrain (a height field: below it is
+// nothing), of the whole sphere elsewhere.
+struct PeerCase {
+  std::string name;
+  const Geometry& geometry;
+  Camera camera;
+  int width;
+  int height;
+  bool upward;
+};
+
+void makeRays(const Bvh& bvh, const PeerCase& c, std::vector<Ray>& primary, std::vector<Ray>& incoherent) {
   std::mt19937 rng(7);
   std::normal_distribution<float> n;
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) {
-      primary.push_back(camera.generateRay({x + 0.5f, y + 0.5f}));
+  for (int y = 0; y < c.height; ++y) {
+    for (int x = 0; x < c.width; ++x) {
+      primary.push_back(c.camera.generateRay({x + 0.5f, y + 0.5f}));
       const auto hit = bvh.intersect(primary.back(), 1e30f);
       if (!hit) continue;
-      glm::vec3 d = glm::normalize(glm::vec3(n(rng), std::abs(n(rng)), n(rng)));
+      const float ny = n(rng);
+      glm::vec3 d = glm::normalize(glm::vec3(n(rng), c.upward ? std::abs(ny) : ny, n(rng)));
       incoherent.emplace_back(primary.back().o + primary.back().d * (hit->t * 0.999f), d);
     }
   }
@@ -103,34 +139,55 @@ Traced trace(const Bvh& bvh, RTCScene scene, const std::vector<Ray>& rays, int r
   return r;
 }
 
-}  // namespace
-
-void embreeSection(bool quick, int runs) {
-  const Geometry g = terrain(quick ? 100 : 1000, quick ? 50 : 500);
-  RTCDevice device = rtcNewDevice(nullptr);
+// Builds both trees of one case and traces both ray sets: the case's rows.
+void compare(RTCDevice device, const PeerCase& c, int runs) {
   RTCScene scene = nullptr;
   const double embreeBuildMs = medianMs(runs, [&] {
     if (scene) rtcReleaseScene(scene);
-    scene = embreeScene(device, g);
+    scene = embreeScene(device, c.geometry);
     rtcCommitScene(scene);
   });
   Bvh bvh;
-  const double glintBuildMs = medianMs(runs, [&] { bvh = Bvh::build(g, BvhSettings{}); });
+  const double glintBuildMs = medianMs(runs, [&] { bvh = Bvh::build(c.geometry, BvhSettings{}); });
   std::vector<Ray> primary, incoherent;
-  makeRays(bvh, quick ? 128 : 1024, quick ? 96 : 768, primary, incoherent);
+  makeRays(bvh, c, primary, incoherent);
   const Traced p = trace(bvh, scene, primary, runs), s = trace(bvh, scene, incoherent, runs);
   const auto mrays = [](std::size_t n, double ms) { return static_cast<double>(n) / ms / 1e3; };
-  std::printf("\n## Glint beside Embree %d.%d.%d: %u triangles, median of %d\n\n", RTC_VERSION_MAJOR,
-              RTC_VERSION_MINOR, RTC_VERSION_PATCH, g.primitiveCount(), runs);
-  std::printf("| measure | Glint | Embree | Glint / Embree | rays agreeing |\n|---|---:|---:|---:|---:|\n");
-  std::printf("| build ms (SAH, every thread; Embree's includes copying the mesh) | %.0f | %.0f | %.2fx time | |\n",
-              glintBuildMs, embreeBuildMs, glintBuildMs / embreeBuildMs);
-  std::printf("| primary rays, Mrays/s, 1 thread (%zu) | %.2f | %.2f | %.2fx speed | %.4f |\n", primary.size(),
-              mrays(primary.size(), p.glintMs), mrays(primary.size(), p.embreeMs), p.embreeMs / p.glintMs, p.agree);
-  std::printf("| incoherent rays, Mrays/s, 1 thread (%zu) | %.2f | %.2f | %.2fx speed | %.4f |\n", incoherent.size(),
-              mrays(incoherent.size(), s.glintMs), mrays(incoherent.size(), s.embreeMs), s.embreeMs / s.glintMs,
-              s.agree);
+  const char* name = c.name.c_str();
+  std::printf("| %s | build ms (SAH, every thread; Embree's includes copying the mesh) | %.3g | %.3g | %.2fx time | |\n",
+              name, glintBuildMs, embreeBuildMs, glintBuildMs / embreeBuildMs);
+  std::printf("| %s | primary rays, Mrays/s, 1 thread (%zu) | %.2f | %.2f | %.2fx speed | %.4f |\n", name,
+              primary.size(), mrays(primary.size(), p.glintMs), mrays(primary.size(), p.embreeMs),
+              p.embreeMs / p.glintMs, p.agree);
+  std::printf("| %s | incoherent rays, Mrays/s, 1 thread (%zu) | %.2f | %.2f | %.2fx speed | %.4f |\n", name,
+              incoherent.size(), mrays(incoherent.size(), s.glintMs), mrays(incoherent.size(), s.embreeMs),
+              s.embreeMs / s.glintMs, s.agree);
   rtcReleaseScene(scene);
+}
+
+// A scene file's geometry and view, at its own image size (quick: a quarter).
+PeerCase sceneCase(const std::string& name, const Scene& scene, bool quick) {
+  const int width = quick ? scene.frame.width / 4 : scene.frame.width;
+  const int height = quick ? scene.frame.height / 4 : scene.frame.height;
+  return {name, scene.geometry, Camera(scene.frame.camera, width, height), width, height, false};
+}
+
+}  // namespace
+
+void embreeSection(const std::string& scenes, bool quick, int runs) {
+  const Geometry terrainGeometry = terrain(quick ? 100 : 1000, quick ? 50 : 500);
+  const int width = quick ? 128 : 1024, height = quick ? 96 : 768;
+  const Camera terrainView({{0.0f, 25.0f, 60.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 50.0f}, width, height);
+  const PeerCase terrainCase{"terrain (" + std::to_string(terrainGeometry.primitiveCount()) + " triangles)",
+                             terrainGeometry, terrainView, width, height, true};
+  const Scene bunny = loadSceneFile(std::filesystem::path(scenes) / "bunny.json");
+  const Scene room = loadSceneFile(std::filesystem::path(scenes) / "room.json");
+  const PeerCase cases[] = {terrainCase, sceneCase("bunny", bunny, quick), sceneCase("room", room, quick)};
+  std::printf("\n## Glint beside Embree %d.%d.%d: the same rays, median of %d\n\n", RTC_VERSION_MAJOR,
+              RTC_VERSION_MINOR, RTC_VERSION_PATCH, runs);
+  std::printf("| scene | measure | Glint | Embree | Glint / Embree | rays agreeing |\n|---|---|---:|---:|---:|---:|\n");
+  RTCDevice device = rtcNewDevice(nullptr);
+  for (const PeerCase& c : cases) compare(device, c, runs);
   rtcReleaseDevice(device);
 }
 
@@ -140,7 +197,7 @@ void embreeSection(bool quick, int runs) {
 
 namespace glint::bench {
 
-void embreeSection(bool, int) {
+void embreeSection(const std::string&, bool, int) {
   std::printf("\n## Glint beside Embree: skipped, libembree-dev is not installed (make bench installs it)\n");
 }
 
