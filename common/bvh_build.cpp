@@ -154,23 +154,23 @@ class BvhBuilderImpl {
       // (the first of equal costs wins anyway).
       std::array<float, kMaxBins> rightArea;  // [1, bins) written before read
       std::array<int, kMaxBins> rightCount;
-      Bounds3 acc;
+      Box4 acc = Box4::empty();
       int cnt = 0;
       float area = 0.0f;
       for (int b = grid.bins - 1; b > 0; --b) {
         if (bins.counts[a][b] > 0) {
-          acc.expand(bins.bounds[a][b].bounds());
+          acc.expand(bins.bounds[a][b]);
           cnt += bins.counts[a][b];
           area = acc.surfaceArea();
         }
         rightArea[b] = area;
         rightCount[b] = cnt;
       }
-      acc = Bounds3{};
+      acc = Box4::empty();
       cnt = 0;
       for (int plane = 1; plane < grid.bins; ++plane) {
         if (bins.counts[a][plane - 1] == 0) continue;
-        acc.expand(bins.bounds[a][plane - 1].bounds());
+        acc.expand(bins.bounds[a][plane - 1]);
         cnt += bins.counts[a][plane - 1];
         if (rightCount[plane] == 0) continue;
         const float cost = acc.surfaceArea() * cnt + rightArea[plane] * rightCount[plane];

@@ -3,6 +3,7 @@
 // boxes, the binned SAH's scalar bin formula, std::partition's order. The
 // builder promises the tree the scalar code made, byte for byte.
 #include "common/bvh_split.h"
+#include "common/float_bits.h"
 
 #include <algorithm>
 #include <cmath>
@@ -61,6 +62,22 @@ TEST(BvhSplit, BoxesAndCentresAreTheScalarOnes) {
   EXPECT_TRUE(sameBits(box.centroids.bounds(), centroids));
   EXPECT_EQ(prims.back().id(), 0xffffffffu);
   EXPECT_EQ(prims.front().id(), 0u);
+}
+
+// The SAH's sweep prices the bins' unions by Box4::surfaceArea: the scalar
+// one's bits, on each box, on unions of growing size, and on the empty box.
+TEST(BvhSplit, SurfaceAreasAreTheScalarOnes) {
+  std::vector<Bounds3> boxes;
+  const std::vector<BuildPrimitive> prims = somePrimitives(boxes);
+  Box4 grown = Box4::empty();
+  Bounds3 scalarGrown;
+  EXPECT_EQ(floatToBits(grown.surfaceArea()), floatToBits(scalarGrown.surfaceArea()));
+  for (std::size_t i = 0; i < prims.size(); ++i) {
+    ASSERT_EQ(floatToBits(prims[i].box.surfaceArea()), floatToBits(boxes[i].surfaceArea())) << i;
+    grown.expand(prims[i].box);
+    scalarGrown.expand(boxes[i]);
+    ASSERT_EQ(floatToBits(grown.surfaceArea()), floatToBits(scalarGrown.surfaceArea())) << i;
+  }
 }
 
 TEST(BvhSplit, BinsAreTheScalarFormulasOnEveryAxis) {
