@@ -39,12 +39,7 @@ struct Box4 {
     return 0.5f * (xyz(lo) + xyz(hi));
   }
   Bounds3 bounds() const { return {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}; }
-  // bounds().surfaceArea(), bit for bit, without making the Bounds3.
-  float surfaceArea() const {
-    if (lo[0] > hi[0] || lo[1] > hi[1] || lo[2] > hi[2]) return 0.0f;
-    const float ex = hi[0] - lo[0], ey = hi[1] - lo[1], ez = hi[2] - lo[2];
-    return 2.0f * (ex * ey + ey * ez + ez * ex);
-  }
+  float surfaceArea() const { return bounds().surfaceArea(); }
 };
 
 // What the builder sees of a primitive, 32 bytes: its box, and its id in the
