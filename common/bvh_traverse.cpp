@@ -81,18 +81,18 @@ void walk(const std::vector<BvhNode>& nodes, const TriangleBlock* blocks, const 
 // Calls visit(hit) for the hits of a block leaf's triangles, each found with
 // the limit that limit() gives at that moment (as the scalar test would with
 // it), until visit returns true; returns whether it did. limit() must not
-// grow within the leaf beyond `bound`. The lanes that the ray may hit are
-// found four at a time, then finished one by one by the scalar test's second
-// step from the same sheared vertices: the same bits as the scalar test.
+// grow within the leaf beyond `bound`. The four lanes are tested together
+// as far as the limit allows, then finished one by one: the same bits as
+// the scalar test.
 template <typename Limit, typename Visit>
 bool testBlock(const TriangleBlock* blocks, const Pending& leaf, const Ray& ray, const WatertightRay& w,
                float bound, Limit limit, Visit visit) {
   const TriangleBlock& block = blocks[leaf.offset];
-  ShearedTriangles4 sheared;
   const unsigned used = (1u << (leaf.count & ~kBlockLeaf)) - 1u;
-  for (unsigned left = shearTriangles4(block.vertices, ray, w, used, bound, sheared); left != 0; left &= left - 1) {
+  const TriangleHits4 hits = intersectTriangles4(block.vertices, ray, w, used, bound);
+  for (unsigned left = hits.candidates; left != 0; left &= left - 1) {
     const int lane = std::countr_zero(left);
-    if (const auto h = intersectSheared(sheared.lane(lane), w, limit())) {
+    if (const auto h = hits.lane(lane, w, limit())) {
       if (visit(Hit{h->t, block.prims[static_cast<std::size_t>(lane)], h->b0, h->b1, h->b2})) return true;
     }
   }

@@ -1,10 +1,13 @@
 #pragma once
 
+#include <bit>
 #include <cstring>
+#include <optional>
 
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/vec3.hpp>
 
+#include "common/float_bits.h"
 #include "common/ray.h"
 #include "common/triangle.h"
 #include "common/lanes.h"
@@ -35,18 +38,57 @@ struct ShearedTriangles4 {
   }
 };
 
-// Shears the lanes of `t` into `out` and returns those of `lanes` the ray may
-// hit (bit i: lane i): their float edge functions are not of mixed signs and
-// the hit lies in front of the origin and not beyond `bound` (as
-// intersectSheared compares with its limit; infinity: no bound), or an edge
-// function is zero (intersectSheared recomputes those in double). A lane left
-// out is one intersectSheared rejects with any limit up to `bound`; the
-// caller finishes the others with intersectSheared(out.lane(i), ...), which
-// gives the scalar test's result.
+// The watertight test (intersectTriangle) for four triangles at once, lane
+// by lane the same operations in the same order, so that each lane holds
+// the scalar test's exact values: intersectTriangles4 computes what does not
+// depend on the limit, lane(i, tMax) finishes lane i with a limit.
+struct TriangleHits4 {
+  ShearedTriangles4 sheared;
+  Float4 e0, e1, e2;     // the edge functions in float
+  Float4 det, tScaled;   // the sum of the edge functions, the distance scaled by it
+  Float4 t, b0, b1, b2;  // the hit (lanes in `finished`)
+  unsigned candidates;   // lanes the ray may hit with a limit up to the bound
+  unsigned rounded;      // candidates with an edge function exactly zero
+  unsigned finished;     // the other candidates whose t lies beyond its error bound
+
+  // intersectSheared(sheared.lane(i), w, tMax) for a tMax up to the bound:
+  // lanes that are no candidates miss, rounded lanes are finished by it
+  // (their edge functions recomputed in double), the others here.
+  std::optional<TriangleHit> lane(int i, const WatertightRay& w, float tMax) const {
+    const unsigned bit = 1u << i;
+    if (!(candidates & bit)) return std::nullopt;
+    if (rounded & bit) return intersectSheared(sheared.lane(i), w, tMax);
+    if (!(finished & bit)) return std::nullopt;
+    // The limit as intersectSheared applies it (the signs are checked).
+    const float far = tMax * det[i];
+    if (det[i] < 0.0f ? tScaled[i] < far : tScaled[i] > far) return std::nullopt;
+    return TriangleHit{t[i], b0[i], b1[i], b2[i]};
+  }
+};
+
+namespace lanes4 {
+
+inline Float4 abs(Float4 x) { return std::bit_cast<Float4>(std::bit_cast<Int4>(x) & 0x7fffffff); }
+
+// std::max({a, b, c}) lane by lane: the first of the largest, NaN as it.
+inline Float4 max3(Float4 a, Float4 b, Float4 c) {
+  Float4 m = a < b ? b : a;
+  return m < c ? c : m;
+}
+
+}  // namespace lanes4
+
+// Shears the lanes of `t` (step one of intersectTriangle) and computes the
+// edge functions in float: fills sheared, e0-e2, det and tScaled, and
+// returns the lanes of `lanes` the ray may hit: their edge functions are not
+// of mixed signs and the hit lies in front of the origin and not beyond
+// `bound` (as intersectSheared compares with its limit; infinity: no bound),
+// or an edge function is zero (those lanes' bits also go to `rounded`).
 inline unsigned shearTriangles4(const Triangles4& t, const Ray& ray, const WatertightRay& w, unsigned lanes,
-                                float bound, ShearedTriangles4& out) {
+                                float bound, TriangleHits4& out) {
   const float* origin = glm::value_ptr(ray.o);
   const int order[3] = {w.kx, w.ky, w.kz};
+  ShearedTriangles4& s = out.sheared;
   for (int k = 0; k < 3; ++k) {
     Float4 d[3];
     for (int axis = 0; axis < 3; ++axis) {
@@ -54,27 +96,62 @@ inline unsigned shearTriangles4(const Triangles4& t, const Ray& ray, const Water
       std::memcpy(&coordinate, t.v[k][order[axis]], sizeof(Float4));
       d[axis] = coordinate - origin[order[axis]];
     }
-    out.x[k] = d[0] + w.sx * d[2];
-    out.y[k] = d[1] + w.sy * d[2];
-    out.z[k] = d[2];
+    s.x[k] = d[0] + w.sx * d[2];
+    s.y[k] = d[1] + w.sy * d[2];
+    s.z[k] = d[2];
   }
-  // The edge functions as intersectSheared computes them in float.
-  const Float4 e0 = out.x[1] * out.y[2] - out.y[1] * out.x[2];
-  const Float4 e1 = out.x[2] * out.y[0] - out.y[2] * out.x[0];
-  const Float4 e2 = out.x[0] * out.y[1] - out.y[0] * out.x[1];
+  out.e0 = s.x[1] * s.y[2] - s.y[1] * s.x[2];
+  out.e1 = s.x[2] * s.y[0] - s.y[2] * s.x[0];
+  out.e2 = s.x[0] * s.y[1] - s.y[0] * s.x[1];
   const Float4 zero{};
-  const Mask4 anyZero = (e0 == zero) | (e1 == zero) | (e2 == zero);
-  const Mask4 mixed = ((e0 < zero) | (e1 < zero) | (e2 < zero)) & ((e0 > zero) | (e1 > zero) | (e2 > zero));
-  // The determinant and the scaled distance as intersectSheared computes
-  // them: a hit behind the origin (or none: det zero or not finite) is
-  // rejected there whatever the limit.
-  const Float4 det = e0 + e1 + e2;
-  const Float4 tScaled = e0 * (out.z[0] * w.sz) + e1 * (out.z[1] * w.sz) + e2 * (out.z[2] * w.sz);
-  const Mask4 finite = (det - det) == zero;  // false for inf and NaN
-  const Float4 far = det * bound;
-  const Mask4 inRange = ((det < zero) & (tScaled < zero) & (tScaled >= far)) |
-                        ((det > zero) & (tScaled > zero) & (tScaled <= far));
+  const Mask4 anyZero = (out.e0 == zero) | (out.e1 == zero) | (out.e2 == zero);
+  const Mask4 mixed = ((out.e0 < zero) | (out.e1 < zero) | (out.e2 < zero)) &
+                      ((out.e0 > zero) | (out.e1 > zero) | (out.e2 > zero));
+  // A hit behind the origin (or none: det zero or not finite) is rejected
+  // by intersectSheared whatever the limit.
+  out.det = out.e0 + out.e1 + out.e2;
+  out.tScaled = out.e0 * (s.z[0] * w.sz) + out.e1 * (s.z[1] * w.sz) + out.e2 * (s.z[2] * w.sz);
+  const Mask4 finite = (out.det - out.det) == zero;  // false for inf and NaN
+  const Float4 far = out.det * bound;
+  const Mask4 inRange = ((out.det < zero) & (out.tScaled < zero) & (out.tScaled >= far)) |
+                        ((out.det > zero) & (out.tScaled > zero) & (out.tScaled <= far));
+  out.rounded = laneBits(anyZero) & lanes;
   return laneBits(anyZero | (~mixed & finite & inRange)) & lanes;
+}
+
+// Step two for the candidates without a zero edge function: the distance,
+// its error bound (pbrt-v4 6.8.4) and the barycentrics, as intersectSheared.
+inline void finishTriangles4(TriangleHits4& h, const WatertightRay& w) {
+  using lanes4::abs;
+  using lanes4::max3;
+  const ShearedTriangles4& s = h.sheared;
+  const Float4 az = s.z[0] * w.sz, bz = s.z[1] * w.sz, cz = s.z[2] * w.sz;
+  const Float4 invDet = 1.0f / h.det;
+  h.t = h.tScaled * invDet;
+  const Float4 maxZt = max3(abs(az), abs(bz), abs(cz));
+  const Float4 maxXt = max3(abs(s.x[0]), abs(s.x[1]), abs(s.x[2]));
+  const Float4 maxYt = max3(abs(s.y[0]), abs(s.y[1]), abs(s.y[2]));
+  const Float4 deltaZ = gamma(3) * maxZt;
+  const Float4 deltaX = gamma(5) * (maxXt + maxZt);
+  const Float4 deltaY = gamma(5) * (maxYt + maxZt);
+  const Float4 deltaE = 2.0f * (gamma(2) * maxXt * maxYt + deltaY * maxXt + deltaX * maxYt);
+  const Float4 maxE = max3(abs(h.e0), abs(h.e1), abs(h.e2));
+  const Float4 deltaT = 3.0f * (gamma(3) * maxE * maxZt + deltaE * maxZt + deltaZ * maxE) * abs(invDet);
+  h.finished = ~laneBits(h.t <= deltaT) & h.candidates & ~h.rounded;
+  h.b0 = h.e0 * invDet;
+  h.b1 = h.e1 * invDet;
+  h.b2 = h.e2 * invDet;
+}
+
+// The four-lane test of the lanes `lanes` of `t` for limits up to `bound`
+// (infinity: none); finish each lane with lane(i, w, tMax).
+inline TriangleHits4 intersectTriangles4(const Triangles4& t, const Ray& ray, const WatertightRay& w,
+                                         unsigned lanes, float bound) {
+  TriangleHits4 h;
+  h.candidates = shearTriangles4(t, ray, w, lanes, bound, h);
+  h.finished = 0;
+  if (h.candidates & ~h.rounded) finishTriangles4(h, w);
+  return h;
 }
 
 }  // namespace glint

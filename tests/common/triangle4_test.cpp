@@ -24,9 +24,11 @@ bool sameHit(const std::optional<TriangleHit>& a, const std::optional<TriangleHi
 }
 
 // Every lane of every block of four consecutive triangles against every ray,
-// hits up to tMax. Returns how many (ray, triangle) pairs hit.
-int expectLanesEqualScalar(const std::vector<glm::vec3>& vertices, const std::vector<Ray>& rays, float tMax) {
-  int hits = 0, mismatches = 0;
+// tested for limits up to `bound`, hits up to tMax. Returns how many (ray,
+// triangle) pairs hit.
+int expectLanesEqualScalar(const std::vector<glm::vec3>& vertices, const std::vector<Ray>& rays, float bound,
+                           float tMax) {
+  int hitCount = 0, mismatches = 0;
   for (std::size_t first = 0; first + 12 <= vertices.size(); first += 12) {
     Triangles4 block;
     for (int lane = 0; lane < 4; ++lane) {
@@ -34,20 +36,18 @@ int expectLanesEqualScalar(const std::vector<glm::vec3>& vertices, const std::ve
     }
     for (const Ray& ray : rays) {
       const WatertightRay w(ray);
-      ShearedTriangles4 sheared;
-      const unsigned candidates = shearTriangles4(block, ray, w, 0xfu, tMax, sheared);
+      const TriangleHits4 hits = intersectTriangles4(block, ray, w, 0xfu, bound);
       for (int lane = 0; lane < 4; ++lane) {
         const glm::vec3& p0 = vertices[first + 3 * lane];
         const glm::vec3& p1 = vertices[first + 3 * lane + 1];
         const glm::vec3& p2 = vertices[first + 3 * lane + 2];
         const ShearedTriangle expected = shearTriangle(ray, w, p0, p1, p2);
-        const ShearedTriangle got = sheared.lane(lane);
+        const ShearedTriangle got = hits.sheared.lane(lane);
         const bool sameShear =
             sameBits(got.a, expected.a) && sameBits(got.b, expected.b) && sameBits(got.c, expected.c);
         const std::optional<TriangleHit> scalar = intersectTriangle(ray, w, p0, p1, p2, tMax);
-        const std::optional<TriangleHit> wide =
-            (candidates >> lane) & 1u ? intersectSheared(got, w, tMax) : std::nullopt;
-        hits += scalar ? 1 : 0;
+        const std::optional<TriangleHit> wide = hits.lane(lane, w, tMax);
+        hitCount += scalar ? 1 : 0;
         if ((!sameShear || !sameHit(scalar, wide)) && mismatches++ < 5) {
           ADD_FAILURE() << "triangle " << first / 3 + lane << ": shear " << (sameShear ? "same" : "differs")
                         << ", scalar " << (scalar ? "hit" : "miss") << ", four-lane " << (wide ? "hit" : "miss");
@@ -56,7 +56,7 @@ int expectLanesEqualScalar(const std::vector<glm::vec3>& vertices, const std::ve
     }
   }
   EXPECT_EQ(mismatches, 0);
-  return hits;
+  return hitCount;
 }
 
 TEST(Triangles4, RandomTrianglesAndRaysEqualTheScalarTest) {
@@ -69,16 +69,21 @@ TEST(Triangles4, RandomTrianglesAndRaysEqualTheScalarTest) {
     const glm::vec3 o(3.0f * u(rng), 3.0f * u(rng), 3.0f * u(rng));
     rays.emplace_back(o, glm::normalize(glm::vec3(0.3f * u(rng), 0.3f * u(rng), 0.3f * u(rng)) - o));
   }
-  EXPECT_GT(expectLanesEqualScalar(vertices, rays, kInfinity), 1000);
-  // Bounded: some hits lie beyond 3.5, and are rejected by both.
-  const int bounded = expectLanesEqualScalar(vertices, rays, 3.5f);
+  const int unbounded = expectLanesEqualScalar(vertices, rays, kInfinity, kInfinity);
+  EXPECT_GT(unbounded, 1000);
+  // Limited: some hits lie beyond 3.5, and are rejected by both, whether the
+  // four-lane step knew the limit (traversal's bound) or only the finish did.
+  const int bounded = expectLanesEqualScalar(vertices, rays, 3.5f, 3.5f);
   EXPECT_GT(bounded, 100);
-  EXPECT_LT(bounded, expectLanesEqualScalar(vertices, rays, kInfinity));
+  EXPECT_LT(bounded, unbounded);
+  EXPECT_EQ(expectLanesEqualScalar(vertices, rays, kInfinity, 3.5f), bounded);
+  EXPECT_EQ(expectLanesEqualScalar(vertices, rays, 5.0f, 3.5f), bounded);
 }
 
 // The hard lanes: rays through shared edges and vertices (edge functions
 // exactly zero, recomputed in double), degenerate triangles (zero area, a
-// repeated vertex, a point), axis-parallel rays, far from the origin.
+// repeated vertex, a point), axis-parallel rays, rays from next to a
+// triangle (hits rejected by the error bound of t), far from the origin.
 TEST(Triangles4, EdgesVerticesAndDegenerateTrianglesEqualTheScalarTest) {
   for (const glm::vec3 offset : {glm::vec3(0.0f), glm::vec3(1e5f, -3e4f, 2e5f)}) {
     const glm::vec3 o = offset;
@@ -99,10 +104,13 @@ TEST(Triangles4, EdgesVerticesAndDegenerateTrianglesEqualTheScalarTest) {
         rays.emplace_back(target + glm::vec3(0, 0, 5), glm::vec3(0, 0, -1));
         rays.emplace_back(target + glm::vec3(3, 2, 5), glm::normalize(glm::vec3(-3, -2, -5)));
         rays.emplace_back(target + glm::vec3(-4, 0, 0.5f), glm::normalize(glm::vec3(4, 0, -0.5f)));
+        // Starting a hair above the plane z = 0: hits within their error bound.
+        rays.emplace_back(target + glm::vec3(0, 0, 1e-6f), glm::normalize(glm::vec3(0.1f, 0.2f, -1)));
       }
     }
-    EXPECT_GT(expectLanesEqualScalar(vertices, rays, kInfinity), 100);
-    EXPECT_GT(expectLanesEqualScalar(vertices, rays, 5.0f), 0);
+    EXPECT_GT(expectLanesEqualScalar(vertices, rays, kInfinity, kInfinity), 100);
+    EXPECT_GT(expectLanesEqualScalar(vertices, rays, 5.0f, 5.0f), 0);
+    EXPECT_GT(expectLanesEqualScalar(vertices, rays, kInfinity, 5.0f), 0);
   }
 }
 
