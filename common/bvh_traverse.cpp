@@ -45,7 +45,7 @@ struct Pending {
 // dropped when popped, which is the same decision its box test would make.
 template <bool Nearest, typename Visit>
 void walk(const std::vector<BvhNode>& nodes, const TriangleBlock* blocks, const Ray& ray, float& tMax,
-          Visit visitLeaf) {
+          const Visit& visitLeaf) {
   if (nodes.empty()) return;  // all geometry may have been invalid
   const SlabRay4 slabRay(ray);
   // Each level leaves at most three siblings behind; a node adds four.
