@@ -38,28 +38,40 @@ struct BvhSettings {
   int buildThreads = 0;
 };
 
-// One node of the 4-wide tree that traversal walks, 128 bytes. The builder
+// One node of the 8-wide tree that traversal walks, 256 bytes. The builder
 // makes a binary tree (QSplit or SAH) and collapses it: each node takes up to
-// four of the binary tree's nodes below it as children, so that one 4-lane
-// slab test replaces up to three levels of binary box tests; a child that is
-// a leaf of two to four triangles, or a subtree of at most four that the SAH
-// prices cheaper as one leaf, becomes a block leaf (TriangleBlock).
-//   bytes   0-95   the children's boxes, structure of arrays (Boxes4)
-//   bytes  96-111  offset per child: an interior child's node index, or a
+// kBvhWidth of the binary tree's nodes below it as children, so that one
+// slab test of eight boxes replaces up to three levels of binary box tests;
+// a child that is a leaf of two to four triangles, or a subtree of at most
+// four that the SAH prices cheaper as one leaf, becomes a block leaf
+// (TriangleBlock).
+//   bytes   0-191  the children's boxes, structure of arrays (WideBoxes)
+//   bytes 192-223  offset per child: an interior child's node index, or a
 //                  leaf child's first entry in Bvh::primIds
-//   bytes 112-119  count per child: a leaf child's primitives (>= 1), 0 for
+//   bytes 224-239  count per child: a leaf child's primitives (>= 1), 0 for
 //                  an interior child; with kBlockLeaf set, the leaf is a
 //                  TriangleBlock and its offset an index in Bvh::blocks
-//   byte  120      children in use (1 to 4; unused lanes hold empty boxes)
-//   bytes 121-127  padding
+//   byte  240      children in use (1 to 8; unused lanes hold empty boxes)
+//   bytes 241-255  padding
 // The root is node 0.
 struct BvhNode {
-  Boxes4 boxes;
-  std::array<std::uint32_t, 4> offset;
-  std::array<std::uint16_t, 4> count;
+  WideBoxes boxes;
+  std::array<std::uint32_t, kBvhWidth> offset;
+  std::array<std::uint16_t, kBvhWidth> count;
   std::uint8_t children;
 };
-static_assert(sizeof(BvhNode) == 128, "BvhNode is documented as 128 bytes");
+static_assert(kBvhWidth == 8 && sizeof(BvhNode) == 256, "BvhNode is documented as 8 children in 256 bytes");
+
+// How many of a node's boxes the traversal tests in one instruction: eight
+// where the CPU has AVX2, else four (SSE, NEON), a node in two halves. The
+// same bits either way; the default is the fastest this CPU has.
+enum class BoxTestWidth { kFour, kEight };
+inline BoxTestWidth fastestBoxTestWidth() {
+#if defined(__x86_64__)
+  if (avx2Available()) return BoxTestWidth::kEight;
+#endif
+  return BoxTestWidth::kFour;
+}
 
 // A leaf of two to four triangles tested together, four lanes at once: their
 // vertices side by side and their primitive ids, lanes from the leaf's count
@@ -86,9 +98,15 @@ class Bvh {
 
   // Nearest hit with t < tMax; boxes are skipped once they lie beyond the
   // nearest hit so far.
-  std::optional<Hit> intersect(const Ray& ray, float tMax) const;
+  std::optional<Hit> intersect(const Ray& ray, float tMax) const {
+    return intersect(ray, tMax, fastestBoxTestWidth());
+  }
   // Any hit with t < tMax (shadow rays): stops at the first one.
-  bool occluded(const Ray& ray, float tMax) const;
+  bool occluded(const Ray& ray, float tMax) const { return occluded(ray, tMax, fastestBoxTestWidth()); }
+  // The same with a chosen box test (kEight runs as kFour where the CPU
+  // lacks AVX2): tests compare the two.
+  std::optional<Hit> intersect(const Ray& ray, float tMax, BoxTestWidth width) const;
+  bool occluded(const Ray& ray, float tMax, BoxTestWidth width) const;
 
   const std::vector<BvhNode>& nodes() const { return nodes_; }
   // Every primitive once, each leaf's a range (a block leaf's too, though
@@ -101,6 +119,13 @@ class Bvh {
  private:
   friend class BvhBuilderImpl;
   friend class BvhCollapse;
+  // The queries with V (Float4 or Float8) lanes per box test instruction.
+  template <typename V>
+  std::optional<Hit> nearestHit(const Ray& ray, float tMax) const;
+  template <typename V>
+  bool anyHit(const Ray& ray, float tMax) const;
+  std::optional<Hit> nearestHitEight(const Ray& ray, float tMax) const;
+  bool anyHitEight(const Ray& ray, float tMax) const;
   const Geometry* geometry_ = nullptr;
   std::vector<BvhNode> nodes_;
   std::vector<std::uint32_t> primIds_;

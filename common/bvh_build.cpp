@@ -24,7 +24,7 @@ struct Cursor {
 
 // Subtrees of at least this many primitives near the root are built on a
 // thread of their own (the second child's; the first stays on the caller's):
-// the same splits, and the same 4-wide tree as one thread builds.
+// the same splits, and the same 8-wide tree as one thread builds.
 constexpr std::size_t kParallelSubtree = 4096;
 
 }  // namespace
@@ -32,7 +32,7 @@ constexpr std::size_t kParallelSubtree = 4096;
 // Builds the binary tree depth-first (a node is appended, its first child
 // follows it, and the second child's index is patched in afterwards), large
 // subtrees near the root on threads of their own, then collapses it into
-// 4-wide nodes.
+// 8-wide nodes.
 class BvhBuilderImpl {
  public:
   BvhBuilderImpl(Bvh& bvh, const BvhSettings& settings) : bvh_(bvh), settings_(settings) {
@@ -46,7 +46,7 @@ class BvhBuilderImpl {
     // its own: a subtree over n primitives has at most 2 n - 1 nodes, so a
     // subtree built on another thread starts where its sibling's range ends
     // and both write in place. (The nodes between two such ranges are never
-    // read: the collapse follows the links, and the 4-wide tree is the one
+    // read: the collapse follows the links, and the 8-wide tree is the one
     // a single thread makes.)
     const auto tree = std::make_unique_for_overwrite<BinaryNode[]>(2 * prims.size());
     binary_ = tree.get();

@@ -6,7 +6,7 @@
 namespace glint {
 namespace {
 
-// What the collapse weighs, relative to one 4-wide node's box test
+// What the collapse weighs, relative to one node's box test
 // (measured on the 1M-triangle terrain, docs/performance.md): one triangle
 // tested alone, and a block's two to four triangles tested together.
 constexpr float kNodeTestCost = 1.0f;
@@ -18,14 +18,14 @@ constexpr std::size_t kFillerThreadFrom = 4096;
 
 }  // namespace
 
-// Makes the 4-wide node for binary node `index` and, recursively, those
+// Makes the 8-wide node for binary node `index` and, recursively, those
 // below it; returns its index. Its children start as the binary node's two
 // (or the node itself when the whole tree is one leaf); while there are
-// fewer than four, the interior child with the largest surface area (the
+// fewer than kBvhWidth, the interior child with the largest surface area (the
 // one most rays enter) is replaced by its own two children. Then each
 // child becomes a leaf (see leafOf) or a node of its own.
 std::uint32_t BvhCollapse::collapse(std::uint32_t index) {
-  std::array<std::uint32_t, 4> children{};
+  std::array<std::uint32_t, kBvhWidth> children{};
   int n = 0;
   if (binary_[index].count > 0) {
     children[n++] = index;
@@ -33,7 +33,7 @@ std::uint32_t BvhCollapse::collapse(std::uint32_t index) {
     children[n++] = index + 1;
     children[n++] = binary_[index].offset;
   }
-  while (n < 4) {
+  while (n < kBvhWidth) {
     int widest = -1;
     float widestArea = -1.0f;
     for (int i = 0; i < n; ++i) {
@@ -52,7 +52,7 @@ std::uint32_t BvhCollapse::collapse(std::uint32_t index) {
   }
   const auto wideIndex = static_cast<std::uint32_t>(bvh_.nodes_.size());
   bvh_.nodes_.emplace_back();
-  for (int lane = n; lane < 4; ++lane) bvh_.nodes_[wideIndex].boxes.set(lane, Bounds3{});
+  for (int lane = n; lane < kBvhWidth; ++lane) bvh_.nodes_[wideIndex].boxes.set(lane, Bounds3{});
   bvh_.nodes_[wideIndex].children = static_cast<std::uint8_t>(n);
   for (int lane = 0; lane < n; ++lane) {
     const std::optional<Leaf> leaf = leafOf(children[lane]);
@@ -66,7 +66,7 @@ std::uint32_t BvhCollapse::collapse(std::uint32_t index) {
   return wideIndex;
 }
 
-// The leaf that binary node `index` becomes in the 4-wide tree, or nullopt
+// The leaf that binary node `index` becomes in the 8-wide tree, or nullopt
 // for a node. A binary leaf of two to four triangles becomes a block. A
 // subtree of at most four triangles becomes one block leaf where that is
 // cheaper, by the surface area heuristic, than a node over its leaves.

@@ -1,7 +1,7 @@
 #pragma once
 
 // The builder's second step (bvh_build.cpp makes the binary tree, this makes
-// the tree traversal walks): the binary tree collapsed into 4-wide nodes,
+// the tree traversal walks): the binary tree collapsed into 8-wide nodes,
 // small groups of triangles into block leaves.
 
 #include <array>
@@ -20,7 +20,7 @@
 namespace glint {
 
 // A node of the binary tree the splits make, before it is collapsed into the
-// 4-wide nodes that traversal walks. Trivial, so that the builder's array of
+// 8-wide nodes that traversal walks. Trivial, so that the builder's array of
 // them costs nothing until written. Nodes are depth-first: an interior
 // node's first child is the next node, and a subtree's primitives are one
 // range of Bvh::primIds.
@@ -54,7 +54,7 @@ class BvhCollapse {
   void run(std::size_t primCount);
 
  private:
-  // What a 4-wide node's lane holds when it is a leaf.
+  // What a 8-wide node's lane holds when it is a leaf.
   struct Leaf {
     std::uint32_t offset;  // in primIds, or a block's index
     std::uint32_t count;

@@ -16,18 +16,20 @@ struct Pending {
 };
 
 // Asks for the memory of a child the ray enters while the walk goes on: a
-// node's two cache lines, or the three or four a 160-byte block straddles
+// node's four cache lines, or the three or four a 160-byte block straddles
 // (a scalar leaf's primitives lie elsewhere). Measured: 6-10 % more rays
 // per second on the terrain (docs/performance.md). Always inlined: GCC
 // takes a function of nothing but prefetches for one without effect and
 // drops its calls.
 [[gnu::always_inline]] inline void prefetch(const std::vector<BvhNode>& nodes, const TriangleBlock* blocks,
                                             const Pending& child) {
-  static_assert(sizeof(BvhNode) == 128 && sizeof(TriangleBlock) == 160, "the lines asked for below");
+  static_assert(sizeof(BvhNode) == 256 && sizeof(TriangleBlock) == 160, "the lines asked for below");
   if (child.count == 0) {
     const char* node = reinterpret_cast<const char*>(&nodes[child.offset]);
     __builtin_prefetch(node);
     __builtin_prefetch(node + 64);
+    __builtin_prefetch(node + 128);
+    __builtin_prefetch(node + 192);
   } else if (child.count & kBlockLeaf) {
     const char* block = reinterpret_cast<const char*>(blocks + child.offset);
     __builtin_prefetch(block);
@@ -37,19 +39,21 @@ struct Pending {
   }
 }
 
-// Depth-first walk of the 4-wide tree with a fixed stack. visitLeaf(leaf)
+// Depth-first walk of the 8-wide tree with a fixed stack, V (Float4 or
+// Float8) lanes per box test instruction; always inlined, so that the
+// AVX2 query compiles it for AVX2. visitLeaf(leaf)
 // is called for each leaf whose box the ray enters before tMax; it
 // returns true to stop the walk, and may lower tMax. With Nearest, the
 // children of a node are visited nearest entry first, so that a close hit
 // prunes the boxes behind it; a child whose entry now lies beyond tMax is
 // dropped when popped, which is the same decision its box test would make.
-template <bool Nearest, typename Visit>
-void walk(const std::vector<BvhNode>& nodes, const TriangleBlock* blocks, const Ray& ray, float& tMax,
+template <typename V, bool Nearest, typename Visit>
+[[gnu::always_inline]] inline void walk(const std::vector<BvhNode>& nodes, const TriangleBlock* blocks, const Ray& ray, float& tMax,
           const Visit& visitLeaf) {
   if (nodes.empty()) return;  // all geometry may have been invalid
-  const SlabRay4 slabRay(ray);
-  // Each level leaves at most three siblings behind; a node adds four.
-  std::array<Pending, 3 * kBvhMaxDepth + 4> stack;
+  const SlabRay<V> slabRay(ray);
+  // Each level leaves at most kBvhWidth - 1 siblings behind; a node adds kBvhWidth.
+  std::array<Pending, (kBvhWidth - 1) * kBvhMaxDepth + kBvhWidth> stack;
   int top = 0;
   stack[top++] = {0, 0, 0.0f};
   while (top > 0) {
@@ -60,12 +64,12 @@ void walk(const std::vector<BvhNode>& nodes, const TriangleBlock* blocks, const 
       continue;
     }
     const BvhNode& node = nodes[current.offset];
-    Float4 entry;
+    alignas(32) float entry[kBvhWidth];
     // Unused lanes hold empty boxes, which no ray enters: no mask needed.
-    const unsigned hits = intersectSlabs4(node.boxes, slabRay, 0.0f, tMax, &entry);
+    const unsigned hits = intersectSlabs(node.boxes, slabRay, 0.0f, tMax, entry);
     // Push the children hit, farthest first, so that the nearest is popped next.
     const int first = top;
-    for (int lane = 0; lane < 4; ++lane) {
+    for (int lane = 0; lane < kBvhWidth; ++lane) {
       if (!(hits & (1u << lane))) continue;
       Pending p{node.offset[lane], node.count[lane], entry[lane]};
       prefetch(nodes, blocks, p);
@@ -85,7 +89,7 @@ void walk(const std::vector<BvhNode>& nodes, const TriangleBlock* blocks, const 
 // as far as the limit allows, then finished one by one: the same bits as
 // the scalar test.
 template <typename Limit, typename Visit>
-bool testBlock(const TriangleBlock* blocks, const Pending& leaf, const Ray& ray, const WatertightRay& w,
+[[gnu::always_inline]] inline bool testBlock(const TriangleBlock* blocks, const Pending& leaf, const Ray& ray, const WatertightRay& w,
                float bound, Limit limit, Visit visit) {
   const TriangleBlock& block = blocks[leaf.offset];
   const unsigned used = (1u << (leaf.count & ~kBlockLeaf)) - 1u;
@@ -101,7 +105,8 @@ bool testBlock(const TriangleBlock* blocks, const Pending& leaf, const Ray& ray,
 
 }  // namespace
 
-std::optional<Hit> Bvh::intersect(const Ray& ray, float tMax) const {
+template <typename V>
+[[gnu::always_inline]] inline std::optional<Hit> Bvh::nearestHit(const Ray& ray, float tMax) const {
   std::optional<Hit> nearest;
   const WatertightRay w(ray);  // per ray, not per triangle
   // One ulp beyond the nearest hit so far, so that a hit at exactly the
@@ -114,7 +119,7 @@ std::optional<Hit> Bvh::intersect(const Ray& ray, float tMax) const {
     }
     return false;
   };
-  walk<true>(nodes_, blocks_.get(), ray, tMax, [&](const Pending& leaf) {
+  walk<V, true>(nodes_, blocks_.get(), ray, tMax, [&](const Pending& leaf) {
     if (leaf.count & kBlockLeaf) {
       // A later limit is at most this one once a hit is known; before, the
       // first hit's distance may round a little beyond tMax: no bound.
@@ -129,10 +134,11 @@ std::optional<Hit> Bvh::intersect(const Ray& ray, float tMax) const {
   return nearest;
 }
 
-bool Bvh::occluded(const Ray& ray, float tMax) const {
+template <typename V>
+[[gnu::always_inline]] inline bool Bvh::anyHit(const Ray& ray, float tMax) const {
   const WatertightRay w(ray);
   bool found = false;
-  walk<false>(nodes_, blocks_.get(), ray, tMax, [&](const Pending& leaf) {
+  walk<V, false>(nodes_, blocks_.get(), ray, tMax, [&](const Pending& leaf) {
     if (leaf.count & kBlockLeaf) {
       const auto stop = [](const Hit&) { return true; };
       found = testBlock(blocks_.get(), leaf, ray, w, tMax, [&] { return tMax; }, stop);
@@ -148,5 +154,27 @@ bool Bvh::occluded(const Ray& ray, float tMax) const {
   });
   return found;
 }
+
+std::optional<Hit> Bvh::intersect(const Ray& ray, float tMax, BoxTestWidth width) const {
+#if defined(__x86_64__)
+  if (width == BoxTestWidth::kEight && avx2Available()) return nearestHitEight(ray, tMax);
+#endif
+  return nearestHit<Float4>(ray, tMax);
+}
+
+bool Bvh::occluded(const Ray& ray, float tMax, BoxTestWidth width) const {
+#if defined(__x86_64__)
+  if (width == BoxTestWidth::kEight && avx2Available()) return anyHitEight(ray, tMax);
+#endif
+  return anyHit<Float4>(ray, tMax);
+}
+
+#if defined(__x86_64__)
+GLINT_AVX2 std::optional<Hit> Bvh::nearestHitEight(const Ray& ray, float tMax) const {
+  return nearestHit<Float8>(ray, tMax);
+}
+
+GLINT_AVX2 bool Bvh::anyHitEight(const Ray& ray, float tMax) const { return anyHit<Float8>(ray, tMax); }
+#endif
 
 }  // namespace glint

@@ -1,7 +1,9 @@
 #pragma once
 
 #include <cstdint>
-#if defined(__SSE__)
+#if defined(__x86_64__)
+#include <immintrin.h>
+#elif defined(__SSE__)
 #include <xmmintrin.h>
 #endif
 
@@ -22,5 +24,31 @@ inline unsigned laneBits(Mask4 mask) {
   return static_cast<unsigned>((mask[0] & 1) | (mask[1] & 2) | (mask[2] & 4) | (mask[3] & 8));
 #endif
 }
+
+// Eight lanes, for the code that x86-64 compiles twice: once for any such
+// CPU (each operation in two halves of four) and once for those with AVX2
+// (one instruction), chosen at run time (common/bvh.h, BoxTestWidth).
+using Float8 = float __attribute__((vector_size(32)));
+using Mask8 = std::int32_t __attribute__((vector_size(32)));
+
+#if defined(__x86_64__)
+// Where a CPU runs eight lanes in one instruction; only code that checked
+// avx2Available() may run it. Eight-lane code is always inlined into such a
+// function, and takes eight lanes by reference elsewhere (by value, x86-64
+// passes them one way with AVX and another without).
+#define GLINT_AVX2 [[gnu::target("avx2")]]
+inline bool avx2Available() {
+  static const bool available = __builtin_cpu_supports("avx2");
+  return available;
+}
+
+GLINT_AVX2 inline unsigned laneBits(const Mask8& mask) {
+  return static_cast<unsigned>(_mm256_movemask_ps(reinterpret_cast<const __m256&>(mask)));
+}
+#endif
+
+// Lanes in a vector type (Float4: 4, Float8: 8).
+template <typename V>
+constexpr int kLanesOf = static_cast<int>(sizeof(V) / sizeof(float));
 
 }  // namespace glint

@@ -27,7 +27,7 @@ std::string mib(std::size_t bytes) {
 const std::size_t SceneBudget::kBytesPerVertex = 2 * sizeof(glm::vec3) + sizeof(glm::vec2);
 const std::size_t SceneBudget::kBytesPerTriangle = sizeof(Triangle) + sizeof(glm::vec3);
 const std::size_t SceneBudget::kBytesPerSphere = sizeof(Sphere);
-// The BVH: at most one 4-wide node, one index and half a triangle block (a
+// The BVH: at most one 8-wide node, one index and half a triangle block (a
 // block holds two triangles or more) per primitive once built, and while it
 // is built a BuildPrimitive, up to two binary nodes and half a block's range.
 const std::size_t SceneBudget::kBvhBytesPerPrimitive = sizeof(BvhNode) + sizeof(std::uint32_t) +

@@ -13,11 +13,14 @@
 
 namespace glint {
 
-// Four boxes as a structure of arrays: planes[0..2] are min x, y, z and
+// Children per BVH node: the boxes that one slab test tests together.
+constexpr int kBvhWidth = 8;
+
+// kBvhWidth boxes as a structure of arrays: planes[0..2] are min x, y, z and
 // planes[3..5] max x, y, z; lane i of each is box i. An unused lane holds the
 // empty box (min +inf, max -inf), which no ray enters.
-struct Boxes4 {
-  alignas(16) float planes[6][4];
+struct WideBoxes {
+  alignas(32) float planes[6][kBvhWidth];
 
   void set(int lane, const Bounds3& b) {
     for (int axis = 0; axis < 3; ++axis) {
@@ -35,22 +38,24 @@ struct Boxes4 {
   }
 };
 
-// The per-ray part of the 4-box test, computed once per traversal: origin
-// and 1/d broadcast to four lanes, and which of min / max is the near plane
-// on each axis (by the sign bit of 1/d, as the scalar test picks it).
-struct SlabRay4 {
-  Float4 o[3];
-  Float4 invD[3];
+// The per-ray part of the slab test, computed once per traversal: origin
+// and 1/d broadcast to the lanes of V (Float4 or Float8), and which of min /
+// max is the near plane on each axis (by the sign bit of 1/d, as the scalar
+// test picks it).
+template <typename V>
+struct SlabRay {
+  V o[3];
+  V invD[3];
   int nearPlane[3];
   int farPlane[3];
 
-  explicit SlabRay4(const Ray& ray) {
+  [[gnu::always_inline]] explicit SlabRay(const Ray& ray) {
     // Through plain pointers: glm's v[i] with a run-time i is a switch.
     const float* origin = glm::value_ptr(ray.o);
     const float* inverse = glm::value_ptr(ray.invD);
     for (int axis = 0; axis < 3; ++axis) {
-      o[axis] = Float4{} + origin[axis];
-      invD[axis] = Float4{} + inverse[axis];
+      o[axis] = V{} + origin[axis];
+      invD[axis] = V{} + inverse[axis];
       const bool negative = std::signbit(inverse[axis]);
       nearPlane[axis] = negative ? axis + 3 : axis;
       farPlane[axis] = negative ? axis : axis + 3;
@@ -59,31 +64,39 @@ struct SlabRay4 {
 };
 
 // Robust slab test (Williams et al. 2005, "An Efficient and Robust Ray-Box
-// Intersection Algorithm"; Ize 2013, "Robust BVH Ray Traversal") on four
-// boxes at once. The far distance is scaled by 1 + 2 gamma(3) so rounding
-// never culls a box the ray touches, and the comparisons are ordered so that
-// a NaN (0 * inf, an origin exactly on a slab plane of an axis the ray is
-// parallel to) never replaces the running interval: boundaries count as
-// inside. Returns a bit per lane (bit i: the ray enters box i between tMin
-// and tMax) and each lane's entry distance in *entry (for the lanes hit: at
-// least tMin, never NaN).
-inline unsigned intersectSlabs4(const Boxes4& boxes, const SlabRay4& r, float tMin, float tMax,
-                                Float4* entry) {
+// Intersection Algorithm"; Ize 2013, "Robust BVH Ray Traversal") on the
+// kBvhWidth boxes, as many at once as V has lanes: every lane the same
+// operations, so Float4 and Float8 give the same bits. The far distance is
+// scaled by 1 + 2 gamma(3) so rounding never culls a box the ray touches,
+// and the comparisons are ordered so that a NaN (0 * inf, an origin exactly
+// on a slab plane of an axis the ray is parallel to) never replaces the
+// running interval: boundaries count as inside. Returns a bit per lane
+// (bit i: the ray enters box i between tMin and tMax) and each lane's entry
+// distance in entry[i] (for the lanes hit: at least tMin, never NaN).
+template <typename V>
+[[gnu::always_inline]] inline unsigned intersectSlabs(const WideBoxes& boxes, const SlabRay<V>& r, float tMin,
+                                                      float tMax, float* entry) {
+  constexpr int kLanes = kLanesOf<V>;
+  static_assert(kBvhWidth % kLanes == 0, "a node's boxes are whole vectors");
   constexpr float kFarScale = 1.0f + 2.0f * gamma(3);
-  Float4 t0 = Float4{} + tMin;
-  Float4 t1 = Float4{} + tMax;
-  for (int axis = 0; axis < 3; ++axis) {
-    Float4 nearPlane;
-    Float4 farPlane;
-    std::memcpy(&nearPlane, boxes.planes[r.nearPlane[axis]], sizeof(Float4));
-    std::memcpy(&farPlane, boxes.planes[r.farPlane[axis]], sizeof(Float4));
-    const Float4 tNear = (nearPlane - r.o[axis]) * r.invD[axis];
-    const Float4 tFar = (farPlane - r.o[axis]) * r.invD[axis] * kFarScale;
-    t0 = tNear > t0 ? tNear : t0;  // a NaN leaves the interval unchanged
-    t1 = tFar < t1 ? tFar : t1;
+  unsigned hits = 0;
+  for (int first = 0; first < kBvhWidth; first += kLanes) {
+    V t0 = V{} + tMin;
+    V t1 = V{} + tMax;
+    for (int axis = 0; axis < 3; ++axis) {
+      V nearPlane;
+      V farPlane;
+      std::memcpy(&nearPlane, boxes.planes[r.nearPlane[axis]] + first, sizeof(V));
+      std::memcpy(&farPlane, boxes.planes[r.farPlane[axis]] + first, sizeof(V));
+      const V tNear = (nearPlane - r.o[axis]) * r.invD[axis];
+      const V tFar = (farPlane - r.o[axis]) * r.invD[axis] * kFarScale;
+      t0 = tNear > t0 ? tNear : t0;  // a NaN leaves the interval unchanged
+      t1 = tFar < t1 ? tFar : t1;
+    }
+    std::memcpy(entry + first, &t0, sizeof(V));
+    hits |= laneBits(t0 <= t1) << first;
   }
-  *entry = t0;
-  return laneBits(t0 <= t1);
+  return hits;
 }
 
 }  // namespace glint

@@ -118,6 +118,24 @@ std::vector<Ray> randomRays(int n, unsigned seed) {
   return rays;
 }
 
+// The nearest hit with both box test widths (eight runs as four where the
+// CPU lacks AVX2), which must agree bit for bit; returns it.
+std::optional<Hit> intersectBothWidths(const Bvh& bvh, const Ray& ray) {
+  const auto four = bvh.intersect(ray, 1e30f, BoxTestWidth::kFour);
+  const auto eight = bvh.intersect(ray, 1e30f, BoxTestWidth::kEight);
+  EXPECT_EQ(four.has_value(), eight.has_value());
+  if (four && eight) {
+    EXPECT_EQ(std::memcmp(&*four, &*eight, sizeof(Hit)), 0);
+  }
+  return eight;
+}
+
+bool occludedBothWidths(const Bvh& bvh, const Ray& ray) {
+  const bool four = bvh.occluded(ray, 1e30f, BoxTestWidth::kFour);
+  EXPECT_EQ(four, bvh.occluded(ray, 1e30f, BoxTestWidth::kEight));
+  return four;
+}
+
 class BvhBuilders : public ::testing::TestWithParam<BvhBuilder> {};
 
 TEST_P(BvhBuilders, NearestHitAndOcclusionEqualBruteForce) {
@@ -131,20 +149,20 @@ TEST_P(BvhBuilders, NearestHitAndOcclusionEqualBruteForce) {
   int mismatches = 0;
   for (const Ray& ray : randomRays(100'000, 2)) {
     const auto expected = bruteForce(g, ray);
-    const auto got = bvh.intersect(ray, 1e30f);
+    const auto got = intersectBothWidths(bvh, ray);
     hits += expected ? 1 : 0;
     if (expected.has_value() != got.has_value() ||
         (expected && (expected->prim != got->prim || expected->t != got->t))) {
       ++mismatches;
     }
-    if (expected.has_value() != bvh.occluded(ray, 1e30f)) ++mismatches;
+    if (expected.has_value() != occludedBothWidths(bvh, ray)) ++mismatches;
   }
   EXPECT_EQ(mismatches, 0);
   EXPECT_GT(hits, 5000);  // the comparison covers many hits, not only misses
 }
 
 // Trees of 1 to 24 primitives: a root that is one leaf, nodes with fewer
-// than four children and empty lanes. Every primitive sits in exactly one
+// than kBvhWidth children and empty lanes. Every primitive sits in exactly one
 // leaf, every lane in use has a box, unused lanes are empty, and hits equal
 // the brute-force loop.
 TEST_P(BvhBuilders, SmallTreesHaveWellFormedWideNodes) {
@@ -157,8 +175,8 @@ TEST_P(BvhBuilders, SmallTreesHaveWellFormedWideNodes) {
     const Bvh bvh = Bvh::build(g, settings);
     for (const BvhNode& node : bvh.nodes()) {
       ASSERT_GE(node.children, 1);
-      ASSERT_LE(node.children, 4);
-      for (int lane = 0; lane < 4; ++lane) {
+      ASSERT_LE(node.children, kBvhWidth);
+      for (int lane = 0; lane < kBvhWidth; ++lane) {
         const Bounds3 box = node.boxes.get(lane);
         EXPECT_EQ(box.empty(), lane >= node.children) << "n " << n << " lane " << lane;
         if (lane < node.children && node.count[lane] == 0) {
@@ -169,12 +187,12 @@ TEST_P(BvhBuilders, SmallTreesHaveWellFormedWideNodes) {
     expectEachPrimitiveInOneLeaf(g, bvh, leafSize);
     for (const Ray& ray : randomRays(2000, static_cast<unsigned>(100 + n))) {
       const auto expected = bruteForce(g, ray);
-      const auto got = bvh.intersect(ray, 1e30f);
+      const auto got = intersectBothWidths(bvh, ray);
       ASSERT_EQ(expected.has_value(), got.has_value()) << "n " << n;
       if (expected) {
         EXPECT_EQ(expected->prim, got->prim);
       }
-      EXPECT_EQ(expected.has_value(), bvh.occluded(ray, 1e30f));
+      EXPECT_EQ(expected.has_value(), occludedBothWidths(bvh, ray));
     }
   }
 }
@@ -200,7 +218,7 @@ TEST_P(BvhBuilders, GridMeshOnNodeFacesEqualsBruteForce) {
     if (i % 2 == 1) d = glm::normalize(glm::vec3(dir(rng), -std::abs(dir(rng)) - 0.1f, dir(rng)));
     const Ray ray(o, d);
     const auto expected = bruteForce(g, ray);
-    const auto got = bvh.intersect(ray, 1e30f);
+    const auto got = intersectBothWidths(bvh, ray);
     hits += expected ? 1 : 0;
     if (expected.has_value() != got.has_value() || (expected && std::memcmp(&*expected, &*got, sizeof(Hit)) != 0)) {
       ++mismatches;
