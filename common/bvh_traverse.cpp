@@ -67,8 +67,11 @@ template <typename V, bool Nearest, typename Visit>
     alignas(32) float entry[kBvhWidth];
     // Unused lanes hold empty boxes, which no ray enters: no mask needed.
     const unsigned hits = intersectSlabs(node.boxes, slabRay, 0.0f, tMax, entry);
-    // Push the children hit, farthest first, so that the nearest is popped next.
+    // Push the children hit, farthest first, so that the nearest is popped
+    // next. Unrolled, each lane's branch is predicted on its own: +5-9 %
+    // rays per second on the terrain (docs/performance.md).
     const int first = top;
+#pragma GCC unroll kBvhWidth
     for (int lane = 0; lane < kBvhWidth; ++lane) {
       if (!(hits & (1u << lane))) continue;
       Pending p{node.offset[lane], node.count[lane], entry[lane]};
