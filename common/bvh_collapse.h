@@ -54,7 +54,7 @@ class BvhCollapse {
   void run(std::size_t primCount);
 
  private:
-  // What a 8-wide node's lane holds when it is a leaf.
+  // What an 8-wide node's lane holds when it is a leaf.
   struct Leaf {
     std::uint32_t offset;  // in primIds, or a block's index
     std::uint32_t count;
