@@ -101,8 +101,8 @@ class BvhBuilderImpl {
     // traversal stack, so switch to it before the tree could grow too deep.
     const int levelsLeft = kBvhMaxDepth - 1 - depth;
     if (static_cast<int>(std::bit_width(n)) < levelsLeft) {
-      const std::optional<Cut> cut = settings_.builder == BvhBuilder::kQSplit ? qsplit(prims, box.bounds.bounds(), depth)
-                                                                               : sah(prims, box);
+      const bool qsplitBuild = settings_.builder == BvhBuilder::kQSplit;
+      const std::optional<Cut> cut = qsplitBuild ? qsplit(prims, box.bounds.bounds(), depth) : sah(prims, box);
       if (!cut) return {};
       if (cut->mid > 0 && cut->mid < n) return *cut;
     }

@@ -40,16 +40,16 @@ struct Pending {
 }
 
 // Depth-first walk of the 8-wide tree with a fixed stack, V (Float4 or
-// Float8) lanes per box test instruction; always inlined, so that the
-// AVX2 query compiles it for AVX2. visitLeaf(leaf)
-// is called for each leaf whose box the ray enters before tMax; it
-// returns true to stop the walk, and may lower tMax. With Nearest, the
+// Float8) lanes per box test instruction; always inlined, so that the AVX2
+// queries compile it for AVX2. visitLeaf(leaf) is called for each leaf
+// whose box the ray enters before tMax; it returns true to stop the walk,
+// and may lower tMax. With Nearest, the
 // children of a node are visited nearest entry first, so that a close hit
 // prunes the boxes behind it; a child whose entry now lies beyond tMax is
 // dropped when popped, which is the same decision its box test would make.
 template <typename V, bool Nearest, typename Visit>
-[[gnu::always_inline]] inline void walk(const std::vector<BvhNode>& nodes, const TriangleBlock* blocks, const Ray& ray, float& tMax,
-          const Visit& visitLeaf) {
+[[gnu::always_inline]] inline void walk(const std::vector<BvhNode>& nodes, const TriangleBlock* blocks,
+                                        const Ray& ray, float& tMax, const Visit& visitLeaf) {
   if (nodes.empty()) return;  // all geometry may have been invalid
   const SlabRay<V> slabRay(ray);
   // Each level leaves at most kBvhWidth - 1 siblings behind; a node adds kBvhWidth.
@@ -92,8 +92,8 @@ template <typename V, bool Nearest, typename Visit>
 // as far as the limit allows, then finished one by one: the same bits as
 // the scalar test.
 template <typename Limit, typename Visit>
-[[gnu::always_inline]] inline bool testBlock(const TriangleBlock* blocks, const Pending& leaf, const Ray& ray, const WatertightRay& w,
-               float bound, Limit limit, Visit visit) {
+[[gnu::always_inline]] inline bool testBlock(const TriangleBlock* blocks, const Pending& leaf, const Ray& ray,
+                                             const WatertightRay& w, float bound, Limit limit, Visit visit) {
   const TriangleBlock& block = blocks[leaf.offset];
   const unsigned used = (1u << (leaf.count & ~kBlockLeaf)) - 1u;
   const TriangleHits4 hits = intersectTriangles4(block.vertices, ray, w, used, bound);
