@@ -25,9 +25,9 @@ inline unsigned laneBits(Mask4 mask) {
 #endif
 }
 
-// Eight lanes, for the code that x86-64 compiles twice: once for any such
-// CPU (each operation in two halves of four) and once for those with AVX2
-// (one instruction), chosen at run time (common/bvh.h, BoxTestWidth).
+// Eight lanes, one instruction per operation, for code compiled for CPUs
+// with AVX2 and chosen at run time (common/bvh.h, BoxTestWidth); elsewhere
+// the same code runs on Float4, eight lanes in two halves.
 using Float8 = float __attribute__((vector_size(32)));
 using Mask8 = std::int32_t __attribute__((vector_size(32)));
 
