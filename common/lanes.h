@@ -1,5 +1,6 @@
 #pragma once
 
+#include <bit>
 #include <cstdint>
 #if defined(__x86_64__)
 #include <immintrin.h>
@@ -23,6 +24,15 @@ inline unsigned laneBits(Mask4 mask) {
 #else
   return static_cast<unsigned>((mask[0] & 1) | (mask[1] & 2) | (mask[2] & 4) | (mask[3] & 8));
 #endif
+}
+
+// |x| lane by lane: the sign bit cleared, as std::abs (NaN too).
+inline Float4 absLanes(Float4 x) { return std::bit_cast<Float4>(std::bit_cast<Int4>(x) & 0x7fffffff); }
+
+// std::max({a, b, c}) lane by lane: the first of the largest, NaN as it.
+inline Float4 maxOf3(Float4 a, Float4 b, Float4 c) {
+  const Float4 m = a < b ? b : a;
+  return m < c ? c : m;
 }
 
 // Eight lanes, one instruction per operation, for code compiled for CPUs

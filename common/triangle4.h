@@ -1,6 +1,5 @@
 #pragma once
 
-#include <bit>
 #include <cstring>
 #include <optional>
 
@@ -44,6 +43,7 @@ struct ShearedTriangles4 {
 // depend on the limit, lane(i, tMax) finishes lane i with a limit.
 struct TriangleHits4 {
   ShearedTriangles4 sheared;
+  Float4 zScaled[3];     // the sheared z, scaled by WatertightRay::sz
   Float4 e0, e1, e2;     // the edge functions in float
   Float4 det, tScaled;   // the sum of the edge functions, the distance scaled by it
   Float4 t, b0, b1, b2;  // the hit (lanes in `finished`)
@@ -66,18 +66,6 @@ struct TriangleHits4 {
   }
 };
 
-namespace lanes4 {
-
-inline Float4 abs(Float4 x) { return std::bit_cast<Float4>(std::bit_cast<Int4>(x) & 0x7fffffff); }
-
-// std::max({a, b, c}) lane by lane: the first of the largest, NaN as it.
-inline Float4 max3(Float4 a, Float4 b, Float4 c) {
-  Float4 m = a < b ? b : a;
-  return m < c ? c : m;
-}
-
-}  // namespace lanes4
-
 // Shears the lanes of `t` (step one of intersectTriangle) and computes the
 // edge functions in float: fills sheared, e0-e2, det and tScaled, and
 // returns the lanes of `lanes` the ray may hit: their edge functions are not
@@ -99,6 +87,7 @@ inline unsigned shearTriangles4(const Triangles4& t, const Ray& ray, const Water
     s.x[k] = d[0] + w.sx * d[2];
     s.y[k] = d[1] + w.sy * d[2];
     s.z[k] = d[2];
+    out.zScaled[k] = d[2] * w.sz;
   }
   out.e0 = s.x[1] * s.y[2] - s.y[1] * s.x[2];
   out.e1 = s.x[2] * s.y[0] - s.y[2] * s.x[0];
@@ -110,7 +99,7 @@ inline unsigned shearTriangles4(const Triangles4& t, const Ray& ray, const Water
   // A hit behind the origin (or none: det zero or not finite) is rejected
   // by intersectSheared whatever the limit.
   out.det = out.e0 + out.e1 + out.e2;
-  out.tScaled = out.e0 * (s.z[0] * w.sz) + out.e1 * (s.z[1] * w.sz) + out.e2 * (s.z[2] * w.sz);
+  out.tScaled = out.e0 * out.zScaled[0] + out.e1 * out.zScaled[1] + out.e2 * out.zScaled[2];
   const Mask4 finite = (out.det - out.det) == zero;  // false for inf and NaN
   const Float4 far = out.det * bound;
   const Mask4 inRange = ((out.det < zero) & (out.tScaled < zero) & (out.tScaled >= far)) |
@@ -121,22 +110,19 @@ inline unsigned shearTriangles4(const Triangles4& t, const Ray& ray, const Water
 
 // Step two for the candidates without a zero edge function: the distance,
 // its error bound (pbrt-v4 6.8.4) and the barycentrics, as intersectSheared.
-inline void finishTriangles4(TriangleHits4& h, const WatertightRay& w) {
-  using lanes4::abs;
-  using lanes4::max3;
+inline void finishTriangles4(TriangleHits4& h) {
   const ShearedTriangles4& s = h.sheared;
-  const Float4 az = s.z[0] * w.sz, bz = s.z[1] * w.sz, cz = s.z[2] * w.sz;
   const Float4 invDet = 1.0f / h.det;
   h.t = h.tScaled * invDet;
-  const Float4 maxZt = max3(abs(az), abs(bz), abs(cz));
-  const Float4 maxXt = max3(abs(s.x[0]), abs(s.x[1]), abs(s.x[2]));
-  const Float4 maxYt = max3(abs(s.y[0]), abs(s.y[1]), abs(s.y[2]));
+  const Float4 maxZt = maxOf3(absLanes(h.zScaled[0]), absLanes(h.zScaled[1]), absLanes(h.zScaled[2]));
+  const Float4 maxXt = maxOf3(absLanes(s.x[0]), absLanes(s.x[1]), absLanes(s.x[2]));
+  const Float4 maxYt = maxOf3(absLanes(s.y[0]), absLanes(s.y[1]), absLanes(s.y[2]));
   const Float4 deltaZ = gamma(3) * maxZt;
   const Float4 deltaX = gamma(5) * (maxXt + maxZt);
   const Float4 deltaY = gamma(5) * (maxYt + maxZt);
   const Float4 deltaE = 2.0f * (gamma(2) * maxXt * maxYt + deltaY * maxXt + deltaX * maxYt);
-  const Float4 maxE = max3(abs(h.e0), abs(h.e1), abs(h.e2));
-  const Float4 deltaT = 3.0f * (gamma(3) * maxE * maxZt + deltaE * maxZt + deltaZ * maxE) * abs(invDet);
+  const Float4 maxE = maxOf3(absLanes(h.e0), absLanes(h.e1), absLanes(h.e2));
+  const Float4 deltaT = 3.0f * (gamma(3) * maxE * maxZt + deltaE * maxZt + deltaZ * maxE) * absLanes(invDet);
   h.finished = ~laneBits(h.t <= deltaT) & h.candidates & ~h.rounded;
   h.b0 = h.e0 * invDet;
   h.b1 = h.e1 * invDet;
@@ -150,7 +136,7 @@ inline TriangleHits4 intersectTriangles4(const Triangles4& t, const Ray& ray, co
   TriangleHits4 h;
   h.candidates = shearTriangles4(t, ray, w, lanes, bound, h);
   h.finished = 0;
-  if (h.candidates & ~h.rounded) finishTriangles4(h, w);
+  if (h.candidates & ~h.rounded) finishTriangles4(h);
   return h;
 }
 
