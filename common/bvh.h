@@ -76,9 +76,10 @@ inline BoxTestWidth fastestBoxTestWidth() {
 // A leaf of two to four triangles tested together, four lanes at once: their
 // vertices side by side and their primitive ids, lanes from the leaf's count
 // on unused. 160 bytes.
+constexpr int kBlockTriangles = 4;
 struct TriangleBlock {
   Triangles4 vertices;
-  std::array<std::uint32_t, 4> prims;
+  std::array<std::uint32_t, kBlockTriangles> prims;
 };
 
 // The bit of BvhNode::count that marks a block leaf (counts are at most 255).

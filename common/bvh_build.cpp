@@ -143,6 +143,8 @@ class BvhBuilderImpl {
     SahBins bins;  // uninitialised: only the bins in use are emptied
     bins.reset(grid.bins);
     bins.add(prims, grid);
+    const bool blocks = box.blocksOnly() && prims.size() >= static_cast<std::size_t>(kBlockTriangles);
+    const auto price = [blocks](int count) { return leafPrice(count, blocks); };
     float bestCost = std::numeric_limits<float>::infinity();
     int bestAxis = -1;
     int bestPlane = 0;
@@ -173,7 +175,7 @@ class BvhBuilderImpl {
         acc.expand(bins.bounds[a][plane - 1]);
         cnt += bins.counts[a][plane - 1];
         if (rightCount[plane] == 0) continue;
-        const float cost = acc.surfaceArea() * cnt + rightArea[plane] * rightCount[plane];
+        const float cost = acc.surfaceArea() * price(cnt) + rightArea[plane] * price(rightCount[plane]);
         if (cost < bestCost) {
           bestCost = cost;
           bestAxis = a;
@@ -184,12 +186,26 @@ class BvhBuilderImpl {
     if (bestAxis < 0) return prims.size() <= leafCapacity() ? std::nullopt : std::optional<Cut>(Cut{});
     const float area = box.bounds.bounds().surfaceArea();
     const float splitCost = settings_.traversalCost + (area > 0.0f ? bestCost / area : 0.0f);
-    const auto leafCost = static_cast<float>(prims.size());
+    const float leafCost = price(static_cast<int>(prims.size()));
     if (prims.size() <= leafCapacity() && leafCost <= splitCost) return std::nullopt;
     Cut cut;
     cut.mid = partitionMeasured(
         prims, [&](const BuildPrimitive& p) { return grid.binOf(p)[bestAxis] < bestPlane; }, cut.sides);
     return cut;
+  }
+
+  // The SAH's price of a leaf of `count` primitives, in primitive tests:
+  // one each, or with `blocks` one block test per kBlockTriangles of them,
+  // as Embree's SAH counts blocks, so that splits leave full blocks. sah()
+  // prices blocks where a node holds only triangles, at least a block's
+  // worth: a smaller node priced so is always a leaf, which put the bunny
+  // scene's floor (two triangles as wide as the scene) in one block with a
+  // bunny triangle, its flat box grown so that every ray leaving the floor
+  // entered it (docs/performance.md). 1M terrain triangles: 3.8 triangles a
+  // block on average instead of 2.5, 20 % fewer nodes.
+  static float leafPrice(int count, bool blocks) {
+    if (!blocks) return static_cast<float>(count);
+    return kBlockTestCost * static_cast<float>((count + kBlockTriangles - 1) / kBlockTriangles);
   }
 
   // Bins per axis for a node of n primitives: 4 + n / 20, at most sahBins,
@@ -217,7 +233,7 @@ Bvh Bvh::build(const Geometry& geometry, const BvhSettings& settings) {
   std::vector<BuildPrimitive> prims;
   prims.reserve(geometry.primitiveCount());
   for (std::uint32_t i = 0; i < geometry.primitiveCount(); ++i) {
-    prims.push_back({geometry.primitiveBounds(i), i});
+    prims.push_back({geometry.primitiveBounds(i), i, geometry.isSphere(i)});
   }
   if (prims.empty()) return bvh;  // traversal of an empty tree finds nothing
   BvhBuilderImpl(bvh, settings).build(prims);

@@ -8,10 +8,9 @@ namespace {
 
 // What the collapse weighs, relative to one node's box test
 // (measured on the 1M-triangle terrain, docs/performance.md): one triangle
-// tested alone, and a block's two to four triangles tested together.
+// tested alone (a block's triangles: kBlockTestCost).
 constexpr float kNodeTestCost = 1.0f;
 constexpr float kTriangleTestCost = 1.0f;
-constexpr float kBlockTestCost = 1.5f;
 
 // Builds of fewer primitives fill their blocks on the collapse's thread.
 constexpr std::size_t kFillerThreadFrom = 4096;
@@ -92,7 +91,7 @@ bool BvhCollapse::gather(std::uint32_t index, SmallSubtree& small, int level) co
     return level < 3 && gather(index + 1, small, level + 1) && gather(node.offset, small, level + 1);
   }
   small.count += node.count;
-  if (small.count > std::min<std::size_t>(4, leafCapacity_)) return false;
+  if (small.count > std::min<std::size_t>(kBlockTriangles, leafCapacity_)) return false;
   small.first = std::min(small.first, node.offset);
   bool triangles = true;
   for (std::uint32_t i = node.offset; i < node.offset + node.count; ++i) {

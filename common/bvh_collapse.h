@@ -34,6 +34,12 @@ struct BinaryNode {
 };
 static_assert(std::is_trivially_default_constructible_v<BinaryNode> && sizeof(BinaryNode) == 32);
 
+// The SAH cost of a block leaf's two to four triangles tested together,
+// relative to one node's box test or one primitive's test (measured on the
+// 1M-triangle terrain, docs/performance.md). The builder prices leaves of
+// triangles with it, the collapse its blocks.
+constexpr float kBlockTestCost = 1.5f;
+
 // A block leaf's primitives while the collapse has chosen it and the filler
 // not yet written it: a range of Bvh::primIds.
 struct BlockRange {

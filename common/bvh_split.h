@@ -42,13 +42,16 @@ struct Box4 {
   float surfaceArea() const { return bounds().surfaceArea(); }
 };
 
-// What the builder sees of a primitive, 32 bytes: its box, and its id in the
-// bits of the box's free lane 3 of lo (which no union of boxes reads back).
+// What the builder sees of a primitive, 32 bytes: its box, its id in the
+// bits of lo's free lane 3 (which no union of boxes reads back), and in hi's
+// lane 3 whether it is tested alone (1: a sphere) or may join a block (0: a
+// triangle). A union keeps the larger hi, so a node's box says whether any
+// of its primitives is tested alone (NodeBox::blocksOnly).
 struct BuildPrimitive {
   Box4 box;
 
-  BuildPrimitive(const Bounds3& b, std::uint32_t id)
-      : box{{b.min.x, b.min.y, b.min.z, bitsToFloat(id)}, {b.max.x, b.max.y, b.max.z, 0.0f}} {}
+  BuildPrimitive(const Bounds3& b, std::uint32_t id, bool alone)
+      : box{{b.min.x, b.min.y, b.min.z, bitsToFloat(id)}, {b.max.x, b.max.y, b.max.z, alone ? 1.0f : 0.0f}} {}
   std::uint32_t id() const { return floatToBits(box.lo[3]); }
 };
 
@@ -63,6 +66,8 @@ struct NodeBox {
     bounds.expand(p.box);
     centroids.expand(p.box.centre());
   }
+  // Whether every primitive may join a block (none is tested alone).
+  bool blocksOnly() const { return bounds.hi[3] <= 0.0f; }
   static NodeBox of(std::span<const BuildPrimitive> prims) {
     NodeBox box;
     for (const BuildPrimitive& p : prims) box.add(p);

@@ -18,7 +18,8 @@ namespace {
 
 // Boxes of every kind the builder meets: random, flat (a zero extent on an
 // axis), a point, repeated boxes, signed zeros; ids from 0 (whose bits are a
-// subnormal float) to the largest.
+// subnormal float) to the largest; those with ids divisible by 3 tested
+// alone (spheres), the others not.
 std::vector<BuildPrimitive> somePrimitives(std::vector<Bounds3>& boxes) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> coord(-100.0f, 100.0f), size(0.0f, 5.0f);
@@ -34,7 +35,7 @@ std::vector<BuildPrimitive> somePrimitives(std::vector<Bounds3>& boxes) {
   std::vector<BuildPrimitive> prims;
   for (std::size_t i = 0; i < boxes.size(); ++i) {
     const std::uint32_t id = i + 1 == boxes.size() ? 0xffffffffu : static_cast<std::uint32_t>(i);
-    prims.emplace_back(boxes[i], id);
+    prims.emplace_back(boxes[i], id, i % 3 == 0);
   }
   return prims;
 }
@@ -116,7 +117,7 @@ TEST(BvhSplit, BinsOnThePlanesAreTheScalarFormulas) {
   }
   points.push_back(range.min);
   points.push_back(range.max);
-  for (const glm::vec3& p : points) prims.emplace_back(Bounds3{p, p}, 0u);
+  for (const glm::vec3& p : points) prims.emplace_back(Bounds3{p, p}, 0u, false);
   const NodeBox box = NodeBox::of(prims);
   const Bounds3 centroids = box.centroids.bounds();
   int checked = 0;
@@ -176,14 +177,17 @@ TEST(BvhSplit, PartitionIsStdPartitionsOrderAndMeasuresBothSides) {
     ASSERT_EQ(partitionMeasured(actual, isLeft, sides), mid) << plane;
     for (std::size_t i = 0; i < prims.size(); ++i) ASSERT_EQ(actual[i].id(), expected[i].id()) << plane << " at " << i;
     std::array<Bounds3, 2> bounds, centroids;
+    std::array<bool, 2> blocksOnly = {true, true};
     for (std::size_t i = 0; i < actual.size(); ++i) {
       const Bounds3 b = actual[i].box.bounds();
       bounds[i < mid ? 0 : 1].expand(b);
       centroids[i < mid ? 0 : 1].expand(b.centre());
+      if (actual[i].id() % 3 == 0) blocksOnly[i < mid ? 0 : 1] = false;  // somePrimitives' alone ones
     }
     for (int side = 0; side < 2; ++side) {
       EXPECT_TRUE(sameBits(sides[side].bounds.bounds(), bounds[side])) << plane << " side " << side;
       EXPECT_TRUE(sameBits(sides[side].centroids.bounds(), centroids[side])) << plane << " side " << side;
+      EXPECT_EQ(sides[side].blocksOnly(), blocksOnly[side]) << plane << " side " << side;
     }
   }
 }

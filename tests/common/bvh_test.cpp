@@ -256,6 +256,17 @@ TEST_P(BvhBuilders, ParallelBuildEqualsSerialBuild) {
   }
 }
 
+// The SAH prices triangles by the blocks they fill (Embree's blocked SAH),
+// so its splits leave full blocks: the 8 x 8 grid's 128 triangles in 32
+// blocks of four, where pricing each triangle alone split most fours into
+// two blocks of two.
+TEST(Bvh, SahFillsTheBlocks) {
+  const Geometry g = gridMesh();
+  const Bvh bvh = Bvh::build(g, {});
+  EXPECT_EQ(expectEachPrimitiveInOneLeaf(g, bvh, 4), 32);
+  EXPECT_EQ(bvh.blocks().size(), 32u);
+}
+
 TEST(Bvh, EmptyTreeFindsNothing) {
   const Geometry g;
   const Bvh bvh = Bvh::build(g, {});
