@@ -18,6 +18,7 @@ Renderer::Renderer(const PreparedScene& prepared, const FrameSettings& frame, co
       plan_(plan),
       camera_(frame.camera, frame.width, frame.height),
       filter_(frame.sampling.filter),
+      sampleLayout_(frame.sampling),
       tracer_(prepared.scene(), prepared.bvh(), frame_.tracing, plan_) {}
 
 std::uint8_t toByte(float v) {
@@ -28,7 +29,7 @@ std::uint8_t toByte(float v) {
 void Renderer::addSample(int x, int y, int sample, PixelSamples& p, RayStats& stats) const {
   glm::vec2 offset{0.5f};
   if (plan_.antialiasing) {
-    const glm::vec2 u = samplePosition(frame_.sampling, x, y, sample);
+    const glm::vec2 u = sampleLayout_.position(x, y, sample);
     offset = {0.5f + filter_.warp(u.x), 0.5f + filter_.warp(u.y)};
   }
   const Ray ray = camera_.generateRay({static_cast<float>(x) + offset.x, static_cast<float>(y) + offset.y});

@@ -11,6 +11,7 @@
 #include "common/effects.h"
 #include "common/filter.h"
 #include "common/ray_stats.h"
+#include "common/sampling.h"
 #include "common/scene.h"
 #include "common/tile.h"
 #include "common/tracer.h"
@@ -68,6 +69,7 @@ class Renderer {
   EffectPlan plan_;
   Camera camera_;
   Filter filter_;
+  SampleLayout sampleLayout_;
   Tracer tracer_;
 };
 

@@ -24,22 +24,31 @@ float lerpBelow(float lo, float hi, float u) {
   return x < hi ? x : std::nextafter(hi, lo);
 }
 
-}  // namespace
-
-float hashUniform(std::uint32_t seed, int px, int py, int sample, int dimension) {
+// hashUniform in two steps: the hash of (seed, pixel, sample), which a
+// sample's dimensions share, then each dimension's value from it.
+std::uint64_t sampleHash(std::uint32_t seed, int px, int py, int sample) {
   std::uint64_t h = mix(seed + 0x9e3779b97f4a7c15ULL);
   h = mix(h ^ static_cast<std::uint32_t>(px));
   h = mix(h ^ (static_cast<std::uint64_t>(static_cast<std::uint32_t>(py)) << 32));
-  h = mix(h ^ static_cast<std::uint32_t>(sample));
-  h = mix(h ^ (static_cast<std::uint64_t>(static_cast<std::uint32_t>(dimension)) << 32));
+  return mix(h ^ static_cast<std::uint32_t>(sample));
+}
+
+float dimensionUniform(std::uint64_t hash, int dimension) {
+  const std::uint64_t h = mix(hash ^ (static_cast<std::uint64_t>(static_cast<std::uint32_t>(dimension)) << 32));
   // The top 24 bits are exact in a float and stay below 1.
   return static_cast<float>(h >> 40) * 0x1p-24f;
+}
+
+}  // namespace
+
+float hashUniform(std::uint32_t seed, int px, int py, int sample, int dimension) {
+  return dimensionUniform(sampleHash(seed, px, py, sample), dimension);
 }
 
 bool validSampleCount(SamplePattern pattern, int samples) {
   if (samples < 1) return false;
   if (pattern != SamplePattern::kRegular || samples == 2) return true;
-  const int k = static_cast<int>(std::lround(std::sqrt(samples)));
+  const int k = rowsFor(samples);
   return k * k == samples;
 }
 
@@ -63,19 +72,29 @@ Stratum jitteredStratum(int samples, int sample) {
           static_cast<float>(first) / n, static_cast<float>(first + cells) / n};
 }
 
-glm::vec2 samplePosition(const SamplingSettings& sampling, int px, int py, int sample) {
+SampleLayout::SampleLayout(const SamplingSettings& sampling)
+    : seed_(sampling.seed), jittered_(sampling.pattern != SamplePattern::kRegular) {
   const int n = sampling.samples;
-  if (sampling.pattern == SamplePattern::kRegular) {
-    if (n == 2) return sample == 0 ? glm::vec2(0.25f) : glm::vec2(0.75f);
-    const int k = std::max(1, static_cast<int>(std::lround(std::sqrt(n))));
-    const auto kf = static_cast<float>(k);
-    return {(static_cast<float>(sample % k) + 0.5f) / kf, (static_cast<float>(sample / k) + 0.5f) / kf};
+  for (int sample = 0; sample < n; ++sample) {
+    if (jittered_) {
+      strata_.push_back(jitteredStratum(n, sample));
+    } else if (n == 2) {
+      points_.push_back(sample == 0 ? glm::vec2(0.25f) : glm::vec2(0.75f));
+    } else {
+      const int k = rowsFor(n);
+      const auto kf = static_cast<float>(k);
+      points_.push_back({(static_cast<float>(sample % k) + 0.5f) / kf, (static_cast<float>(sample / k) + 0.5f) / kf});
+    }
   }
-  const Stratum s = jitteredStratum(n, sample);
-  const float u = hashUniform(sampling.seed, px, py, sample, 0);
-  const float v = hashUniform(sampling.seed, px, py, sample, 1);
-  return {std::min(lerpBelow(s.x0, s.x1, u), kOneMinusEpsilon),
-          std::min(lerpBelow(s.y0, s.y1, v), kOneMinusEpsilon)};
+}
+
+glm::vec2 SampleLayout::position(int px, int py, int sample) const {
+  const auto i = static_cast<std::size_t>(sample);
+  if (!jittered_) return points_[i];
+  const Stratum& s = strata_[i];
+  const std::uint64_t h = sampleHash(seed_, px, py, sample);
+  return {std::min(lerpBelow(s.x0, s.x1, dimensionUniform(h, 0)), kOneMinusEpsilon),
+          std::min(lerpBelow(s.y0, s.y1, dimensionUniform(h, 1)), kOneMinusEpsilon)};
 }
 
 }  // namespace glint

@@ -16,14 +16,14 @@ SamplingSettings settings(SamplePattern p, int n, std::uint32_t seed = 0) {
 }
 
 TEST(Sampling, RegularGridsAreCellCentres) {
-  EXPECT_EQ(samplePosition(settings(SamplePattern::kRegular, 1), 3, 4, 0), glm::vec2(0.5f));
-  EXPECT_EQ(samplePosition(settings(SamplePattern::kRegular, 2), 3, 4, 0), glm::vec2(0.25f));
-  EXPECT_EQ(samplePosition(settings(SamplePattern::kRegular, 2), 3, 4, 1), glm::vec2(0.75f));
+  EXPECT_EQ(SampleLayout(settings(SamplePattern::kRegular, 1)).position(3, 4, 0), glm::vec2(0.5f));
+  EXPECT_EQ(SampleLayout(settings(SamplePattern::kRegular, 2)).position(3, 4, 0), glm::vec2(0.25f));
+  EXPECT_EQ(SampleLayout(settings(SamplePattern::kRegular, 2)).position(3, 4, 1), glm::vec2(0.75f));
   const auto s4 = settings(SamplePattern::kRegular, 4);
-  EXPECT_EQ(samplePosition(s4, 0, 0, 0), glm::vec2(0.25f, 0.25f));
-  EXPECT_EQ(samplePosition(s4, 0, 0, 1), glm::vec2(0.75f, 0.25f));
-  EXPECT_EQ(samplePosition(s4, 0, 0, 2), glm::vec2(0.25f, 0.75f));
-  EXPECT_EQ(samplePosition(s4, 0, 0, 3), glm::vec2(0.75f, 0.75f));
+  EXPECT_EQ(SampleLayout(s4).position(0, 0, 0), glm::vec2(0.25f, 0.25f));
+  EXPECT_EQ(SampleLayout(s4).position(0, 0, 1), glm::vec2(0.75f, 0.25f));
+  EXPECT_EQ(SampleLayout(s4).position(0, 0, 2), glm::vec2(0.25f, 0.75f));
+  EXPECT_EQ(SampleLayout(s4).position(0, 0, 3), glm::vec2(0.75f, 0.75f));
   EXPECT_TRUE(validSampleCount(SamplePattern::kRegular, 9));
   EXPECT_FALSE(validSampleCount(SamplePattern::kRegular, 3));
   EXPECT_TRUE(validSampleCount(SamplePattern::kJittered, 3));
@@ -43,7 +43,7 @@ TEST(Sampling, JitteredSamplesStayInTheirStrata) {
     const auto s = settings(SamplePattern::kJittered, n, 42);
     for (int px = 0; px < 40; ++px) {
       for (int i = 0; i < n; ++i) {
-        const glm::vec2 p = samplePosition(s, px, 7, i);
+        const glm::vec2 p = SampleLayout(s).position(px, 7, i);
         const Stratum st = jitteredStratum(n, i);
         ASSERT_GE(p.x, st.x0);
         ASSERT_LT(p.x, st.x1);
@@ -62,7 +62,7 @@ TEST(Sampling, EachStratumGetsExactlyOneSample) {
     const auto s = settings(SamplePattern::kJittered, n, 1);
     std::vector<int> count(static_cast<std::size_t>(n), 0);
     for (int i = 0; i < n; ++i) {
-      const glm::vec2 p = samplePosition(s, 5, 5, i);
+      const glm::vec2 p = SampleLayout(s).position(5, 5, i);
       for (int k = 0; k < n; ++k) {
         const Stratum st = jitteredStratum(n, k);
         if (p.x >= st.x0 && p.x < st.x1 && p.y >= st.y0 && p.y < st.y1) ++count[static_cast<std::size_t>(k)];
@@ -72,17 +72,34 @@ TEST(Sampling, EachStratumGetsExactlyOneSample) {
   }
 }
 
+// A jittered sample lies at hashUniform's dimensions 0 and 1 across its
+// stratum (hashed once per sample for both, the same values).
+TEST(Sampling, JitteredSamplesAreTheHashAcrossTheStratum) {
+  for (int n : {1, 4, 7}) {
+    const auto s = settings(SamplePattern::kJittered, n, 5);
+    const SampleLayout layout(s);
+    for (int px = 0; px < 30; ++px) {
+      for (int i = 0; i < n; ++i) {
+        const Stratum st = jitteredStratum(n, i);
+        const glm::vec2 p = layout.position(px, 11, i);
+        ASSERT_EQ(p.x, st.x0 + hashUniform(5, px, 11, i, 0) * (st.x1 - st.x0)) << n << " " << px << " " << i;
+        ASSERT_EQ(p.y, st.y0 + hashUniform(5, px, 11, i, 1) * (st.y1 - st.y0)) << n << " " << px << " " << i;
+      }
+    }
+  }
+}
+
 TEST(Sampling, HashIsAPureFunctionOfSeedPixelAndSample) {
   const auto a = settings(SamplePattern::kJittered, 4, 9);
   // Visiting pixels forwards and backwards gives the same values.
   std::vector<glm::vec2> forward, backward;
-  for (int x = 0; x < 50; ++x) forward.push_back(samplePosition(a, x, 3, 2));
-  for (int x = 49; x >= 0; --x) backward.insert(backward.begin(), samplePosition(a, x, 3, 2));
+  for (int x = 0; x < 50; ++x) forward.push_back(SampleLayout(a).position(x, 3, 2));
+  for (int x = 49; x >= 0; --x) backward.insert(backward.begin(), SampleLayout(a).position(x, 3, 2));
   EXPECT_EQ(forward, backward);
   // Another seed moves (nearly) every sample.
   const auto b = settings(SamplePattern::kJittered, 4, 10);
   int same = 0;
-  for (int x = 0; x < 50; ++x) same += samplePosition(b, x, 3, 2) == forward[static_cast<std::size_t>(x)] ? 1 : 0;
+  for (int x = 0; x < 50; ++x) same += SampleLayout(b).position(x, 3, 2) == forward[static_cast<std::size_t>(x)] ? 1 : 0;
   EXPECT_LT(same, 2);
   // Values are in [0, 1) and look uniform.
   double sum = 0.0;
