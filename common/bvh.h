@@ -73,10 +73,12 @@ inline BoxTestWidth fastestBoxTestWidth() {
   return BoxTestWidth::kFour;
 }
 
+// The most triangles a block leaf holds: the lanes of its test.
+constexpr int kBlockTriangles = 4;
+
 // A leaf of two to four triangles tested together, four lanes at once: their
 // vertices side by side and their primitive ids, lanes from the leaf's count
 // on unused. 160 bytes.
-constexpr int kBlockTriangles = 4;
 struct TriangleBlock {
   Triangles4 vertices;
   std::array<std::uint32_t, kBlockTriangles> prims;
