@@ -267,6 +267,25 @@ TEST(Bvh, SahFillsTheBlocks) {
   EXPECT_EQ(bvh.blocks().size(), 32u);
 }
 
+// A scene whose root splits off a small part (a floor of two triangles as
+// wide as the scene, as in scenes/bunny.json) forks below the root: the
+// same tree as one thread builds.
+TEST(Bvh, ForkBelowTheRootEqualsSerialBuild) {
+  Geometry g = randomSoup(6000, 0, 5);
+  MeshInput floor;
+  floor.positions = {{-1000, -20, -1000}, {1000, -20, -1000}, {1000, -20, 1000}, {-1000, -20, 1000}};
+  floor.indices = {0, 1, 2, 0, 2, 3};
+  g.addMesh(std::move(floor));
+  BvhSettings settings;
+  settings.buildThreads = 1;
+  const Bvh serial = Bvh::build(g, settings);
+  settings.buildThreads = 2;
+  const Bvh parallel = Bvh::build(g, settings);
+  ASSERT_EQ(parallel.nodes().size(), serial.nodes().size());
+  EXPECT_EQ(std::memcmp(parallel.nodes().data(), serial.nodes().data(), serial.nodes().size() * sizeof(BvhNode)), 0);
+  EXPECT_EQ(parallel.primIds(), serial.primIds());
+}
+
 TEST(Bvh, EmptyTreeFindsNothing) {
   const Geometry g;
   const Bvh bvh = Bvh::build(g, {});
