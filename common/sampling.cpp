@@ -75,16 +75,18 @@ Stratum jitteredStratum(int samples, int sample) {
 SampleLayout::SampleLayout(const SamplingSettings& sampling)
     : seed_(sampling.seed), jittered_(sampling.pattern != SamplePattern::kRegular) {
   const int n = sampling.samples;
+  if (jittered_) {
+    for (int sample = 0; sample < n; ++sample) strata_.push_back(jitteredStratum(n, sample));
+    return;
+  }
+  if (n == 2) {
+    points_ = {glm::vec2(0.25f), glm::vec2(0.75f)};
+    return;
+  }
+  const int k = rowsFor(n);
+  const auto kf = static_cast<float>(k);
   for (int sample = 0; sample < n; ++sample) {
-    if (jittered_) {
-      strata_.push_back(jitteredStratum(n, sample));
-    } else if (n == 2) {
-      points_.push_back(sample == 0 ? glm::vec2(0.25f) : glm::vec2(0.75f));
-    } else {
-      const int k = rowsFor(n);
-      const auto kf = static_cast<float>(k);
-      points_.push_back({(static_cast<float>(sample % k) + 0.5f) / kf, (static_cast<float>(sample / k) + 0.5f) / kf});
-    }
+    points_.push_back({(static_cast<float>(sample % k) + 0.5f) / kf, (static_cast<float>(sample / k) + 0.5f) / kf});
   }
 }
 
