@@ -11,7 +11,7 @@
 #include "common/geometry.h"
 #include "common/enum_words.h"
 #include "common/ray.h"
-#include "common/triangle4.h"
+#include "common/triangle_lanes.h"
 #include "common/wide_slab.h"
 
 namespace glint {
@@ -30,7 +30,7 @@ struct EnumWords<BvhBuilder> {
 // Every tuning knob of the BVH build, with its default.
 struct BvhSettings {
   BvhBuilder builder = BvhBuilder::kSah;
-  int maxLeafSize = 4;     // a node with at most this many primitives may become a leaf
+  int maxLeafSize = kBlockTriangles;  // a node with at most this many primitives may become a leaf
   int sahBins = 16;        // the most centroid bins per axis for the SAH (a node of n primitives: 4 + n / 20)
   float traversalCost = 1.0f;  // SAH cost of visiting a node, relative to one primitive test
   // Threads the build may use (0: one per hardware thread): large subtrees
@@ -42,9 +42,9 @@ struct BvhSettings {
 // makes a binary tree (QSplit or SAH) and collapses it: each node takes up to
 // kBvhWidth of the binary tree's nodes below it as children, so that one
 // slab test of eight boxes replaces up to three levels of binary box tests;
-// a child that is a leaf of two to four triangles, or a subtree of at most
-// four that the SAH prices cheaper as one leaf, becomes a block leaf
-// (TriangleBlock).
+// a child that is a leaf of two to kBlockTriangles triangles, or a subtree
+// of at most that many that the SAH prices cheaper as one leaf, becomes a
+// block leaf (TriangleBlock).
 //   bytes   0-191  the children's boxes, structure of arrays (WideBoxes)
 //   bytes 192-223  offset per child: an interior child's node index, or a
 //                  leaf child's first entry in Bvh::primIds
@@ -73,14 +73,12 @@ inline BoxTestWidth fastestBoxTestWidth() {
   return BoxTestWidth::kFour;
 }
 
-// The most triangles a block leaf holds: the lanes of its test.
-constexpr int kBlockTriangles = 4;
-
-// A leaf of two to four triangles tested together, four lanes at once: their
+// A leaf of two to kBlockTriangles triangles tested together: their
 // vertices side by side and their primitive ids, lanes from the leaf's count
-// on unused. 160 bytes.
+// on unused. 320 bytes. Traversal tests a block of up to four in four lanes,
+// a larger one in eight (with AVX2) or twice four.
 struct TriangleBlock {
-  Triangles4 vertices;
+  TriangleLanes vertices;
   std::array<std::uint32_t, kBlockTriangles> prims;
 };
 

@@ -66,9 +66,10 @@ std::uint32_t BvhCollapse::collapse(std::uint32_t index) {
 }
 
 // The leaf that binary node `index` becomes in the 8-wide tree, or nullopt
-// for a node. A binary leaf of two to four triangles becomes a block. A
-// subtree of at most four triangles becomes one block leaf where that is
-// cheaper, by the surface area heuristic, than a node over its leaves.
+// for a node. A binary leaf of two to kBlockTriangles triangles becomes a
+// block. A subtree of at most that many triangles becomes one block leaf
+// where that is cheaper, by the surface area heuristic, than a node over its
+// leaves.
 std::optional<BvhCollapse::Leaf> BvhCollapse::leafOf(std::uint32_t index) {
   SmallSubtree small;
   const bool fits = gather(index, small) && small.triangles;
@@ -83,8 +84,9 @@ std::optional<BvhCollapse::Leaf> BvhCollapse::leafOf(std::uint32_t index) {
 }
 
 // Adds binary node `index`'s leaves to `small`; false once it would hold
-// more than four primitives, or more than a leaf may. (Four leaves lie at
-// most three levels down: a larger subtree is told apart without walking it.)
+// more than kBlockTriangles primitives, or more than a leaf may, or lies
+// more than three levels deep (as a balanced subtree of eight leaves): a
+// larger subtree is told apart without walking it.
 bool BvhCollapse::gather(std::uint32_t index, SmallSubtree& small, int level) const {
   const BinaryNode& node = binary_[index];
   if (node.count == 0) {

@@ -34,9 +34,10 @@ struct BinaryNode {
 };
 static_assert(std::is_trivially_default_constructible_v<BinaryNode> && sizeof(BinaryNode) == 32);
 
-// The SAH cost of a block leaf's two to four triangles tested together,
-// relative to one node's box test or one primitive's test (measured on the
-// 1M-triangle terrain, docs/performance.md). The builder prices leaves of
+// The SAH cost of a block leaf's two to kBlockTriangles triangles tested
+// together, relative to one node's box test or one primitive's test
+// (measured on the 1M-triangle terrain for blocks of four, and again for
+// blocks of eight: 1.0 to 2.5 within the noise, docs/performance.md). The builder prices leaves of
 // triangles with it, the collapse its blocks.
 constexpr float kBlockTestCost = 1.5f;
 
@@ -52,7 +53,8 @@ struct BlockRange {
 class BvhCollapse {
  public:
   // leafCapacity: the most primitives a leaf may hold (a block, at most
-  // four); twoThreads: whether the blocks may be filled on a second thread.
+  // kBlockTriangles); twoThreads: whether the blocks may be filled on a
+  // second thread.
   BvhCollapse(Bvh& bvh, const BinaryNode* binary, std::size_t leafCapacity, bool twoThreads)
       : bvh_(bvh), binary_(binary), leafCapacity_(leafCapacity), twoThreads_(twoThreads) {}
 
@@ -66,8 +68,9 @@ class BvhCollapse {
     std::uint32_t count;
     bool block;
   };
-  // The leaves of a subtree of at most four primitives (contiguous in
-  // primIds), and the SAH cost of testing them one leaf at a time.
+  // The leaves of a subtree of at most kBlockTriangles primitives
+  // (contiguous in primIds), and the SAH cost of testing them one leaf at a
+  // time.
   struct SmallSubtree {
     std::uint32_t first = UINT32_MAX;
     std::uint32_t count = 0;

@@ -16,14 +16,15 @@ struct Pending {
 };
 
 // Asks for the memory of a child the ray enters while the walk goes on: a
-// node's four cache lines, or the three or four a 160-byte block straddles
-// (a scalar leaf's primitives lie elsewhere). Measured: 6-10 % more rays
-// per second on the terrain (docs/performance.md). Always inlined: GCC
+// node's four cache lines, or every other line of a 320-byte block (as fast
+// as all five or six it straddles; a scalar leaf's primitives lie
+// elsewhere). Measured: 6-10 % more rays per second on the terrain
+// (docs/performance.md). Always inlined: GCC
 // takes a function of nothing but prefetches for one without effect and
 // drops its calls.
 [[gnu::always_inline]] inline void prefetch(const std::vector<BvhNode>& nodes, const TriangleBlock* blocks,
                                             const Pending& child) {
-  static_assert(sizeof(BvhNode) == 256 && sizeof(TriangleBlock) == 160, "the lines asked for below");
+  static_assert(sizeof(BvhNode) == 256 && sizeof(TriangleBlock) == 320, "the lines asked for below");
   if (child.count == 0) {
     const char* node = reinterpret_cast<const char*>(&nodes[child.offset]);
     __builtin_prefetch(node);
@@ -33,9 +34,8 @@ struct Pending {
   } else if (child.count & kBlockLeaf) {
     const char* block = reinterpret_cast<const char*>(blocks + child.offset);
     __builtin_prefetch(block);
-    __builtin_prefetch(block + 64);
     __builtin_prefetch(block + 128);
-    __builtin_prefetch(block + 159);
+    __builtin_prefetch(block + 256);
   }
 }
 
@@ -85,25 +85,44 @@ template <typename V, bool Nearest, typename Visit>
   }
 }
 
-// Calls visit(hit) for the hits of a block leaf's triangles, each found with
-// the limit that limit() gives at that moment (as the scalar test would with
-// it), until visit returns true; returns whether it did. limit() must not
-// grow within the leaf beyond `bound`. The four lanes are tested together
-// as far as the limit allows, then finished one by one: the same bits as
-// the scalar test.
-template <typename Limit, typename Visit>
-[[gnu::always_inline]] inline bool testBlock(const TriangleBlock* blocks, const Pending& leaf, const Ray& ray,
+// Calls visit(hit) for the hits among a block's lanes `used` (bit i: lane
+// i), each found with the limit that limit() gives at that moment (as the
+// scalar test would with it), until visit returns true; returns whether it
+// did. limit() must not grow within the leaf beyond `bound`. The lanes
+// below kTested are tested V at a time as far as the limit allows, then
+// finished one by one: the same bits as the scalar test.
+template <typename V, int kTested, typename Limit, typename Visit>
+[[gnu::always_inline]] inline bool testLanes(const TriangleBlock& block, unsigned used, const Ray& ray,
                                              const WatertightRay& w, float bound, Limit limit, Visit visit) {
-  const TriangleBlock& block = blocks[leaf.offset];
-  const unsigned used = (1u << (leaf.count & ~kBlockLeaf)) - 1u;
-  const TriangleHits4 hits = intersectTriangles4(block.vertices, ray, w, used, bound);
-  for (unsigned left = hits.candidates; left != 0; left &= left - 1) {
-    const int lane = std::countr_zero(left);
-    if (const auto h = hits.lane(lane, w, limit())) {
-      if (visit(Hit{h->t, block.prims[static_cast<std::size_t>(lane)], h->b0, h->b1, h->b2})) return true;
+  constexpr int kLanes = kLanesOf<V>;
+  for (int first = 0; first < kTested && (used >> first) != 0; first += kLanes) {
+    const unsigned lanes = (used >> first) & ((1u << kLanes) - 1u);
+    TriangleHits<V> hits;
+    intersectTriangles(block.vertices, first, ray, w, lanes, bound, hits);
+    for (unsigned left = hits.candidates; left != 0; left &= left - 1) {
+      const int lane = std::countr_zero(left);
+      if (const auto h = hits.lane(lane, w, limit())) {
+        const std::uint32_t prim = block.prims[static_cast<std::size_t>(first + lane)];
+        if (visit(Hit{h->t, prim, h->b0, h->b1, h->b2})) return true;
+      }
     }
   }
   return false;
+}
+
+// testLanes for a block leaf: a block of up to four triangles in one test
+// of four lanes (known at compile time to be one test: a loop that might
+// run twice cost the thesis's room 9 % of its rays per second), a larger
+// one V lanes at a time.
+template <typename V, typename Limit, typename Visit>
+[[gnu::always_inline]] inline bool testBlock(const TriangleBlock* blocks, const Pending& leaf, const Ray& ray,
+                                             const WatertightRay& w, float bound, Limit limit, Visit visit) {
+  const TriangleBlock& block = blocks[leaf.offset];
+  const std::uint32_t count = leaf.count & ~kBlockLeaf;
+  const unsigned used = (1u << count) - 1u;
+  constexpr int kFour = kLanesOf<Float4>;
+  if (count <= kFour) return testLanes<Float4, kFour>(block, used, ray, w, bound, limit, visit);
+  return testLanes<V, kBlockTriangles>(block, used, ray, w, bound, limit, visit);
 }
 
 }  // namespace
@@ -126,7 +145,7 @@ template <typename V>
     if (leaf.count & kBlockLeaf) {
       // A later limit is at most this one once a hit is known; before, the
       // first hit's distance may round a little beyond tMax: no bound.
-      return testBlock(blocks_.get(), leaf, ray, w, nearest ? limit() : kInfinity, limit, keep);
+      return testBlock<V>(blocks_.get(), leaf, ray, w, nearest ? limit() : kInfinity, limit, keep);
     }
     for (std::uint32_t i = leaf.offset; i < leaf.offset + leaf.count; ++i) {
       const std::optional<Hit> hit = geometry_->intersect(primIds_[i], ray, w, limit());
@@ -144,7 +163,7 @@ template <typename V>
   walk<V, false>(nodes_, blocks_.get(), ray, tMax, [&](const Pending& leaf) {
     if (leaf.count & kBlockLeaf) {
       const auto stop = [](const Hit&) { return true; };
-      found = testBlock(blocks_.get(), leaf, ray, w, tMax, [&] { return tMax; }, stop);
+      found = testBlock<V>(blocks_.get(), leaf, ray, w, tMax, [&] { return tMax; }, stop);
       return found;
     }
     for (std::uint32_t i = leaf.offset; i < leaf.offset + leaf.count; ++i) {

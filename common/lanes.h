@@ -26,13 +26,25 @@ inline unsigned laneBits(Mask4 mask) {
 #endif
 }
 
-// |x| lane by lane: the sign bit cleared, as std::abs (NaN too).
-inline Float4 absLanes(Float4 x) { return std::bit_cast<Float4>(std::bit_cast<Int4>(x) & 0x7fffffff); }
+// |x| lane by lane (Float4 or Float8) into out: the sign bit cleared, as
+// std::abs (NaN too). Vectors by reference: an eight-lane vector is never
+// passed or returned by value (see GLINT_AVX2).
+template <typename V>
+[[gnu::always_inline]] inline void absLanes(const V& x, V& out) {
+  using Int = decltype(V{} < V{});
+  out = __builtin_bit_cast(V, __builtin_bit_cast(Int, x) & 0x7fffffff);
+}
 
-// std::max({a, b, c}) lane by lane: the first of the largest, NaN as it.
-inline Float4 maxOf3(Float4 a, Float4 b, Float4 c) {
-  const Float4 m = a < b ? b : a;
-  return m < c ? c : m;
+// std::max({|a|, |b|, |c|}) lane by lane into out: the first of the
+// largest, NaN as it.
+template <typename V>
+[[gnu::always_inline]] inline void maxAbsOf3(const V& a, const V& b, const V& c, V& out) {
+  V absA, absB, absC;
+  absLanes(a, absA);
+  absLanes(b, absB);
+  absLanes(c, absC);
+  const V m = absA < absB ? absB : absA;
+  out = m < absC ? absC : m;
 }
 
 // Eight lanes, one instruction per operation, for code compiled for CPUs

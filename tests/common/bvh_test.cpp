@@ -64,8 +64,8 @@ Geometry gridMesh() {
 }
 
 // The primitives of every leaf lane of every node: each primitive exactly
-// once, a leaf of at most maxLeafSize; a block leaf holds two to four
-// triangles, each lane's vertices those of its triangle bit for bit, the
+// once, a leaf of at most maxLeafSize; a block leaf holds two to
+// kBlockTriangles triangles, each lane's vertices those of its triangle bit for bit, the
 // unused lanes zero. Returns the number of block leaves.
 int expectEachPrimitiveInOneLeaf(const Geometry& g, const Bvh& bvh, int maxLeafSize) {
   std::vector<int> seen(g.primitiveCount(), 0);
@@ -82,8 +82,8 @@ int expectEachPrimitiveInOneLeaf(const Geometry& g, const Bvh& bvh, int maxLeafS
       ++blockLeaves;
       EXPECT_GE(count, 2u);
       const TriangleBlock& block = bvh.blocks()[node.offset[lane]];
-      for (std::uint32_t k = 0; k < 4; ++k) {
-        Triangles4 expected{};
+      for (std::uint32_t k = 0; k < kBlockTriangles; ++k) {
+        TriangleLanes expected{};
         if (k < count) {
           const std::uint32_t prim = block.prims[k];
           ++seen.at(prim);
@@ -257,14 +257,16 @@ TEST_P(BvhBuilders, ParallelBuildEqualsSerialBuild) {
 }
 
 // The SAH prices triangles by the blocks they fill (Embree's blocked SAH),
-// so its splits leave full blocks: the 8 x 8 grid's 128 triangles in 32
-// blocks of four, where pricing each triangle alone split most fours into
+// so its splits leave full blocks: the 8 x 8 grid's 128 triangles in 16
+// blocks of eight, where pricing each triangle alone split most fours into
 // two blocks of two.
 TEST(Bvh, SahFillsTheBlocks) {
   const Geometry g = gridMesh();
-  const Bvh bvh = Bvh::build(g, {});
-  EXPECT_EQ(expectEachPrimitiveInOneLeaf(g, bvh, 4), 32);
-  EXPECT_EQ(bvh.blocks().size(), 32u);
+  const BvhSettings settings;
+  const Bvh bvh = Bvh::build(g, settings);
+  const int full = static_cast<int>(g.primitiveCount()) / kBlockTriangles;
+  EXPECT_EQ(expectEachPrimitiveInOneLeaf(g, bvh, settings.maxLeafSize), full);
+  EXPECT_EQ(bvh.blocks().size(), static_cast<std::size_t>(full));
 }
 
 // A scene whose root splits off a small part (a floor of two triangles as

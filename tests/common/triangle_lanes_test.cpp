@@ -1,8 +1,8 @@
-// The four-lane leaf test (common/triangle4.h) against the scalar
-// watertight test, lane by lane: the same sheared vertices bit for bit, and
-// for every lane the same hit or miss, with the same bits, as
-// intersectTriangle gives.
-#include "common/triangle4.h"
+// The block leaf's test (common/triangle_lanes.h) against the scalar
+// watertight test, lane by lane: four lanes per instruction and, where the
+// CPU has AVX2, eight; for every lane the same sheared vertices bit for bit,
+// and the same hit or miss, with the same bits, as intersectTriangle gives.
+#include "common/triangle_lanes.h"
 
 #include <cstring>
 #include <random>
@@ -23,34 +23,71 @@ bool sameHit(const std::optional<TriangleHit>& a, const std::optional<TriangleHi
   return !a || std::memcmp(&*a, &*b, sizeof(TriangleHit)) == 0;
 }
 
-// Every lane of every block of four consecutive triangles against every ray,
-// tested for limits up to `bound`, hits up to tMax. Returns how many (ray,
-// triangle) pairs hit.
+bool sameShear(const ShearedTriangle& a, const ShearedTriangle& b) {
+  return sameBits(a.a, b.a) && sameBits(a.b, b.b) && sameBits(a.c, b.c);
+}
+
+// Lane `lane` of a block as the test of V lanes at a time sees it: tested
+// for limits up to `bound`, finished with tMax.
+struct LaneResult {
+  ShearedTriangle sheared;
+  std::optional<TriangleHit> hit;
+};
+
+template <typename V>
+[[gnu::always_inline]] inline LaneResult testLane(const TriangleLanes& block, int lane, const Ray& ray,
+                                                  const WatertightRay& w, float bound, float tMax) {
+  const int first = lane - lane % kLanesOf<V>;
+  TriangleHits<V> hits;
+  intersectTriangles(block, first, ray, w, (1u << kLanesOf<V>) - 1u, bound, hits);
+  return {hits.sheared.lane(lane - first), hits.lane(lane - first, w, tMax)};
+}
+
+#if defined(__x86_64__)
+GLINT_AVX2 LaneResult testLaneEight(const TriangleLanes& block, int lane, const Ray& ray, const WatertightRay& w,
+                                    float bound, float tMax) {
+  return testLane<Float8>(block, lane, ray, w, bound, tMax);
+}
+#endif
+
+// The lane tests of `lane`: four lanes at a time and, where this CPU has
+// AVX2, eight.
+std::vector<LaneResult> laneTests(const TriangleLanes& block, int lane, const Ray& ray, const WatertightRay& w,
+                                  float bound, float tMax) {
+  std::vector<LaneResult> results{testLane<Float4>(block, lane, ray, w, bound, tMax)};
+#if defined(__x86_64__)
+  if (avx2Available()) results.push_back(testLaneEight(block, lane, ray, w, bound, tMax));
+#endif
+  return results;
+}
+
+// Every lane of every block of kBlockTriangles consecutive triangles against
+// every ray, tested for limits up to `bound`, hits up to tMax. Returns how
+// many (ray, triangle) pairs hit.
 int expectLanesEqualScalar(const std::vector<glm::vec3>& vertices, const std::vector<Ray>& rays, float bound,
                            float tMax) {
+  constexpr std::size_t kBlockVertices = 3 * kBlockTriangles;
   int hitCount = 0, mismatches = 0;
-  for (std::size_t first = 0; first + 12 <= vertices.size(); first += 12) {
-    Triangles4 block;
-    for (int lane = 0; lane < 4; ++lane) {
+  for (std::size_t first = 0; first + kBlockVertices <= vertices.size(); first += kBlockVertices) {
+    TriangleLanes block;
+    for (int lane = 0; lane < kBlockTriangles; ++lane) {
       block.set(lane, vertices[first + 3 * lane], vertices[first + 3 * lane + 1], vertices[first + 3 * lane + 2]);
     }
     for (const Ray& ray : rays) {
       const WatertightRay w(ray);
-      const TriangleHits4 hits = intersectTriangles4(block, ray, w, 0xfu, bound);
-      for (int lane = 0; lane < 4; ++lane) {
+      for (int lane = 0; lane < kBlockTriangles; ++lane) {
         const glm::vec3& p0 = vertices[first + 3 * lane];
         const glm::vec3& p1 = vertices[first + 3 * lane + 1];
         const glm::vec3& p2 = vertices[first + 3 * lane + 2];
         const ShearedTriangle expected = shearTriangle(ray, w, p0, p1, p2);
-        const ShearedTriangle got = hits.sheared.lane(lane);
-        const bool sameShear =
-            sameBits(got.a, expected.a) && sameBits(got.b, expected.b) && sameBits(got.c, expected.c);
         const std::optional<TriangleHit> scalar = intersectTriangle(ray, w, p0, p1, p2, tMax);
-        const std::optional<TriangleHit> wide = hits.lane(lane, w, tMax);
         hitCount += scalar ? 1 : 0;
-        if ((!sameShear || !sameHit(scalar, wide)) && mismatches++ < 5) {
-          ADD_FAILURE() << "triangle " << first / 3 + lane << ": shear " << (sameShear ? "same" : "differs")
-                        << ", scalar " << (scalar ? "hit" : "miss") << ", four-lane " << (wide ? "hit" : "miss");
+        for (const LaneResult& got : laneTests(block, lane, ray, w, bound, tMax)) {
+          const bool shearSame = sameShear(got.sheared, expected);
+          if ((!shearSame || !sameHit(scalar, got.hit)) && mismatches++ < 5) {
+            ADD_FAILURE() << "triangle " << first / 3 + lane << ": shear " << (shearSame ? "same" : "differs")
+                          << ", scalar " << (scalar ? "hit" : "miss") << ", lanes " << (got.hit ? "hit" : "miss");
+          }
         }
       }
     }
@@ -59,7 +96,7 @@ int expectLanesEqualScalar(const std::vector<glm::vec3>& vertices, const std::ve
   return hitCount;
 }
 
-TEST(Triangles4, RandomTrianglesAndRaysEqualTheScalarTest) {
+TEST(TriangleLanes, RandomTrianglesAndRaysEqualTheScalarTest) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
   std::vector<glm::vec3> vertices;
@@ -72,7 +109,7 @@ TEST(Triangles4, RandomTrianglesAndRaysEqualTheScalarTest) {
   const int unbounded = expectLanesEqualScalar(vertices, rays, kInfinity, kInfinity);
   EXPECT_GT(unbounded, 1000);
   // Limited: some hits lie beyond 3.5, and are rejected by both, whether the
-  // four-lane step knew the limit (traversal's bound) or only the finish did.
+  // lane test knew the limit (traversal's bound) or only the finish did.
   const int bounded = expectLanesEqualScalar(vertices, rays, 3.5f, 3.5f);
   EXPECT_GT(bounded, 100);
   EXPECT_LT(bounded, unbounded);
@@ -84,7 +121,7 @@ TEST(Triangles4, RandomTrianglesAndRaysEqualTheScalarTest) {
 // exactly zero, recomputed in double), degenerate triangles (zero area, a
 // repeated vertex, a point), axis-parallel rays, rays from next to a
 // triangle (hits rejected by the error bound of t), far from the origin.
-TEST(Triangles4, EdgesVerticesAndDegenerateTrianglesEqualTheScalarTest) {
+TEST(TriangleLanes, EdgesVerticesAndDegenerateTrianglesEqualTheScalarTest) {
   for (const glm::vec3 offset : {glm::vec3(0.0f), glm::vec3(1e5f, -3e4f, 2e5f)}) {
     const glm::vec3 o = offset;
     const std::vector<glm::vec3> vertices = {
