@@ -37,8 +37,8 @@ static_assert(std::is_trivially_default_constructible_v<BinaryNode> && sizeof(Bi
 // The SAH cost of a block leaf's two to kBlockTriangles triangles tested
 // together, relative to one node's box test or one primitive's test
 // (measured on the 1M-triangle terrain for blocks of four, and again for
-// blocks of eight: 1.0 to 2.5 within the noise, docs/performance.md). The builder prices leaves of
-// triangles with it, the collapse its blocks.
+// blocks of eight: 1.0 to 2.5 within the noise, docs/performance.md). The
+// builder prices leaves of triangles with it, the collapse its blocks.
 constexpr float kBlockTestCost = 1.5f;
 
 // A block leaf's primitives while the collapse has chosen it and the filler

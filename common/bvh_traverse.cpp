@@ -19,9 +19,8 @@ struct Pending {
 // node's four cache lines, or every other line of a 320-byte block (as fast
 // as all five or six it straddles; a scalar leaf's primitives lie
 // elsewhere). Measured: 6-10 % more rays per second on the terrain
-// (docs/performance.md). Always inlined: GCC
-// takes a function of nothing but prefetches for one without effect and
-// drops its calls.
+// (docs/performance.md). Always inlined: GCC takes a function of nothing
+// but prefetches for one without effect and drops its calls.
 [[gnu::always_inline]] inline void prefetch(const std::vector<BvhNode>& nodes, const TriangleBlock* blocks,
                                             const Pending& child) {
   static_assert(sizeof(BvhNode) == 256 && sizeof(TriangleBlock) == 320, "the lines asked for below");

@@ -1,10 +1,7 @@
 #pragma once
 
-#include <bit>
 #include <cstdint>
-#if defined(__x86_64__)
-#include <immintrin.h>
-#elif defined(__SSE__)
+#if defined(__SSE__)
 #include <xmmintrin.h>
 #endif
 

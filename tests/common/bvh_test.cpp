@@ -65,8 +65,8 @@ Geometry gridMesh() {
 
 // The primitives of every leaf lane of every node: each primitive exactly
 // once, a leaf of at most maxLeafSize; a block leaf holds two to
-// kBlockTriangles triangles, each lane's vertices those of its triangle bit for bit, the
-// unused lanes zero. Returns the number of block leaves.
+// kBlockTriangles triangles, each lane's vertices those of its triangle bit
+// for bit, the unused lanes zero. Returns the number of block leaves.
 int expectEachPrimitiveInOneLeaf(const Geometry& g, const Bvh& bvh, int maxLeafSize) {
   std::vector<int> seen(g.primitiveCount(), 0);
   int blockLeaves = 0;
