@@ -152,10 +152,11 @@ bool renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
   }
   result.times.readbackMs = msSince(readStart);
   // The raster's colour again, anti-aliased, where the frame takes several
-  // samples (the stencil mask stays the pixel centre's).
+  // samples (the stencil mask stays the pixel centre's); the pixels the
+  // tracer replaces are left unshaded.
   if (mask.rule != MaskRule::kAll) {
     const Clock::time_point antialiasStart = Clock::now();
-    raster.drawAntialiased(frame);
+    raster.drawAntialiased(frame, result.mask);
     result.times.rasterMs += msSince(antialiasStart);
   }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <stdexcept>
 #include <string>
 
 #include <glm/ext/matrix_clip_space.hpp>
@@ -17,6 +18,9 @@
 
 namespace glint::gl {
 namespace {
+
+// The texture units the fragment shaders read.
+enum TextureUnit : int { kAtlasUnit = 0, kShadowMapUnit = 1, kStencilMarkUnit = 2 };
 
 unsigned compile(const Api& gl, GLenum type, std::initializer_list<const char*> parts) {
   const unsigned shader = gl.CreateShader(type);
@@ -126,6 +130,7 @@ RasterScene::~RasterScene() {
     gl_.DeleteVertexArrays(1, &b.vao);
   }
   if (atlas_) gl_.DeleteTextures(1, &atlas_);
+  if (stencilMarks_) gl_.DeleteTextures(1, &stencilMarks_);
   for (const auto& row : programs_) {
     for (unsigned program : row) gl_.DeleteProgram(program);
   }
@@ -294,12 +299,14 @@ void RasterScene::setUniforms(unsigned program, const FrameSettings& frame, cons
     gl_.Uniform3fv(at("uTextureColor0"), n, glm::value_ptr(color0[0]));
     gl_.Uniform3fv(at("uTextureColor1"), n, glm::value_ptr(color1[0]));
   }
-  gl_.ActiveTexture(GL_TEXTURE0);
+  gl_.ActiveTexture(GL_TEXTURE0 + kAtlasUnit);
   gl_.BindTexture(GL_TEXTURE_2D, atlas_);
-  gl_.Uniform1i(at("uAtlas"), 0);
-  shadowMaps_.setUniforms(program, 1, scene_.lights.size(), shadows_);  // unit 1: the atlas has 0
+  gl_.Uniform1i(at("uAtlas"), kAtlasUnit);
+  shadowMaps_.setUniforms(program, kShadowMapUnit, scene_.lights.size(), shadows_);
   gl_.Uniform1i(at("uShadowRadius"), antialiased ? 0 : kShadowRadius);
   gl_.Uniform1i(at("uUndecidedStencil"), undecidedStencil_);
+  gl_.Uniform1i(at("uSkipMarked"), antialiased ? 1 : 0);
+  gl_.Uniform1i(at("uStencilMarks"), kStencilMarkUnit);
 }
 
 std::string RasterScene::shadowEdgeNote(const MaskSettings& mask) const {
@@ -352,13 +359,34 @@ double RasterScene::draw(const FrameSettings& frame, const MaskSettings& mask) {
   return shadowMs;
 }
 
-bool RasterScene::drawAntialiased(const FrameSettings& frame) {
+bool RasterScene::drawAntialiased(const FrameSettings& frame, std::span<const std::uint8_t> marks) {
   if (frame.sampling.samples < 2 || !multisample_.bind(frame.width, frame.height, frame.sampling.samples)) return false;
+  uploadMarks(frame, marks);
   beginPass(frame, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   gl_.Disable(GL_STENCIL_TEST);
   drawBatches(frame, MaskSettings{}, true);
   multisample_.resolve();
   return true;
+}
+
+// draw()'s marks as an integer texture the anti-aliased pass's fragments
+// read (one byte a pixel, rows from the top: the shader flips).
+void RasterScene::uploadMarks(const FrameSettings& frame, std::span<const std::uint8_t> marks) {
+  if (marks.size() != static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height)) {
+    throw std::invalid_argument("drawAntialiased: one stencil mark a pixel of the frame");
+  }
+  gl_.ActiveTexture(GL_TEXTURE0 + kStencilMarkUnit);
+  if (!stencilMarks_) {
+    gl_.GenTextures(1, &stencilMarks_);
+    gl_.BindTexture(GL_TEXTURE_2D, stencilMarks_);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  }
+  gl_.BindTexture(GL_TEXTURE_2D, stencilMarks_);
+  gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_R8UI, frame.width, frame.height, 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE,
+                 marks.data());
+  gl_.ActiveTexture(GL_TEXTURE0);
 }
 
 void RasterScene::drawBatches(const FrameSettings& frame, const MaskSettings& mask, bool antialiased) {

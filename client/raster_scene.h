@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -40,9 +41,12 @@ class RasterScene {
   // (up to what GL offers), every object shaded (an edge next to a masked
   // object blends in GL's estimate of it, not black), and resolves it into
   // the default framebuffer's colour; the stencil and depth of draw() stay.
-  // The masked pixels are replaced by the tracer's afterwards either way.
-  // False when the frame has one sample or GL offers no multisampling.
-  bool drawAntialiased(const FrameSettings& frame);
+  // `marks` holds draw()'s StencilMark of each pixel of the frame, rows from
+  // the top (as the hybrid frame reads the stencil back): a marked pixel is
+  // not shaded (its samples are discarded and resolve to the background),
+  // since the tracer replaces it. False when the frame has one sample or GL
+  // offers no multisampling.
+  bool drawAntialiased(const FrameSettings& frame, std::span<const std::uint8_t> marks);
   // A line for the user where frames under `mask` fall short of the
   // tracer's shadows: without ARB_shader_stencil_export a fragment cannot
   // mark its pixel for tracing, and pixels whose shadow the maps cannot
@@ -70,6 +74,7 @@ class RasterScene {
     float far;
   };
   void setUniforms(unsigned program, const FrameSettings& frame, const Projection& projection, bool antialiased);
+  void uploadMarks(const FrameSettings& frame, std::span<const std::uint8_t> marks);
   void setViewUniforms(unsigned program, const glm::mat4& viewProjection, const glm::vec3& eye, float far);
   // The shadow maps `mask` calls for, drawn if they are not yet; false when
   // it calls for none.
@@ -90,6 +95,7 @@ class RasterScene {
   int undecidedStencil_ = 0;       // the current frame's StencilMark for undecided shadows
   unsigned programs_[2][2] = {};  // [spheres][traced]
   unsigned atlas_ = 0;
+  unsigned stencilMarks_ = 0;  // the anti-aliased pass's copy of draw()'s marks
   std::vector<float> textureRows_;  // atlas row of each texture
   std::vector<Batch> batches_;
   Bounds3 bounds_;  // every primitive's, for the far plane

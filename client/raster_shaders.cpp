@@ -44,8 +44,18 @@ uniform vec3 uShadowFaceT[6];
 uniform vec3 uShadowFaceM[6];
 uniform int uShadowRadius;                   // texels read on each side of a point's own
 uniform int uUndecidedStencil;               // the stencil of a pixel the maps cannot decide
+uniform bool uSkipMarked;                    // the anti-aliased pass: the tracer's pixels are not shaded
+uniform usampler2D uStencilMarks;            // draw()'s StencilMark of each pixel, rows from the top
 out vec4 fragColor;
 bool gShadowUndecided = false;               // set by shadowVisibility()
+
+// Whether the anti-aliased pass leaves this pixel's samples out: draw()
+// marked it, and the tracer's pixel replaces it.
+bool skipped() {
+  if (!uSkipMarked) return false;
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  return texelFetch(uStencilMarks, ivec2(p.x, textureSize(uStencilMarks, 0).y - 1 - p.y), 0).r != 0u;
+}
 
 vec3 encodeOutput(vec3 linear) {
   vec3 v = clamp(linear * uExposureScale, 0.0, 1.0);
@@ -214,6 +224,9 @@ in vec2 vUv;
 flat in vec3 vFaceNormal;
 flat in int vMaterial;
 void main() {
+#ifndef TRACED
+  if (skipped()) discard;
+#endif
   gl_FragDepth = length(vPosition - uEye) / uFar;
 #ifdef TRACED
   fragColor = vec4(0.0, 0.0, 0.0, 1.0);
@@ -251,6 +264,9 @@ in vec3 vPosition;
 flat in vec4 vSphere;
 flat in int vMaterial;
 void main() {
+#ifndef TRACED
+  if (skipped()) discard;
+#endif
   vec3 d = normalize(vPosition - uEye);
   vec3 f = uEye - vSphere.xyz;
   float b = -dot(f, d);

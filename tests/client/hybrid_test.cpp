@@ -308,7 +308,8 @@ TEST(Hybrid, MultisampledRasterEdgesAreCloserToTheTrace) {
     // GL's frame, multisampled when `frame` takes several samples.
     const auto frameOf = [&](const FrameSettings& frame, bool antialiased) {
       raster.draw(frame, rule(MaskRule::kNone));
-      EXPECT_EQ(raster.drawAntialiased(frame), antialiased);
+      const std::vector<std::uint8_t> noMarks(traced.rgb.size() / 3, gl::kRasterPixel);
+      EXPECT_EQ(raster.drawAntialiased(frame, noMarks), antialiased);
       std::vector<std::uint8_t> rgb(traced.rgb.size());
       context.api().PixelStorei(GL_PACK_ALIGNMENT, 1);
       context.api().ReadPixels(0, 0, frame.width, frame.height, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
@@ -333,6 +334,48 @@ TEST(Hybrid, MultisampledRasterEdgesAreCloserToTheTrace) {
 }
 
 // The raster encodes as the tracer does: sRGB and exposure in the shader.
+// The anti-aliased pass leaves out the pixels draw() marked for the tracer
+// (every sample discarded: they resolve to the clear colour) and draws
+// every other pixel to the bit as with nothing marked. The top third is
+// marked: marks read upside down would leave out the bottom third instead.
+TEST(Hybrid, AntialiasedPassLeavesOutTheMarkedPixels) {
+  const SceneSetup s = load("scenes/room.json");
+  const int w = s.frame.width, h = s.frame.height;
+  gl::OffscreenContext context(w, h);
+  gl::RasterScene raster(context.api(), s.loaded.scene);
+  const auto frameWith = [&](const std::vector<std::uint8_t>& marks) {
+    raster.draw(s.frame, rule(MaskRule::kNone));
+    EXPECT_TRUE(raster.drawAntialiased(s.frame, marks));
+    std::vector<std::uint8_t> rgb(marks.size() * 3);
+    context.api().PixelStorei(GL_PACK_ALIGNMENT, 1);
+    context.api().ReadPixels(0, 0, w, h, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+    flipRows(rgb, w, h, 3);
+    return rgb;
+  };
+  std::vector<std::uint8_t> marks(static_cast<std::size_t>(w * h), gl::kRasterPixel);
+  const std::vector<std::uint8_t> whole = frameWith(marks);
+  const auto markedEnd = static_cast<std::size_t>(w * (h / 3));
+  std::fill(marks.begin(), marks.begin() + static_cast<std::ptrdiff_t>(markedEnd), gl::kMaskedPixel);
+  marks[markedEnd - 1] = gl::kShadowEdgePixel;
+  const std::vector<std::uint8_t> partial = frameWith(marks);
+  int changedUnmarked = 0, changedMarked = 0, notCleared = 0;
+  for (std::size_t i = 0; i < marks.size(); ++i) {
+    bool changed = false, cleared = true;
+    for (std::size_t k = 3 * i; k < 3 * i + 3; ++k) {
+      changed = changed || partial[k] != whole[k];
+      cleared = cleared && partial[k] == partial[k % 3];  // the first pixel is marked: the clear colour
+    }
+    if (marks[i] == gl::kRasterPixel) changedUnmarked += changed ? 1 : 0;
+    if (marks[i] != gl::kRasterPixel) {
+      changedMarked += changed ? 1 : 0;
+      notCleared += cleared ? 0 : 1;
+    }
+  }
+  EXPECT_EQ(changedUnmarked, 0);
+  EXPECT_EQ(notCleared, 0);
+  EXPECT_GT(changedMarked, static_cast<int>(markedEnd) / 2);  // the room's walls are not the clear colour
+}
+
 TEST(Hybrid, RasterEncodesAsTheTracer) {
   expectRasterMatchesDirectTrace("scenes/room.json", {Encoding::kSrgb, 0.0f});
   expectRasterMatchesDirectTrace("scenes/glass.json", {Encoding::kLinear, 1.5f});
