@@ -140,7 +140,10 @@ bool renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
   result.rays = RayStats{};
   result.times = HybridTimes{};
 
-  result.times.shadowMapMs = raster.draw(frame, mask);
+  // Several samples a pixel: the colour comes from the anti-aliased pass,
+  // the first draws the marks (and depth) alone.
+  const bool antialiased = mask.rule != MaskRule::kAll && raster.prepareAntialiased(frame);
+  result.times.shadowMapMs = raster.draw(frame, mask, !antialiased);
   gl.Finish();
   result.times.rasterMs = msSince(start);
 
@@ -151,10 +154,9 @@ bool renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
     readPixels(gl, whole, h, GL_STENCIL_INDEX, 1, result.mask);
   }
   result.times.readbackMs = msSince(readStart);
-  // The raster's colour again, anti-aliased, where the frame takes several
-  // samples (the stencil mask stays the pixel centre's); the pixels the
-  // tracer replaces are left unshaded.
-  if (mask.rule != MaskRule::kAll) {
+  // The raster's colour, anti-aliased (the stencil mask stays the pixel
+  // centre's); the pixels the tracer replaces are left unshaded.
+  if (antialiased) {
     const Clock::time_point antialiasStart = Clock::now();
     raster.drawAntialiased(frame, result.mask);
     result.times.rasterMs += msSince(antialiasStart);

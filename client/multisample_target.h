@@ -16,10 +16,12 @@ class MultisampleTarget {
   MultisampleTarget(const MultisampleTarget&) = delete;
   MultisampleTarget& operator=(const MultisampleTarget&) = delete;
 
-  // Binds a target of this size with min(samples, the most GL offers)
-  // samples, made anew when either changes; false (nothing bound) when that
-  // is fewer than 2.
-  bool bind(int width, int height, int samples);
+  // Makes a target of this size with min(samples, the most GL offers)
+  // samples, anew when either changes; false when that is fewer than 2 (or
+  // GL cannot make it). The default framebuffer stays bound.
+  bool prepare(int width, int height, int samples);
+  // Binds the target prepare() made.
+  void bind();
   // Averages the samples into the default framebuffer's colour and binds
   // the default framebuffer again.
   void resolve();

@@ -38,12 +38,12 @@ unsigned compile(const Api& gl, GLenum type, std::initializer_list<const char*> 
   return shader;
 }
 
-// traced: the variant for masked objects, which shades nothing.
-unsigned link(const Api& gl, const char* vertex, const char* fragment, bool traced, bool stencilExport) {
+// variant: "" (colour and marks), or the #define of a variant that writes
+// less (raster_shaders.h).
+unsigned link(const Api& gl, const char* vertex, const char* fragment, const char* variant, bool stencilExport) {
   const unsigned vs = compile(gl, GL_VERTEX_SHADER, {vertex});
   const std::string prelude = fragmentPrelude(stencilExport);
-  const unsigned fs =
-      compile(gl, GL_FRAGMENT_SHADER, {prelude.c_str(), kFragmentShading, traced ? "#define TRACED\n" : "", fragment});
+  const unsigned fs = compile(gl, GL_FRAGMENT_SHADER, {prelude.c_str(), variant, kFragmentShading, fragment});
   const unsigned program = gl.CreateProgram();
   gl.AttachShader(program, vs);
   gl.AttachShader(program, fs);
@@ -115,9 +115,10 @@ RasterScene::RasterScene(const Api& api, const Scene& scene)
                      std::to_string(kMaxTextures) + " textures");
   }
   for (std::uint32_t i = 0; i < scene.geometry.primitiveCount(); ++i) bounds_.expand(scene.geometry.primitiveBounds(i));
-  for (int traced = 0; traced < 2; ++traced) {
-    programs_[0][traced] = link(gl_, kMeshVertexShader, kMeshFragmentShader, traced == 1, stencilExport_);
-    programs_[1][traced] = link(gl_, kSphereVertexShader, kSphereFragmentShader, traced == 1, stencilExport_);
+  const char* const variants[kShadings] = {"", "#define MARKS_ONLY\n", "#define TRACED\n"};
+  for (int shading = 0; shading < kShadings; ++shading) {
+    programs_[0][shading] = link(gl_, kMeshVertexShader, kMeshFragmentShader, variants[shading], stencilExport_);
+    programs_[1][shading] = link(gl_, kSphereVertexShader, kSphereFragmentShader, variants[shading], stencilExport_);
   }
   uploadTextures();
   uploadMeshes();
@@ -326,7 +327,7 @@ bool RasterScene::prepareShadows(const MaskSettings& mask) {
 
 void RasterScene::drawDepth(const glm::mat4& viewProjection, const glm::vec3& eye, float far) {
   for (int spheres = 0; spheres < 2; ++spheres) {
-    setViewUniforms(programs_[spheres][1], viewProjection, eye, far);
+    setViewUniforms(programs_[spheres][kTraced], viewProjection, eye, far);
     for (const Batch& b : batches_) {
       if (b.spheres != (spheres == 1)) continue;
       gl_.BindVertexArray(b.vao);
@@ -347,7 +348,11 @@ void RasterScene::beginPass(const FrameSettings& frame, GLbitfield clear) {
   gl_.DepthFunc(GL_LESS);
 }
 
-double RasterScene::draw(const FrameSettings& frame, const MaskSettings& mask) {
+bool RasterScene::prepareAntialiased(const FrameSettings& frame) {
+  return frame.sampling.samples >= 2 && multisample_.prepare(frame.width, frame.height, frame.sampling.samples);
+}
+
+double RasterScene::draw(const FrameSettings& frame, const MaskSettings& mask, bool colour) {
   const Clock::time_point start = Clock::now();
   shadows_ = prepareShadows(mask);
   const double shadowMs = msSince(start);
@@ -355,18 +360,17 @@ double RasterScene::draw(const FrameSettings& frame, const MaskSettings& mask) {
   beginPass(frame, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
   gl_.Enable(GL_STENCIL_TEST);
   gl_.StencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);  // the visible object's flag wins
-  drawBatches(frame, mask, false);
+  drawBatches(frame, mask, false, colour);
   return shadowMs;
 }
 
-bool RasterScene::drawAntialiased(const FrameSettings& frame, std::span<const std::uint8_t> marks) {
-  if (frame.sampling.samples < 2 || !multisample_.bind(frame.width, frame.height, frame.sampling.samples)) return false;
+void RasterScene::drawAntialiased(const FrameSettings& frame, std::span<const std::uint8_t> marks) {
   uploadMarks(frame, marks);
+  multisample_.bind();
   beginPass(frame, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   gl_.Disable(GL_STENCIL_TEST);
-  drawBatches(frame, MaskSettings{}, true);
+  drawBatches(frame, MaskSettings{}, true, true);
   multisample_.resolve();
-  return true;
 }
 
 // draw()'s marks as an integer texture the anti-aliased pass's fragments
@@ -389,7 +393,7 @@ void RasterScene::uploadMarks(const FrameSettings& frame, std::span<const std::u
   gl_.ActiveTexture(GL_TEXTURE0);
 }
 
-void RasterScene::drawBatches(const FrameSettings& frame, const MaskSettings& mask, bool antialiased) {
+void RasterScene::drawBatches(const FrameSettings& frame, const MaskSettings& mask, bool antialiased, bool colour) {
   const Projection vp = projection(frame);
   for (int spheres = 0; spheres < 2; ++spheres) {
     // A sphere's silhouette is decided in its fragment shader (discard): in
@@ -401,13 +405,14 @@ void RasterScene::drawBatches(const FrameSettings& frame, const MaskSettings& ma
       gl_.Enable(GL_SAMPLE_SHADING);
       gl_.MinSampleShading(1.0f);
     }
-    for (int traced = 0; traced < 2; ++traced) {
+    for (int shading = 0; shading < kShadings; ++shading) {
       bool uniformsSet = false;
       for (const Batch& b : batches_) {
         const bool masked = !antialiased && materialMasked(scene_.materials[b.material], mask);
-        if (b.spheres != (spheres == 1) || masked != (traced == 1)) continue;
+        const Shading wanted = masked ? kTraced : colour ? kColour : kMarksOnly;
+        if (b.spheres != (spheres == 1) || wanted != shading) continue;
         if (!uniformsSet) {
-          setUniforms(programs_[spheres][traced], frame, vp, antialiased);
+          setUniforms(programs_[spheres][shading], frame, vp, antialiased);
           uniformsSet = true;
         }
         gl_.StencilFunc(GL_ALWAYS, masked ? kMaskedPixel : kRasterPixel, 0xff);

@@ -26,7 +26,8 @@ enum StencilMark : std::uint8_t { kRasterPixel = 0, kMaskedPixel = 1, kShadowEdg
 // the first frame that needs them, the lights' shadow maps. draw() renders
 // one frame and marks each pixel's stencil (StencilMark). Masked objects are
 // drawn by programs that write depth and stencil but shade nothing (black):
-// the tracer's pixels replace theirs.
+// the tracer's pixels replace theirs. Where an anti-aliased pass follows, the
+// other objects' programs in draw() write the marks without the colour.
 class RasterScene {
  public:
   RasterScene(const Api& api, const Scene& scene);
@@ -34,19 +35,24 @@ class RasterScene {
   RasterScene(const RasterScene&) = delete;
   RasterScene& operator=(const RasterScene&) = delete;
 
-  // Returns the milliseconds spent drawing shadow maps (0 but on the first
-  // frame that needs them, or another map size).
-  double draw(const FrameSettings& frame, const MaskSettings& mask);
-  // With more than one sample a pixel, draws the frame again multisampled
-  // (up to what GL offers), every object shaded (an edge next to a masked
-  // object blends in GL's estimate of it, not black), and resolves it into
-  // the default framebuffer's colour; the stencil and depth of draw() stay.
-  // `marks` holds draw()'s StencilMark of each pixel of the frame, rows from
-  // the top (as the hybrid frame reads the stencil back): a marked pixel is
-  // not shaded (its samples are discarded and resolve to the background),
-  // since the tracer replaces it. False when the frame has one sample or GL
-  // offers no multisampling.
-  bool drawAntialiased(const FrameSettings& frame, std::span<const std::uint8_t> marks);
+  // Whether drawAntialiased() will draw `frame`: it takes more than one
+  // sample a pixel and GL offers multisampling (its target made here).
+  bool prepareAntialiased(const FrameSettings& frame);
+  // Draws the frame and marks each pixel's stencil (StencilMark). With
+  // `colour` false the objects OpenGL draws get their depth and marks but no
+  // colour (black): the anti-aliased pass draws it. Returns the milliseconds
+  // spent drawing shadow maps (0 but on the first frame that needs them, or
+  // another map size).
+  double draw(const FrameSettings& frame, const MaskSettings& mask, bool colour = true);
+  // Draws the frame again multisampled (prepareAntialiased() true), every
+  // object shaded (an edge next to a masked object blends in GL's estimate
+  // of it, not black), and resolves it into the default framebuffer's
+  // colour; the stencil and depth of draw() stay. `marks` holds draw()'s
+  // StencilMark of each pixel of the frame, rows from the top (as the hybrid
+  // frame reads the stencil back): a marked pixel is not shaded (its samples
+  // are discarded and resolve to the background), since the tracer
+  // replaces it.
+  void drawAntialiased(const FrameSettings& frame, std::span<const std::uint8_t> marks);
   // A line for the user where frames under `mask` fall short of the
   // tracer's shadows: without ARB_shader_stencil_export a fragment cannot
   // mark its pixel for tracing, and pixels whose shadow the maps cannot
@@ -83,8 +89,9 @@ class RasterScene {
   // The viewport, the background, `clear` cleared, the depth test on.
   void beginPass(const FrameSettings& frame, GLbitfield clear);
   // Every batch; masked materials with the programs that shade nothing,
-  // except in the anti-aliased pass, which shades every object.
-  void drawBatches(const FrameSettings& frame, const MaskSettings& mask, bool antialiased);
+  // except in the anti-aliased pass, which shades every object; without
+  // `colour`, the others with the programs that only mark.
+  void drawBatches(const FrameSettings& frame, const MaskSettings& mask, bool antialiased, bool colour);
   Projection projection(const FrameSettings& frame) const;
 
   const Api& gl_;
@@ -93,7 +100,10 @@ class RasterScene {
   bool stencilExport_ = false;
   bool shadows_ = false;           // the current frame reads the shadow maps
   int undecidedStencil_ = 0;       // the current frame's StencilMark for undecided shadows
-  unsigned programs_[2][2] = {};  // [spheres][traced]
+  // What a program's fragments write besides depth: the colour and the
+  // shadow marks; the marks alone; nothing (masked objects).
+  enum Shading { kColour, kMarksOnly, kTraced, kShadings };
+  unsigned programs_[2][kShadings] = {};  // [spheres][Shading]
   unsigned atlas_ = 0;
   unsigned stencilMarks_ = 0;  // the anti-aliased pass's copy of draw()'s marks
   std::vector<float> textureRows_;  // atlas row of each texture

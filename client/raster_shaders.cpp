@@ -63,6 +63,17 @@ vec3 encodeOutput(vec3 linear) {
   return mix(1.055 * pow(v, vec3(1.0 / 2.4)) - 0.055, 12.92 * v, lessThanEqual(v, vec3(0.0031308)));
 }
 
+// The fragment's colour from shade()'s; black where only the marks are
+// wanted (shade() still runs for gShadowUndecided, and the compiler drops
+// the terms that only the colour needs).
+vec4 outputColour(vec3 shaded) {
+#ifdef MARKS_ONLY
+  return vec4(0.0, 0.0, 0.0, 1.0);
+#else
+  return vec4(encodeOutput(shaded), 1.0);
+#endif
+}
+
 vec3 texel(int t, int x, int y) {
   ivec2 size = ivec2(uTextureSize[t].xy);
   x = ((x % size.x) + size.x) % size.x;
@@ -231,7 +242,7 @@ void main() {
 #ifdef TRACED
   fragColor = vec4(0.0, 0.0, 0.0, 1.0);
 #else
-  fragColor = vec4(encodeOutput(shade(vPosition, vFaceNormal, vNormal, vUv, vMaterial)), 1.0);
+  fragColor = outputColour(shade(vPosition, vFaceNormal, vNormal, vUv, vMaterial));
 #ifdef STENCIL_EXPORT
   gl_FragStencilRefARB = gShadowUndecided ? uUndecidedStencil : 0;
 #endif
@@ -290,7 +301,7 @@ void main() {
   float u = atan(n.x, n.z) / (2.0 * 3.14159265);
   float v = acos(clamp(-n.y, -1.0, 1.0)) / 3.14159265;
   vec2 uv = vec2(u < 0.0 ? u + 1.0 : u, v);
-  fragColor = vec4(encodeOutput(shade(p, n, n, uv, vMaterial)), 1.0);
+  fragColor = outputColour(shade(p, n, n, uv, vMaterial));
 #ifdef STENCIL_EXPORT
   gl_FragStencilRefARB = gShadowUndecided ? uUndecidedStencil : 0;
 #endif

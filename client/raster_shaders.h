@@ -9,7 +9,10 @@ namespace glint::gl {
 // shadow rays answered by the shadow maps where they can decide, see
 // client/shadow_maps.h): the same terms, face-forwarded normals, attenuation,
 // checker index and image lookups (common/texture.cpp).
-// Fragment shaders are fragmentPrelude(), kFragmentShading and their own main().
+// Fragment shaders are fragmentPrelude(), kFragmentShading and their own main(),
+// in three variants (RasterScene::Shading): as they are, the colour and the
+// marks; with MARKS_ONLY defined, the marks and a black colour (the
+// anti-aliased pass draws the colour); with TRACED, neither (masked objects).
 // With stencilExport (ARB_shader_stencil_export) a fragment whose shadow the
 // maps cannot decide writes the stencil uUndecidedStencil.
 std::string fragmentPrelude(bool stencilExport);  // #version, extensions and the limits below as GLSL defines

@@ -45,6 +45,16 @@ MaskSettings rule(MaskRule rule, int shadowMap = 0) {
   return mask;
 }
 
+// The default framebuffer's colour (GL_RGB, 3 bytes a pixel) or stencil
+// (GL_STENCIL_INDEX, 1), rows from the top.
+std::vector<std::uint8_t> readBack(const gl::Api& api, int width, int height, GLenum format, int channels) {
+  std::vector<std::uint8_t> pixels(static_cast<std::size_t>(width * height * channels));
+  api.PixelStorei(GL_PACK_ALIGNMENT, 1);
+  api.ReadPixels(0, 0, width, height, format, GL_UNSIGNED_BYTE, pixels.data());
+  flipRows(pixels, width, height, channels);
+  return pixels;
+}
+
 HybridResult hybrid(const Scene& scene, TileService& service, const FrameSettings& frame, const MaskSettings& mask) {
   gl::OffscreenContext context(frame.width, frame.height);
   gl::RasterScene raster(context.api(), scene);
@@ -307,14 +317,11 @@ TEST(Hybrid, MultisampledRasterEdgesAreCloserToTheTrace) {
     gl::RasterScene raster(context.api(), prepared.scene());
     // GL's frame, multisampled when `frame` takes several samples.
     const auto frameOf = [&](const FrameSettings& frame, bool antialiased) {
-      raster.draw(frame, rule(MaskRule::kNone));
+      EXPECT_EQ(raster.prepareAntialiased(frame), antialiased);
+      raster.draw(frame, rule(MaskRule::kNone), !antialiased);
       const std::vector<std::uint8_t> noMarks(traced.rgb.size() / 3, gl::kRasterPixel);
-      EXPECT_EQ(raster.drawAntialiased(frame, noMarks), antialiased);
-      std::vector<std::uint8_t> rgb(traced.rgb.size());
-      context.api().PixelStorei(GL_PACK_ALIGNMENT, 1);
-      context.api().ReadPixels(0, 0, frame.width, frame.height, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
-      flipRows(rgb, frame.width, frame.height, 3);
-      return rgb;
+      if (antialiased) raster.drawAntialiased(frame, noMarks);
+      return readBack(context.api(), frame.width, frame.height, GL_RGB, 3);
     };
     FrameSettings single = s.frame;
     single.sampling.samples = 1;
@@ -344,13 +351,10 @@ TEST(Hybrid, AntialiasedPassLeavesOutTheMarkedPixels) {
   gl::OffscreenContext context(w, h);
   gl::RasterScene raster(context.api(), s.loaded.scene);
   const auto frameWith = [&](const std::vector<std::uint8_t>& marks) {
-    raster.draw(s.frame, rule(MaskRule::kNone));
-    EXPECT_TRUE(raster.drawAntialiased(s.frame, marks));
-    std::vector<std::uint8_t> rgb(marks.size() * 3);
-    context.api().PixelStorei(GL_PACK_ALIGNMENT, 1);
-    context.api().ReadPixels(0, 0, w, h, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
-    flipRows(rgb, w, h, 3);
-    return rgb;
+    EXPECT_TRUE(raster.prepareAntialiased(s.frame));
+    raster.draw(s.frame, rule(MaskRule::kNone), false);
+    raster.drawAntialiased(s.frame, marks);
+    return readBack(context.api(), w, h, GL_RGB, 3);
   };
   std::vector<std::uint8_t> marks(static_cast<std::size_t>(w * h), gl::kRasterPixel);
   const std::vector<std::uint8_t> whole = frameWith(marks);
@@ -374,6 +378,32 @@ TEST(Hybrid, AntialiasedPassLeavesOutTheMarkedPixels) {
   EXPECT_EQ(changedUnmarked, 0);
   EXPECT_EQ(notCleared, 0);
   EXPECT_GT(changedMarked, static_cast<int>(markedEnd) / 2);  // the room's walls are not the clear colour
+}
+
+// draw() without colour (an anti-aliased pass will draw it) marks the
+// same pixels as with it, the shadow edges too, and leaves GL's pixels
+// black: its shaders keep the shadow votes and drop the colour terms.
+TEST(Hybrid, MarksWithoutColourAreTheMarksWithColour) {
+  const SceneSetup s = load("scenes/glass.json");
+  const int w = s.frame.width, h = s.frame.height;
+  gl::OffscreenContext context(w, h);
+  gl::RasterScene raster(context.api(), s.loaded.scene);
+  const MaskSettings mask = rule(MaskRule::kAuto, 256);
+  raster.draw(s.frame, mask, true);
+  const std::vector<std::uint8_t> marks = readBack(context.api(), w, h, GL_STENCIL_INDEX, 1);
+  raster.draw(s.frame, mask, false);
+  EXPECT_EQ(readBack(context.api(), w, h, GL_STENCIL_INDEX, 1), marks);
+  const std::vector<std::uint8_t> rgb = readBack(context.api(), w, h, GL_RGB, 3);
+  std::size_t edges = 0, drawn = 0, lit = 0;
+  for (std::size_t i = 0; i < marks.size(); ++i) {
+    edges += marks[i] == gl::kShadowEdgePixel ? 1 : 0;
+    if (marks[i] != gl::kRasterPixel) continue;
+    ++drawn;
+    lit += rgb[3 * i] != 0 || rgb[3 * i + 1] != 0 || rgb[3 * i + 2] != 0 ? 1 : 0;
+  }
+  EXPECT_GT(edges, 0u);
+  EXPECT_GT(drawn, marks.size() / 2);
+  EXPECT_EQ(lit, 0u);
 }
 
 TEST(Hybrid, RasterEncodesAsTheTracer) {
