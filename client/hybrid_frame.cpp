@@ -13,17 +13,6 @@
 namespace glint {
 namespace {
 
-// Reads a window of the frame (y from the top) into `pixels` (resized, so
-// that its buffer is kept from one frame to the next) with rows top-down.
-void readPixels(const gl::Api& gl, const TileRect& window, int frameHeight, GLenum format, int channels,
-                std::vector<std::uint8_t>& pixels) {
-  pixels.resize(window.pixelCount() * static_cast<std::size_t>(channels));
-  gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
-  gl.ReadPixels(window.x, frameHeight - window.y - window.height, window.width, window.height, format,
-                GL_UNSIGNED_BYTE, pixels.data());
-  flipRows(pixels, window.width, window.height, channels);
-}
-
 
 // Pixels traced with one frame's settings: the masked objects' with the
 // frame's own; the shadow edges' (pixels of surfaces OpenGL draws, traced

@@ -5,6 +5,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "client/gl_api.h"
+#include "common/tile.h"
+
 namespace glint {
 
 // GL's rows run bottom-up; Glint's images top-down.
@@ -15,6 +18,17 @@ inline void flipRows(std::vector<std::uint8_t>& pixels, int width, int height, i
     const auto bottom = pixels.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(height - 1 - y) * row);
     std::swap_ranges(top, top + static_cast<std::ptrdiff_t>(row), bottom);
   }
+}
+
+// Reads a window of the frame (y from the top) into `pixels` (resized, so
+// that its buffer is kept from one frame to the next) with rows top-down.
+inline void readPixels(const gl::Api& gl, const TileRect& window, int frameHeight, GLenum format, int channels,
+                       std::vector<std::uint8_t>& pixels) {
+  pixels.resize(window.pixelCount() * static_cast<std::size_t>(channels));
+  gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+  gl.ReadPixels(window.x, frameHeight - window.y - window.height, window.width, window.height, format,
+                GL_UNSIGNED_BYTE, pixels.data());
+  flipRows(pixels, window.width, window.height, channels);
 }
 
 }  // namespace glint

@@ -360,7 +360,7 @@ double RasterScene::draw(const FrameSettings& frame, const MaskSettings& mask, b
   beginPass(frame, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
   gl_.Enable(GL_STENCIL_TEST);
   gl_.StencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);  // the visible object's flag wins
-  drawBatches(frame, mask, false, colour);
+  drawBatches(frame, mask, colour ? Pass::kColourAndMarks : Pass::kMarks);
   return shadowMs;
 }
 
@@ -369,7 +369,7 @@ void RasterScene::drawAntialiased(const FrameSettings& frame, std::span<const st
   multisample_.bind();
   beginPass(frame, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   gl_.Disable(GL_STENCIL_TEST);
-  drawBatches(frame, MaskSettings{}, true, true);
+  drawBatches(frame, MaskSettings{}, Pass::kAntialiased);
   multisample_.resolve();
 }
 
@@ -393,8 +393,9 @@ void RasterScene::uploadMarks(const FrameSettings& frame, std::span<const std::u
   gl_.ActiveTexture(GL_TEXTURE0);
 }
 
-void RasterScene::drawBatches(const FrameSettings& frame, const MaskSettings& mask, bool antialiased, bool colour) {
+void RasterScene::drawBatches(const FrameSettings& frame, const MaskSettings& mask, Pass pass) {
   const Projection vp = projection(frame);
+  const bool antialiased = pass == Pass::kAntialiased;
   for (int spheres = 0; spheres < 2; ++spheres) {
     // A sphere's silhouette is decided in its fragment shader (discard): in
     // the anti-aliased pass it runs for every sample, where a mesh's edges
@@ -409,7 +410,7 @@ void RasterScene::drawBatches(const FrameSettings& frame, const MaskSettings& ma
       bool uniformsSet = false;
       for (const Batch& b : batches_) {
         const bool masked = !antialiased && materialMasked(scene_.materials[b.material], mask);
-        const Shading wanted = masked ? kTraced : colour ? kColour : kMarksOnly;
+        const Shading wanted = masked ? kTraced : pass == Pass::kMarks ? kMarksOnly : kColour;
         if (b.spheres != (spheres == 1) || wanted != shading) continue;
         if (!uniformsSet) {
           setUniforms(programs_[spheres][shading], frame, vp, antialiased);

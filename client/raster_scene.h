@@ -88,10 +88,13 @@ class RasterScene {
   void drawDepth(const glm::mat4& viewProjection, const glm::vec3& eye, float far);
   // The viewport, the background, `clear` cleared, the depth test on.
   void beginPass(const FrameSettings& frame, GLbitfield clear);
+  // The passes over the batches: draw()'s with the colour or with the marks
+  // alone, and drawAntialiased()'s.
+  enum class Pass { kColourAndMarks, kMarks, kAntialiased };
   // Every batch; masked materials with the programs that shade nothing,
-  // except in the anti-aliased pass, which shades every object; without
-  // `colour`, the others with the programs that only mark.
-  void drawBatches(const FrameSettings& frame, const MaskSettings& mask, bool antialiased, bool colour);
+  // except in the anti-aliased pass, which shades every object; in kMarks,
+  // the others with the programs that only mark.
+  void drawBatches(const FrameSettings& frame, const MaskSettings& mask, Pass pass);
   Projection projection(const FrameSettings& frame) const;
 
   const Api& gl_;

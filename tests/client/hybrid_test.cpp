@@ -45,13 +45,11 @@ MaskSettings rule(MaskRule rule, int shadowMap = 0) {
   return mask;
 }
 
-// The default framebuffer's colour (GL_RGB, 3 bytes a pixel) or stencil
-// (GL_STENCIL_INDEX, 1), rows from the top.
+// The whole default framebuffer's colour (GL_RGB, 3 bytes a pixel) or
+// stencil (GL_STENCIL_INDEX, 1), rows from the top.
 std::vector<std::uint8_t> readBack(const gl::Api& api, int width, int height, GLenum format, int channels) {
-  std::vector<std::uint8_t> pixels(static_cast<std::size_t>(width * height * channels));
-  api.PixelStorei(GL_PACK_ALIGNMENT, 1);
-  api.ReadPixels(0, 0, width, height, format, GL_UNSIGNED_BYTE, pixels.data());
-  flipRows(pixels, width, height, channels);
+  std::vector<std::uint8_t> pixels;
+  readPixels(api, TileRect{0, 0, width, height}, height, format, channels, pixels);
   return pixels;
 }
 
