@@ -104,6 +104,22 @@ TEST(MeshFile, CornersShareVerticesOnlyWhereAllTheyNameIsTheSame) {
   EXPECT_EQ(s.geometry.normals()[7], glm::vec3(0));  // b lacks some normals: face normals
 }
 
+// A mesh's uvs begin with its first corner that has one: the vertices
+// before it get (0, 0), as do later corners without one.
+TEST(MeshFile, VerticesBeforeTheFirstUvGetZero) {
+  MemorySource files;
+  files.add("u.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0.25 0.5\nvt 0.75 1\n"
+                     "f 1 2 3\nf 1/1 3/2 4/2\nf 2 4 3\n");
+  const Scene s = loadScene(sceneWith({meshFile("u.obj")}), files);
+  // 1 2 3; 1/1 3/2 4/2, each a new corner; 2 and 3 as before, 4 without uv new.
+  ASSERT_EQ(s.geometry.uvs().size(), 7u);
+  const std::vector<glm::vec2> expected = {glm::vec2(0), glm::vec2(0), glm::vec2(0), {0.25f, 0.5f},
+                                           {0.75f, 1.0f}, {0.75f, 1.0f}, glm::vec2(0)};
+  for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_EQ(s.geometry.uvs()[i], expected[i]) << "vertex " << i;
+  ASSERT_EQ(s.geometry.triangles().size(), 3u);
+  EXPECT_EQ(s.geometry.triangles()[2].v, (std::array<std::uint32_t, 3>{1, 2, 6}));
+}
+
 // The material library is the first mtllib line: after a comment naming
 // another, indented, with Windows line ends.
 TEST(MeshFile, MtllibIsFoundAsExportersWriteIt) {
