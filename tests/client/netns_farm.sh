@@ -53,7 +53,7 @@ for i in 0 1 2; do
   ip netns exec "$client" tc qdisc add dev "c$i" root tbf rate 1gbit burst 256kb latency 10ms
   ip netns exec "$ns" tc qdisc add dev eth0 root tbf rate 1gbit burst 256kb latency 10ms
   address="198.18.0.$((4 * i + 2)):7878"
-  ip netns exec "$ns" "$glintd" --listen "$address" --threads 1 --quiet --tls-cert "$certs/glintd.pem" \
+  ip netns exec "$ns" "$glintd" --listen "$address" --threads 1 --tls-cert "$certs/glintd.pem" \
     --tls-key "$certs/glintd.key" --tls-client-ca "$certs/ca.pem" > "$work/glintd$i.log" 2>&1 &
   pids+=($!)
   addresses+=("$address")
@@ -75,8 +75,18 @@ for address in "${addresses[@]}"; do echo "${address%:*} glint-farm"; done > "/e
 scene="$scenes/room.json"
 frames=6
 "$glint" render "$scene" -o "$work/reference.png" --quiet
-# One glintd is killed while the client renders its frames.
-(sleep 0.4; kill -9 "${pids[1]}") &
+# One glintd is killed while the client renders its frames: a moment after
+# it has built the scene (the client counts it ready on the answer), not
+# at a fixed time, which a slow machine's start-up outlasted (the server
+# was killed before the client reached it: unreachable, not lost).
+(
+  for _ in $(seq 1 600); do
+    grep -q ": scene .* built in" "$work/glintd1.log" && break
+    sleep 0.05
+  done
+  sleep 0.3
+  kill -9 "${pids[1]}"
+) &
 killer=$!
 ip netns exec "$client" "$glint" render "$scene" -o "$work/farm.png" --frames "$frames" --stall-timeout 1 \
   --server glint-farm:7878 --stats "$work/stats.json" --provenance-out "$work/provenance.png" \
