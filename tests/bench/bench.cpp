@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <string>
 #include <thread>
@@ -52,6 +53,22 @@ struct Options {
   std::vector<std::string> sections{kSections.begin(), kSections.end()};
   bool wants(const std::string& s) const { return std::find(sections.begin(), sections.end(), s) != sections.end(); }
 };
+
+// The machine the numbers come from: the CPU's name (Linux's
+// /proc/cpuinfo), its hardware threads and the box test this CPU gets
+// (tables from different hosts are not comparable; docs/performance.md).
+std::string hostLine() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string cpu = "CPU unknown";
+  for (std::string line; std::getline(cpuinfo, line);) {
+    if (line.rfind("model name", 0) != 0 || line.find(':') == std::string::npos) continue;
+    cpu = line.substr(line.find_first_not_of(" \t", line.find(':') + 1));
+    break;
+  }
+  const bool eight = fastestBoxTestWidth() == BoxTestWidth::kEight;
+  return "host: " + cpu + ", " + std::to_string(std::max(1u, std::thread::hardware_concurrency())) +
+         " hardware threads; box test: " + (eight ? "eight lanes (AVX2)" : "four lanes");
+}
 
 struct BvhResult {
   double buildOneMs;  // the build on one thread
@@ -403,7 +420,7 @@ int main(int argc, char** argv) {
       room.frame.height = 120;
     }
     ThreadPool pool(2);
-    std::printf("# glint-bench%s\n", o.quick ? " (quick: not a measurement)" : "");
+    std::printf("# glint-bench%s\n\n%s\n", o.quick ? " (quick: not a measurement)" : "", bench::hostLine().c_str());
     if (o.wants("bvh")) bench::bvhSection(o, room);
     if (o.wants("room")) bench::roomSection(o, room, pool);
     if (o.wants("accuracy")) bench::accuracySection(o, room, pool);
