@@ -5,11 +5,10 @@
 #include <unordered_map>
 #include <tuple>
 
-#include <tiny_obj_loader.h>
-
 #include "common/array_hash.h"
 #include "common/error.h"
 #include "common/image_io.h"
+#include "common/obj_faces.h"
 
 namespace glint {
 namespace {
@@ -65,11 +64,12 @@ std::string notObjText(const std::string& text) {
   return "";
 }
 
-// The OBJ (and, when materials are wanted, its mtllib, whose path goes to
-// `mtlPath`) parsed by tinyobjloader; a missing mtllib is a warning.
-tinyobj::ObjReader parseObj(FileSource& files, const std::string& path, const std::string& place,
-                            const LoadLimits& limits, bool withMaterials, std::vector<std::string>& warnings,
-                            std::string& mtlPath) {
+// The OBJ's triangles (and, when materials are wanted, its mtllib's
+// materials, whose file's path goes to `mtlPath`); a missing mtllib is a
+// warning.
+ObjTriangles parseObj(FileSource& files, const std::string& path, const std::string& place,
+                      const LoadLimits& limits, bool withMaterials, std::vector<std::string>& warnings,
+                      std::string& mtlPath) {
   const std::string text = files.read(path, place);
   if (const std::string why = notObjText(text); !why.empty()) throw InputError(place + ": '" + path + "' " + why);
   std::string mtl;
@@ -84,27 +84,15 @@ tinyobj::ObjReader parseObj(FileSource& files, const std::string& path, const st
                          "', which is missing; its faces get the default material");
     }
   }
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = true;
-  config.vertex_color = false;
-  tinyobj::ObjReader reader;
-  if (!reader.ParseFromString(text, mtl, config)) {
-    throw InputError(place + ": '" + path + "' is not a valid OBJ file: " + reader.Error());
-  }
-  const std::size_t positions = reader.GetAttrib().vertices.size() / 3;
-  if (positions > limits.maxVertices) {
-    throw InputError(place + ": '" + path + "' has " + std::to_string(positions) +
-                     " vertices, over the limit of " + std::to_string(limits.maxVertices));
-  }
-  return reader;
+  return parseObjTriangles(text, mtl, limits, place + ": '" + path + "'");
 }
 
 // The materials of the MTL file at `mtlPath`, each map_Kd (relative to the
 // MTL file) decoded as the material's texture; a missing texture is a
 // warning, and the material keeps its Kd colour.
-void readMaterials(const tinyobj::ObjReader& reader, FileSource& files, const std::string& mtlPath,
+void readMaterials(const std::vector<tinyobj::material_t>& materials, FileSource& files, const std::string& mtlPath,
                    const std::string& place, SceneBudget& budget, MeshModel& model) {
-  for (const tinyobj::material_t& m : reader.GetMaterials()) {
+  for (const tinyobj::material_t& m : materials) {
     Material mat = toMaterial(m);
     const std::string texPath = m.diffuse_texname.empty() ? "" : siblingPath(mtlPath, m.diffuse_texname);
     if (!texPath.empty() && !files.has(texPath)) {
@@ -133,13 +121,8 @@ class FaceGrouper {
  public:
   explicit FaceGrouper(const tinyobj::attrib_t& attrib) : attrib_(attrib), first_(attrib.vertices.size() / 3) {}
 
-  // False when the corner refers to data the file does not have.
-  bool addCorner(int material, const tinyobj::index_t& idx) {
-    if (idx.vertex_index < 0 || static_cast<std::size_t>(idx.vertex_index) >= first_.size() ||
-        idx.normal_index >= static_cast<int>(attrib_.normals.size() / 3) ||
-        idx.texcoord_index >= static_cast<int>(attrib_.texcoords.size() / 2)) {
-      return false;
-    }
+  // A corner whose indices name the file's data (ObjTriangles checked them).
+  void addCorner(int material, const tinyobj::index_t& idx) {
     Group& group = groupOf(material);
     const auto next = static_cast<std::uint32_t>(group.mesh.positions.size());
     FirstUse& first = first_[static_cast<std::size_t>(idx.vertex_index)];
@@ -153,7 +136,6 @@ class FaceGrouper {
     }
     if (index == next) addVertex(group, idx);
     group.mesh.indices.push_back(index);
-    return true;
   }
 
   // The meshes; a mesh some of whose corners lack a normal gets its normals
@@ -217,35 +199,17 @@ MeshModel loadObj(FileSource& files, const std::string& path, const std::string&
   const LoadLimits& limits = budget.limits();
   MeshModel model;
   std::string mtlPath;
-  const tinyobj::ObjReader reader = parseObj(files, path, place, limits, withMaterials, model.warnings, mtlPath);
-  if (!mtlPath.empty()) readMaterials(reader, files, mtlPath, place, budget, model);
+  const ObjTriangles obj = parseObj(files, path, place, limits, withMaterials, model.warnings, mtlPath);
+  if (!mtlPath.empty()) readMaterials(obj.materials, files, mtlPath, place, budget, model);
   // Faces without a material (or all faces, without MTL) use a default one.
   const int defaultMaterial = static_cast<int>(model.materials.size());
-  FaceGrouper grouper(reader.GetAttrib());
-  std::size_t triangles = 0;
-  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
-    const auto& mesh = shape.mesh;
-    for (std::size_t f = 0; f < mesh.num_face_vertices.size(); ++f) {
-      const auto faceError = [&](const char* what) {
-        return InputError(place + ": '" + path + "' face " + std::to_string(f) + " of '" + shape.name + "' " + what);
-      };
-      if (mesh.num_face_vertices[f] != 3) throw faceError("could not be triangulated");
-      if (++triangles > limits.maxTriangles) {
-        throw InputError(place + ": '" + path + "' has more triangles than the limit of " +
-                         std::to_string(limits.maxTriangles));
-      }
-      int mat = withMaterials && f < mesh.material_ids.size() ? mesh.material_ids[f] : -1;
-      if (mat < 0 || mat >= defaultMaterial) mat = defaultMaterial;
-      for (std::size_t k = 0; k < 3; ++k) {
-        if (!grouper.addCorner(mat, mesh.indices[3 * f + k])) {
-          throw faceError("refers to a vertex, normal or uv that the file does not have");
-        }
-      }
-    }
+  FaceGrouper grouper(obj.attrib);
+  for (std::size_t t = 0; t < obj.materialOf.size(); ++t) {
+    const int mat = obj.materialOf[t] >= 0 && obj.materialOf[t] < defaultMaterial ? obj.materialOf[t] : defaultMaterial;
+    for (std::size_t k = 0; k < 3; ++k) grouper.addCorner(mat, obj.corners[3 * t + k]);
   }
-  if (triangles == 0) {
-    throw InputError(place + ": '" + path + "' holds no triangle (" +
-                     std::to_string(reader.GetAttrib().vertices.size() / 3) +
+  if (obj.materialOf.empty()) {
+    throw InputError(place + ": '" + path + "' holds no triangle (" + std::to_string(obj.attrib.vertices.size() / 3) +
                      " vertices, no faces: points or lines only?); a mesh needs faces (f lines)");
   }
   grouper.finish(model);
