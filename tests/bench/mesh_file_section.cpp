@@ -69,7 +69,7 @@ void meshFileSection(bool quick, int runs) {
   std::printf("\n## Reading a mesh file: %zu triangles, %.1f MB OBJ, median of %d\n\n", triangles,
               static_cast<double>(bytes) / 1e6, runs);
   std::printf("| reader | ms | Glint's / this |\n|---|---:|---:|\n");
-  std::printf("| Glint loadObj (callback parse + vertices grouped) | %.0f | 1.00 |\n", glint);
+  std::printf("| Glint loadObj (callback parse in pieces at once + vertices grouped) | %.0f | 1.00 |\n", glint);
   std::printf("| tinyobjloader LoadObj alone (its shapes) | %.0f | %.2f |\n", parse, glint / parse);
   std::printf("| Assimp 5.2, triangulate (a vertex per corner) | %.0f | %.2f |\n", assimp, glint / assimp);
   fs::remove_all(dir);
