@@ -292,22 +292,6 @@ struct PieceReader {
   }
 };
 
-// The whole text through the callbacks, into `out`; false when the file has
-// a larger polygon.
-bool readWhole(const std::string& text, const MaterialTable& table, const LoadLimits& limits,
-               const std::string& where, ObjTriangles& out) {
-  PieceReader whole(table, true, limits, where);
-  try {
-    whole.read(text.data(), text.data() + text.size());
-  } catch (const NeedsEarClipping&) {
-    return false;
-  }
-  out.attrib = std::move(whole.attrib);
-  if (whole.sawMtllib) out.materials = table.materials;
-  whole.faces.triangulate(out);
-  return true;
-}
-
 // The least a piece read at once is long: a text under twice this is read
 // whole, as thread start-up would cost more than the piece saves.
 constexpr std::size_t kPieceBytes = std::size_t{4} << 20;
@@ -332,8 +316,9 @@ std::vector<const char*> cutsOf(const std::string& text, std::size_t pieces) {
   return cuts;
 }
 
-// The later pieces joined onto the first: attributes and faces in file
-// order, each later face's material code made what a whole read gives.
+// The later pieces joined onto the first (a whole read is one piece), into
+// `out`: attributes and faces in file order, each later face's material
+// code made what a whole read gives.
 void joinPieces(std::vector<std::unique_ptr<PieceReader>>& readers, const MaterialTable& table,
                 ObjTriangles& out) {
   PieceReader& whole = *readers[0];
@@ -360,6 +345,21 @@ void joinPieces(std::vector<std::unique_ptr<PieceReader>>& readers, const Materi
   out.attrib = std::move(whole.attrib);
   if (named) out.materials = table.materials;
   whole.faces.triangulate(out);
+}
+
+// The whole text through the callbacks, into `out`; false when the file has
+// a larger polygon.
+bool readWhole(const std::string& text, const MaterialTable& table, const LoadLimits& limits,
+               const std::string& where, ObjTriangles& out) {
+  std::vector<std::unique_ptr<PieceReader>> whole;
+  whole.push_back(std::make_unique<PieceReader>(table, true, limits, where));
+  try {
+    whole[0]->read(text.data(), text.data() + text.size());
+  } catch (const NeedsEarClipping&) {
+    return false;
+  }
+  joinPieces(whole, table, out);
+  return true;
 }
 
 // The pieces read at once, one a thread, and joined; false where only a
@@ -431,7 +431,6 @@ ObjTriangles parseObjTriangles(const std::string& text, const std::string& mtlTe
   ObjTriangles out;
   if (pieces == 0) pieces = piecesFor(text.size());
   if (pieces > 1 && readPieces(text, table, limits, where, pieces, out)) return out;
-  out = ObjTriangles{};
   if (readWhole(text, table, limits, where, out)) return out;
   ObjTriangles polygons;
   FaceList triangles(limits, where, "triangle");
