@@ -31,6 +31,14 @@ struct Cursor {
 // 0.81 ms; 4096, the old limit, kept it on one thread).
 constexpr std::size_t kParallelSubtree = 1024;
 
+// The SAH cost of a block leaf's two to kBlockTriangles triangles tested
+// together, relative to one node's box test or one primitive's test
+// (measured on the 1M-triangle terrain for blocks of four, and again for
+// blocks of eight: 1.0 to 2.5 within the noise, docs/performance.md). The
+// builder prices leaves of triangles with it; the collapse prices the
+// blocks it makes by their count (bvh_collapse.cpp).
+constexpr float kBlockTestCost = 1.5f;
+
 }  // namespace
 
 // Builds the binary tree depth-first (a node is appended, its first child

@@ -3,14 +3,10 @@
 #include <algorithm>
 #include <thread>
 
+#include "common/bvh_lanes.h"
+
 namespace glint {
 namespace {
-
-// What the collapse weighs, relative to one node's box test
-// (measured on the 1M-triangle terrain, docs/performance.md): one triangle
-// tested alone (a block's triangles: kBlockTestCost).
-constexpr float kNodeTestCost = 1.0f;
-constexpr float kTriangleTestCost = 1.0f;
 
 // Builds of fewer primitives fill their blocks on the collapse's thread.
 constexpr std::size_t kFillerThreadFrom = 4096;
@@ -18,98 +14,51 @@ constexpr std::size_t kFillerThreadFrom = 4096;
 }  // namespace
 
 // Makes the 8-wide node for binary node `index` and, recursively, those
-// below it; returns its index. Its children start as the binary node's two
-// (or the node itself when the whole tree is one leaf); while there are
-// fewer than kBvhWidth, the interior child with the largest surface area (the
-// one most rays enter) is replaced by its own two children. Then each
-// child becomes a leaf (see leafOf) or a node of its own.
-std::uint32_t BvhCollapse::collapse(std::uint32_t index) {
+// below it; returns its index. Its children are the binary nodes the cost
+// pass chose for its lanes (the node itself where the whole tree is one
+// leaf); each becomes a leaf, a block leaf or a node of its own.
+std::uint32_t BvhCollapse::collapse(std::uint32_t index, const BvhLanePlan& plan) {
   std::array<std::uint32_t, kBvhWidth> children{};
-  int n = 0;
-  if (binary_[index].count > 0) {
-    children[n++] = index;
-  } else {
-    children[n++] = index + 1;
-    children[n++] = binary_[index].offset;
-  }
-  while (n < kBvhWidth) {
-    int widest = -1;
-    float widestArea = -1.0f;
-    for (int i = 0; i < n; ++i) {
-      const BinaryNode& c = binary_[children[i]];
-      if (c.count > 0) continue;
-      const float area = c.bounds().surfaceArea();
-      if (area > widestArea) {
-        widest = i;
-        widestArea = area;
-      }
-    }
-    if (widest < 0) break;
-    const std::uint32_t opened = children[widest];
-    children[widest] = opened + 1;
-    children[n++] = binary_[opened].offset;
-  }
+  const int n = plan.lanesOf(index, children);
   const auto wideIndex = static_cast<std::uint32_t>(bvh_.nodes_.size());
   bvh_.nodes_.emplace_back();
   for (int lane = n; lane < kBvhWidth; ++lane) bvh_.nodes_[wideIndex].boxes.set(lane, Bounds3{});
   bvh_.nodes_[wideIndex].children = static_cast<std::uint8_t>(n);
   for (int lane = 0; lane < n; ++lane) {
-    const std::optional<Leaf> leaf = leafOf(children[lane]);
-    // The recursion appends nodes: index the vector afresh after it.
-    const std::uint32_t offset = leaf ? leaf->offset : collapse(children[lane]);
+    const std::uint32_t child = children[static_cast<std::size_t>(lane)];
+    const LaneUse use = plan.use(child);
+    std::uint32_t offset = 0;
+    std::uint16_t count = 0;
+    if (use == LaneUse::kNode) {
+      offset = collapse(child, plan);  // appends nodes: index the vector afresh after it
+    } else {
+      const BlockRange range = rangeOf(child);
+      offset = use == LaneUse::kBlock ? addBlock(range) : range.first;
+      count = static_cast<std::uint16_t>(range.count | (use == LaneUse::kBlock ? kBlockLeaf : 0u));
+    }
     BvhNode& node = bvh_.nodes_[wideIndex];
-    node.boxes.set(lane, binary_[children[lane]].bounds());
-    node.offset[lane] = offset;
-    node.count[lane] = static_cast<std::uint16_t>(leaf ? leaf->count | (leaf->block ? kBlockLeaf : 0u) : 0u);
+    node.boxes.set(lane, binary_[child].bounds());
+    node.offset[static_cast<std::size_t>(lane)] = offset;
+    node.count[static_cast<std::size_t>(lane)] = count;
   }
   return wideIndex;
 }
 
-// The leaf that binary node `index` becomes in the 8-wide tree, or nullopt
-// for a node. A binary leaf of two to kBlockTriangles triangles becomes a
-// block. A subtree of at most that many triangles becomes one block leaf
-// where that is cheaper, by the surface area heuristic, than a node over its
-// leaves.
-std::optional<BvhCollapse::Leaf> BvhCollapse::leafOf(std::uint32_t index) {
-  SmallSubtree small;
-  const bool fits = gather(index, small) && small.triangles;
-  const BinaryNode& node = binary_[index];
-  if (node.count > 0 && !(fits && node.count > 1)) return Leaf{node.offset, node.count, false};
-  if (!fits) return std::nullopt;
-  if (node.count == 0) {
-    const float area = node.bounds().surfaceArea();
-    if (area * kBlockTestCost > area * kNodeTestCost + small.leafCost) return std::nullopt;
-  }
-  return Leaf{addBlock(small.first, small.count), small.count, true};
+// The primitives of binary node `index`'s subtree: one range of primIds,
+// from its first leaf's first to its last leaf's last.
+BlockRange BvhCollapse::rangeOf(std::uint32_t index) const {
+  std::uint32_t first = index;
+  while (binary_[first].count == 0) ++first;
+  std::uint32_t last = index;
+  while (binary_[last].count == 0) last = binary_[last].offset;
+  const std::uint32_t begin = binary_[first].offset;
+  return {begin, binary_[last].offset + binary_[last].count - begin};
 }
 
-// Adds binary node `index`'s leaves to `small`; false once it would hold
-// more than kBlockTriangles primitives, or more than a leaf may, or lies
-// more than three levels deep (as a balanced subtree of eight leaves): a
-// larger subtree is told apart without walking it.
-bool BvhCollapse::gather(std::uint32_t index, SmallSubtree& small, int level) const {
-  const BinaryNode& node = binary_[index];
-  if (node.count == 0) {
-    return level < 3 && gather(index + 1, small, level + 1) && gather(node.offset, small, level + 1);
-  }
-  small.count += node.count;
-  if (small.count > std::min<std::size_t>(kBlockTriangles, leafCapacity_)) return false;
-  small.first = std::min(small.first, node.offset);
-  bool triangles = true;
-  for (std::uint32_t i = node.offset; i < node.offset + node.count; ++i) {
-    triangles = triangles && !bvh_.geometry_->isSphere(bvh_.primIds_[i]);
-  }
-  small.triangles = small.triangles && triangles;
-  const float test = triangles && node.count > 1 ? kBlockTestCost
-                                                 : kTriangleTestCost * static_cast<float>(node.count);
-  small.leafCost += node.bounds().surfaceArea() * test;
-  return true;
-}
-
-// A block leaf of primIds[first, first + count); the block filler writes it.
-std::uint32_t BvhCollapse::addBlock(std::uint32_t first, std::uint32_t count) {
+// A block leaf of primIds[range]; the block filler writes it.
+std::uint32_t BvhCollapse::addBlock(BlockRange range) {
   const std::size_t index = blocksMade_.load(std::memory_order_relaxed);
-  blockRanges_[index] = {first, count};
+  blockRanges_[index] = range;
   blocksMade_.store(index + 1, std::memory_order_release);
   return static_cast<std::uint32_t>(index);
 }
@@ -122,8 +71,16 @@ void BvhCollapse::run(std::size_t primCount) {
   blockRanges_ = std::make_unique_for_overwrite<BlockRange[]>(capacity);
   // Untouched pages cost nothing: only the blocks made are ever written.
   bvh_.blocks_ = std::make_unique_for_overwrite<TriangleBlock[]>(capacity);
+  const BvhLanePlan plan(binary_, 2 * primCount,
+                         std::min<std::size_t>(kBlockTriangles, leafCapacity_),
+                         [this](const BinaryNode& leaf) {
+                           for (std::uint32_t i = leaf.offset; i < leaf.offset + leaf.count; ++i) {
+                             if (bvh_.geometry_->isSphere(bvh_.primIds_[i])) return false;
+                           }
+                           return true;
+                         });
   if (!twoThreads_ || primCount < kFillerThreadFrom) {
-    collapse(0);
+    collapse(0, plan);
     fillBlocks(0, blocksMade_.load(std::memory_order_relaxed));
   } else {
     std::thread filler([this] {
@@ -137,7 +94,7 @@ void BvhCollapse::run(std::size_t primCount) {
       }
     });
     try {
-      collapse(0);
+      collapse(0, plan);
     } catch (...) {  // out of memory: let the filler finish before the error goes on
       collapsed_.store(true, std::memory_order_release);
       filler.join();

@@ -2,14 +2,14 @@
 
 // The builder's second step (bvh_build.cpp makes the binary tree, this makes
 // the tree traversal walks): the binary tree collapsed into 8-wide nodes,
-// small groups of triangles into block leaves.
+// small groups of triangles into block leaves, as the cost pass
+// (bvh_lanes.h) places them.
 
 #include <array>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
-#include <optional>
 #include <type_traits>
 
 #include <glm/vec3.hpp>
@@ -18,6 +18,8 @@
 #include "common/bvh.h"
 
 namespace glint {
+
+class BvhLanePlan;
 
 // A node of the binary tree the splits make, before it is collapsed into the
 // 8-wide nodes that traversal walks. Trivial, so that the builder's array of
@@ -33,13 +35,6 @@ struct BinaryNode {
   Bounds3 bounds() const { return {min, max}; }
 };
 static_assert(std::is_trivially_default_constructible_v<BinaryNode> && sizeof(BinaryNode) == 32);
-
-// The SAH cost of a block leaf's two to kBlockTriangles triangles tested
-// together, relative to one node's box test or one primitive's test
-// (measured on the 1M-triangle terrain for blocks of four, and again for
-// blocks of eight: 1.0 to 2.5 within the noise, docs/performance.md). The
-// builder prices leaves of triangles with it, the collapse its blocks.
-constexpr float kBlockTestCost = 1.5f;
 
 // A block leaf's primitives while the collapse has chosen it and the filler
 // not yet written it: a range of Bvh::primIds.
@@ -62,25 +57,9 @@ class BvhCollapse {
   void run(std::size_t primCount);
 
  private:
-  // What an 8-wide node's lane holds when it is a leaf.
-  struct Leaf {
-    std::uint32_t offset;  // in primIds, or a block's index
-    std::uint32_t count;
-    bool block;
-  };
-  // The leaves of a subtree of at most kBlockTriangles primitives
-  // (contiguous in primIds), and the SAH cost of testing them one leaf at a
-  // time.
-  struct SmallSubtree {
-    std::uint32_t first = UINT32_MAX;
-    std::uint32_t count = 0;
-    bool triangles = true;  // no sphere among them
-    float leafCost = 0.0f;  // sum over the leaves of area x cost of its test
-  };
-  std::uint32_t collapse(std::uint32_t index);
-  std::optional<Leaf> leafOf(std::uint32_t index);
-  bool gather(std::uint32_t index, SmallSubtree& small, int level = 0) const;
-  std::uint32_t addBlock(std::uint32_t first, std::uint32_t count);
+  std::uint32_t collapse(std::uint32_t index, const BvhLanePlan& plan);
+  BlockRange rangeOf(std::uint32_t index) const;
+  std::uint32_t addBlock(BlockRange range);
   void fillBlocks(std::size_t begin, std::size_t end);
 
   Bvh& bvh_;

@@ -7,6 +7,7 @@
 
 #include "common/bvh.h"
 #include "common/bvh_collapse.h"
+#include "common/bvh_lanes.h"
 #include "common/bvh_split.h"
 #include "common/error.h"
 #include "common/geometry.h"
@@ -29,10 +30,11 @@ const std::size_t SceneBudget::kBytesPerTriangle = sizeof(Triangle) + sizeof(glm
 const std::size_t SceneBudget::kBytesPerSphere = sizeof(Sphere);
 // The BVH: at most one 8-wide node, one index and half a triangle block (a
 // block holds two triangles or more) per primitive once built, and while it
-// is built a BuildPrimitive, up to two binary nodes and half a block's range.
-const std::size_t SceneBudget::kBvhBytesPerPrimitive = sizeof(BvhNode) + sizeof(std::uint32_t) +
-                                                       sizeof(TriangleBlock) / 2 + sizeof(BuildPrimitive) +
-                                                       2 * sizeof(BinaryNode) + sizeof(BlockRange) / 2;
+// is built a BuildPrimitive, up to two binary nodes and the collapse's
+// choice for each, and half a block's range.
+const std::size_t SceneBudget::kBvhBytesPerPrimitive =
+    sizeof(BvhNode) + sizeof(std::uint32_t) + sizeof(TriangleBlock) / 2 + sizeof(BuildPrimitive) +
+    2 * (sizeof(BinaryNode) + sizeof(BvhLanePlan::Choice)) + sizeof(BlockRange) / 2;
 
 bool MemoryGauge::take(std::size_t bytes) {
   std::size_t used = used_.load();
