@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <random>
 #include <string>
 #include <vector>
@@ -111,24 +112,48 @@ void makeRays(const Bvh& bvh, const PeerCase& c, std::vector<Ray>& primary, std:
   }
 }
 
-struct Traced {
+// Glint's and Embree's median times of the same work, and the median over
+// the runs of Glint's time divided by Embree's in that run.
+struct Paired {
   double glintMs = 0.0;
   double embreeMs = 0.0;
+  double glintOverEmbree = 0.0;
+};
+
+// Runs glint and embree alternately, `runs` times each. The ratio of each
+// pair is taken first: this host drifts between fast and slow spells of
+// seconds, which move two medians measured one after the other apart
+// (Embree's own rate moved by up to 18 % between sections) but a pair
+// measured side by side far less.
+Paired pairedMs(int runs, const std::function<void()>& glint, const std::function<void()>& embree) {
+  std::vector<double> glintMs, embreeMs, ratios;
+  for (int i = 0; i < runs; ++i) {
+    glintMs.push_back(medianMs(1, glint));
+    embreeMs.push_back(medianMs(1, embree));
+    ratios.push_back(glintMs.back() / embreeMs.back());
+  }
+  return {median(glintMs), median(embreeMs), median(ratios)};
+}
+
+struct Traced {
+  Paired ms;
   double agree = 0.0;  // share of rays where both hit at t within 1e-4 relative, or both miss
 };
 
 Traced trace(const Bvh& bvh, RTCScene scene, const std::vector<Ray>& rays, int runs) {
   Traced r;
   std::vector<float> glintT(rays.size()), embreeT(rays.size());
-  r.glintMs = medianMs(runs, [&] {
-    for (std::size_t i = 0; i < rays.size(); ++i) {
-      const auto hit = bvh.intersect(rays[i], 1e30f);
-      glintT[i] = hit ? hit->t : -1.0f;
-    }
-  });
-  r.embreeMs = medianMs(runs, [&] {
-    for (std::size_t i = 0; i < rays.size(); ++i) embreeT[i] = embreeHit(scene, rays[i]);
-  });
+  r.ms = pairedMs(
+      runs,
+      [&] {
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+          const auto hit = bvh.intersect(rays[i], 1e30f);
+          glintT[i] = hit ? hit->t : -1.0f;
+        }
+      },
+      [&] {
+        for (std::size_t i = 0; i < rays.size(); ++i) embreeT[i] = embreeHit(scene, rays[i]);
+      });
   std::size_t same = 0;
   for (std::size_t i = 0; i < rays.size(); ++i) {
     same += (glintT[i] < 0.0f) == (embreeT[i] < 0.0f) && std::abs(glintT[i] - embreeT[i]) <= 1e-4f * std::abs(glintT[i])
@@ -142,26 +167,27 @@ Traced trace(const Bvh& bvh, RTCScene scene, const std::vector<Ray>& rays, int r
 // Builds both trees of one case and traces both ray sets: the case's rows.
 void compare(RTCDevice device, const PeerCase& c, int runs) {
   RTCScene scene = nullptr;
-  const double embreeBuildMs = medianMs(runs, [&] {
-    if (scene) rtcReleaseScene(scene);
-    scene = embreeScene(device, c.geometry);
-    rtcCommitScene(scene);
-  });
   Bvh bvh;
-  const double glintBuildMs = medianMs(runs, [&] { bvh = Bvh::build(c.geometry, BvhSettings{}); });
+  const Paired build = pairedMs(
+      runs, [&] { bvh = Bvh::build(c.geometry, BvhSettings{}); },
+      [&] {
+        if (scene) rtcReleaseScene(scene);
+        scene = embreeScene(device, c.geometry);
+        rtcCommitScene(scene);
+      });
   std::vector<Ray> primary, incoherent;
   makeRays(bvh, c, primary, incoherent);
   const Traced p = trace(bvh, scene, primary, runs), s = trace(bvh, scene, incoherent, runs);
   const auto mrays = [](std::size_t n, double ms) { return static_cast<double>(n) / ms / 1e3; };
   const char* name = c.name.c_str();
   std::printf("| %s | build ms (SAH, every thread; Embree's includes copying the mesh) | %.3g | %.3g | %.2fx time | |\n",
-              name, glintBuildMs, embreeBuildMs, glintBuildMs / embreeBuildMs);
+              name, build.glintMs, build.embreeMs, build.glintOverEmbree);
   std::printf("| %s | primary rays, Mrays/s, 1 thread (%zu) | %.2f | %.2f | %.2fx speed | %.4f |\n", name,
-              primary.size(), mrays(primary.size(), p.glintMs), mrays(primary.size(), p.embreeMs),
-              p.embreeMs / p.glintMs, p.agree);
+              primary.size(), mrays(primary.size(), p.ms.glintMs), mrays(primary.size(), p.ms.embreeMs),
+              1.0 / p.ms.glintOverEmbree, p.agree);
   std::printf("| %s | incoherent rays, Mrays/s, 1 thread (%zu) | %.2f | %.2f | %.2fx speed | %.4f |\n", name,
-              incoherent.size(), mrays(incoherent.size(), s.glintMs), mrays(incoherent.size(), s.embreeMs),
-              s.embreeMs / s.glintMs, s.agree);
+              incoherent.size(), mrays(incoherent.size(), s.ms.glintMs), mrays(incoherent.size(), s.ms.embreeMs),
+              1.0 / s.ms.glintOverEmbree, s.agree);
   rtcReleaseScene(scene);
 }
 
@@ -183,8 +209,9 @@ void embreeSection(const std::string& scenes, bool quick, int runs) {
   const Scene bunny = loadSceneFile(std::filesystem::path(scenes) / "bunny.json");
   const Scene room = loadSceneFile(std::filesystem::path(scenes) / "room.json");
   const PeerCase cases[] = {terrainCase, sceneCase("bunny", bunny, quick), sceneCase("room", room, quick)};
-  std::printf("\n## Glint beside Embree %d.%d.%d: the same rays, median of %d\n\n", RTC_VERSION_MAJOR,
-              RTC_VERSION_MINOR, RTC_VERSION_PATCH, runs);
+  std::printf("\n## Glint beside Embree %d.%d.%d: the same rays, median of %d, the two run alternately (the ratio: "
+              "the median of each pair's)\n\n",
+              RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH, runs);
   std::printf("| scene | measure | Glint | Embree | Glint / Embree | rays agreeing |\n|---|---|---:|---:|---:|---:|\n");
   RTCDevice device = rtcNewDevice(nullptr);
   for (const PeerCase& c : cases) compare(device, c, runs);
