@@ -1,6 +1,7 @@
 #include "common/bvh_collapse.h"
 
 #include <algorithm>
+#include <array>
 #include <thread>
 
 #include "common/bvh_lanes.h"

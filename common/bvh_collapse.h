@@ -5,7 +5,6 @@
 // small groups of triangles into block leaves, as the cost pass
 // (bvh_lanes.h) places them.
 
-#include <array>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>

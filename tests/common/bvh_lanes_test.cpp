@@ -1,7 +1,6 @@
 #include "common/bvh_lanes.h"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <map>
 #include <random>
