@@ -59,7 +59,14 @@ class Renderer {
     float weightSum = 0.0f;
     int finite = 0;
   };
-  void addSample(int x, int y, int sample, PixelSamples& p, RayStats& stats) const;
+  // A camera ray and the filter's weight for its radiance.
+  struct CameraSample {
+    Ray ray;
+    float weight;
+  };
+  CameraSample cameraSample(int x, int y, const SampleLayout::Pixel& key, int sample) const;
+  // Traces samples first to end - 1 of pixel (x, y) into p.
+  void addSamples(int x, int y, int first, int end, PixelSamples& p, RayStats& stats) const;
   glm::vec3 resolve(const PixelSamples& p) const;
   void renderAdaptive(const TileRect& rect, std::span<const std::uint8_t> mask, std::vector<glm::vec3>& out,
                       RayStats& stats) const;

@@ -24,13 +24,17 @@ float lerpBelow(float lo, float hi, float u) {
   return x < hi ? x : std::nextafter(hi, lo);
 }
 
-// hashUniform in two steps: the hash of (seed, pixel, sample), which a
-// sample's dimensions share, then each dimension's value from it.
-std::uint64_t sampleHash(std::uint32_t seed, int px, int py, int sample) {
-  std::uint64_t h = mix(seed + 0x9e3779b97f4a7c15ULL);
-  h = mix(h ^ static_cast<std::uint32_t>(px));
-  h = mix(h ^ (static_cast<std::uint64_t>(static_cast<std::uint32_t>(py)) << 32));
-  return mix(h ^ static_cast<std::uint32_t>(sample));
+// hashUniform in steps: the seed's, the pixel's, the sample's (which a
+// sample's dimensions share), then each dimension's value from it.
+std::uint64_t seedHash(std::uint32_t seed) { return mix(seed + 0x9e3779b97f4a7c15ULL); }
+
+std::uint64_t pixelHash(std::uint64_t seedHash, int px, int py) {
+  const std::uint64_t h = mix(seedHash ^ static_cast<std::uint32_t>(px));
+  return mix(h ^ (static_cast<std::uint64_t>(static_cast<std::uint32_t>(py)) << 32));
+}
+
+std::uint64_t sampleHash(std::uint64_t pixelHash, int sample) {
+  return mix(pixelHash ^ static_cast<std::uint32_t>(sample));
 }
 
 float dimensionUniform(std::uint64_t hash, int dimension) {
@@ -42,7 +46,7 @@ float dimensionUniform(std::uint64_t hash, int dimension) {
 }  // namespace
 
 float hashUniform(std::uint32_t seed, int px, int py, int sample, int dimension) {
-  return dimensionUniform(sampleHash(seed, px, py, sample), dimension);
+  return dimensionUniform(sampleHash(pixelHash(seedHash(seed), px, py), sample), dimension);
 }
 
 bool validSampleCount(SamplePattern pattern, int samples) {
@@ -73,7 +77,7 @@ Stratum jitteredStratum(int samples, int sample) {
 }
 
 SampleLayout::SampleLayout(const SamplingSettings& sampling)
-    : seed_(sampling.seed), jittered_(sampling.pattern != SamplePattern::kRegular) {
+    : seedHash_(seedHash(sampling.seed)), jittered_(sampling.pattern != SamplePattern::kRegular) {
   const int n = sampling.samples;
   if (jittered_) {
     for (int sample = 0; sample < n; ++sample) strata_.push_back(jitteredStratum(n, sample));
@@ -90,11 +94,15 @@ SampleLayout::SampleLayout(const SamplingSettings& sampling)
   }
 }
 
-glm::vec2 SampleLayout::position(int px, int py, int sample) const {
+SampleLayout::Pixel SampleLayout::pixel(int px, int py) const {
+  return {jittered_ ? pixelHash(seedHash_, px, py) : 0};
+}
+
+glm::vec2 SampleLayout::position(const Pixel& pixel, int sample) const {
   const auto i = static_cast<std::size_t>(sample);
   if (!jittered_) return points_[i];
   const Stratum& s = strata_[i];
-  const std::uint64_t h = sampleHash(seed_, px, py, sample);
+  const std::uint64_t h = sampleHash(pixel.hash, sample);
   return {std::min(lerpBelow(s.x0, s.x1, dimensionUniform(h, 0)), kOneMinusEpsilon),
           std::min(lerpBelow(s.y0, s.y1, dimensionUniform(h, 1)), kOneMinusEpsilon)};
 }

@@ -32,11 +32,19 @@ Stratum jitteredStratum(int samples, int sample);
 // The points and strata, the same for every pixel, are computed once.
 class SampleLayout {
  public:
+  // What a pixel's samples share of their hash (hashUniform's seed and
+  // pixel steps), computed once per pixel instead of once per sample.
+  struct Pixel {
+    std::uint64_t hash = 0;
+  };
+
   explicit SampleLayout(const SamplingSettings& sampling);
-  glm::vec2 position(int px, int py, int sample) const;
+  Pixel pixel(int px, int py) const;
+  glm::vec2 position(const Pixel& pixel, int sample) const;
+  glm::vec2 position(int px, int py, int sample) const { return position(pixel(px, py), sample); }
 
  private:
-  std::uint32_t seed_;
+  std::uint64_t seedHash_;  // the seed's step of the hash, the same for every pixel
   bool jittered_;
   std::vector<glm::vec2> points_;  // regular: each sample's point
   std::vector<Stratum> strata_;    // jittered: each sample's stratum
