@@ -63,7 +63,10 @@ int checkerIndex(const glm::vec2& uv, float scale) {
   const double v = std::floor(double(uv.y) * scale);
   const double sum = u + v;
   if (!std::isfinite(sum)) return 0;
-  return std::fmod(std::abs(sum), 2.0) == 1.0 ? 1 : 0;
+  // sum mod 2 without fmod's library call: below 2^53 the sum is an exact
+  // integer, and from 2^53 on every double is even.
+  const double magnitude = std::abs(sum);
+  return magnitude < 0x1p53 && (static_cast<std::int64_t>(magnitude) & 1) != 0 ? 1 : 0;
 }
 
 glm::vec3 Texture::evaluate(const glm::vec2& uv) const {
