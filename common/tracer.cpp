@@ -22,13 +22,12 @@ glm::vec3 Tracer::lightIntensity(int light, float distance) const {
   return attenuate(l.color, l.attenuation, distance);
 }
 
-glm::vec3 Tracer::shade(const SurfaceHit& s, const glm::vec3& toViewer, const Material& m,
-                        const MaterialEffects& e, RayStats& stats) const {
+glm::vec3 Tracer::shade(const SurfaceHit& s, const glm::vec3& outside, const glm::vec3& toViewer,
+                        const Material& m, const MaterialEffects& e, RayStats& stats) const {
   const glm::vec3 c =
       e.textured && m.texture >= 0 ? scene_.textures[m.texture].evaluate(s.uv) : m.color;
   glm::vec3 result = phongAmbient(c, m.ambient);
   if (!e.direct) return result;
-  const glm::vec3 origin = offsetRayOrigin(s.p, s.error, s.ng);
   for (int i = 0; i < static_cast<int>(scene_.lights.size()); ++i) {
     if (!plan_.lights[i]) continue;
     const glm::vec3 toLight = scene_.lights[i].position - s.p;
@@ -39,9 +38,9 @@ glm::vec3 Tracer::shade(const SurfaceHit& s, const glm::vec3& toViewer, const Ma
     if (glm::dot(l, s.ng) <= 0.0f || glm::dot(l, s.ns) <= 0.0f) continue;
     if (plan_.shadows) {
       ++stats.shadow;
-      const glm::vec3 fromOrigin = scene_.lights[i].position - origin;
+      const glm::vec3 fromOrigin = scene_.lights[i].position - outside;
       const float shadowDistance = glm::length(fromOrigin);
-      if (bvh_.occluded(Ray(origin, fromOrigin / shadowDistance), shadowDistance)) {
+      if (bvh_.occluded(Ray(outside, fromOrigin / shadowDistance), shadowDistance)) {
         ++stats.shadowBlocked;
         continue;
       }
@@ -61,7 +60,8 @@ glm::vec3 Tracer::trace(const Ray& ray, int depth, float weight, bool inside,
   const Material& m = scene_.materials[material];
   const MaterialEffects& e = plan_.materials[material];
   const SurfaceHit s = scene_.geometry.surface(ray, *hit, e.textured);
-  glm::vec3 color = shade(s, -ray.d, m, e, stats);
+  const glm::vec3 outside = offsetRayOrigin(s.p, s.error, s.ng);
+  glm::vec3 color = shade(s, outside, -ray.d, m, e, stats);
   if (depth >= tracing_.maxDepth || !(e.reflects || e.refracts)) return color;
 
   float kr = m.reflectivity;
@@ -84,7 +84,7 @@ glm::vec3 Tracer::trace(const Ray& ray, int depth, float weight, bool inside,
     ++stats.reflection;
     glm::vec3 dir = reflect(ray.d, s.ns);
     if (glm::dot(dir, s.ng) <= 0.0f) dir = reflect(ray.d, s.ng);
-    color += kr * trace(Ray(offsetRayOrigin(s.p, s.error, s.ng), dir), depth + 1, weight * kr, inside, stats);
+    color += kr * trace(Ray(outside, dir), depth + 1, weight * kr, inside, stats);
   }
   if (e.refracts && kt > 0.0f && weight * kt >= minWeight) {
     ++stats.refraction;

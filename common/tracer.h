@@ -30,7 +30,9 @@ class Tracer {
 
  private:
   glm::vec3 trace(const Ray& ray, int depth, float weight, bool inside, RayStats& stats) const;
-  glm::vec3 shade(const SurfaceHit& s, const glm::vec3& toViewer, const Material& m,
+  // `outside` is the origin of rays leaving s on the side of its geometric
+  // normal (shadow and reflected rays).
+  glm::vec3 shade(const SurfaceHit& s, const glm::vec3& outside, const glm::vec3& toViewer, const Material& m,
                   const MaterialEffects& e, RayStats& stats) const;
   glm::vec3 lightIntensity(int light, float distance) const;
 
