@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/power.h"
 #include "common/renderer.h"
 
 namespace glint {
@@ -16,7 +17,7 @@ std::uint8_t Encoder::byte(float linear) const {
 }
 
 float srgbEncode(float linear) {
-  return linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+  return linear <= 0.0031308f ? 12.92f * linear : 1.055f * power(linear, 1.0f / 2.4f) - 0.055f;
 }
 
 }  // namespace glint

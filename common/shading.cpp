@@ -1,8 +1,8 @@
 #include "common/shading.h"
 
-#include <cmath>
-
 #include <glm/geometric.hpp>
+
+#include "common/power.h"
 
 namespace glint {
 
@@ -22,7 +22,7 @@ glm::vec3 phongSpecular(const glm::vec3& lightI, float rS, float h, const glm::v
   const glm::vec3 r = 2.0f * nl * n - l;
   const float vr = glm::dot(v, r);
   if (vr <= 0.0f) return glm::vec3(0.0f);
-  return lightI * (rS * std::pow(vr, h));
+  return lightI * (rS * power(vr, h));
 }
 
 glm::vec3 attenuate(const glm::vec3& color, const glm::vec3& attenuation, float d) {

@@ -14,6 +14,13 @@
 namespace glint {
 namespace {
 
+// x^(1/2.4) is power()'s nearest float: glibc's powf (either version)
+// rounds this one an ulp up (0x1.72aa7p-4).
+TEST(Encoding, SrgbTakesTheNearestPower) {
+  volatile float x = 0x1.9a95f6p-9f;  // volatile: not worked out by the compiler
+  EXPECT_EQ(srgbEncode(x), 1.055f * 0x1.72aa6ep-4f - 0.055f);
+}
+
 TEST(Encoding, SrgbTransferFunctionMatchesTheStandard) {
   // IEC 61966-2-1: 12.92 x up to 0.0031308, 1.055 x^(1/2.4) - 0.055 above.
   EXPECT_EQ(srgbEncode(0.0f), 0.0f);

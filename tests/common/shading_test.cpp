@@ -28,6 +28,17 @@ TEST(Phong, DiffuseIsLambert) {
   EXPECT_EQ(phongDiffuse(glm::vec3(1.0f), kC, 0.8f, kN, -kL), glm::vec3(0.0f));  // light behind
 }
 
+// (V . R)^h is power()'s, the same bits on every machine: with N = L = z,
+// R = z and V . R is V's z exactly. These operands are ones where glibc's
+// FMA powf (chosen at run time on CPUs with FMA) rounds one ulp off.
+TEST(Phong, SpecularPowerIsTheNearestFloatOnEveryMachine) {
+  const glm::vec3 z(0.0f, 0.0f, 1.0f);
+  volatile float vr = 0x1.b5d6ep-1f;  // volatile: not worked out by the compiler
+  volatile float h = 0x1.5afb9cp+7f;
+  const glm::vec3 s = phongSpecular(glm::vec3(1.0f), 1.0f, h, z, z, glm::vec3(0.0f, 0.0f, vr));
+  EXPECT_EQ(s.x, 0x1.c8e114p-40f);
+}
+
 TEST(Phong, SpecularUsesReflectedLightDirection) {
   // R = 2 (N.L) N - L = (-1/sqrt2, 0, 1/sqrt2); with V = N, V.R = 1/sqrt2; h = 2 -> 0.5.
   const glm::vec3 s = phongSpecular(glm::vec3(1.0f, 2.0f, 4.0f), 0.5f, 2.0f, kN, kL, kN);

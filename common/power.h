@@ -1,0 +1,21 @@
+#pragma once
+
+namespace glint {
+
+// x^y as std::pow(float, float) gives it, computed from IEEE additions,
+// multiplications and divisions alone (in double, with tables made the same
+// way), so that every machine gives the same bits. glibc's powf picks a
+// version with fused multiply-adds at run time on CPUs that have FMA, and
+// the two versions disagree in about one call of 15 million (its FMA
+// version, for one, rounds pow(0x1.b5d6ep-1, 0x1.5afb9cp+7) one ulp off the
+// nearest float): a specular term or an sRGB byte, and so an image, would
+// then depend on the machine (docs/numerics.md).
+//
+// For finite x > 0 and finite y: within 2^-40 of x^y relative before the
+// final rounding to float, so the nearest float but where x^y lies closer
+// than that to the midpoint of two floats. Elsewhere (zero, negative,
+// infinite or NaN operands) std::pow's special values, which need no
+// arithmetic.
+float power(float x, float y);
+
+}  // namespace glint
