@@ -77,10 +77,10 @@ double expSmall(double g) {
 double lnSeries(double c) {
   const double s = (c - 1.0) / (c + 1.0);
   double sum = 0.0;
-  double power = s;
+  double odd = s;  // s^k
   for (int k = 1; k < 80; k += 2) {
-    sum += power / k;
-    power *= s * s;
+    sum += odd / k;
+    odd *= s * s;
   }
   return 2.0 * sum;
 }

@@ -2,9 +2,9 @@
 
 namespace glint {
 
-// x^y as std::pow(float, float) gives it, computed from IEEE additions,
-// multiplications and divisions alone (in double, with tables made the same
-// way), so that every machine gives the same bits. glibc's powf picks a
+// x^y for floats, computed from IEEE additions, multiplications and
+// divisions alone (in double, with tables made the same way), so that every
+// machine gives the same bits. glibc's powf picks a
 // version with fused multiply-adds at run time on CPUs that have FMA, and
 // the two versions disagree in about one call of 15 million (its FMA
 // version, for one, rounds pow(0x1.b5d6ep-1, 0x1.5afb9cp+7) one ulp off the
