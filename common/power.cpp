@@ -136,7 +136,10 @@ float power(float x, float y) {
   if (e >= 129.0) return kInfinity;  // beyond the largest float
   if (e <= -160.0) return 0.0f;      // below half the least subnormal
   // 2^e = 2^n 2^(j/64) 2^f, with k = 64 n + j the integer nearest to 64 e.
-  const double k = std::nearbyint(e * kExpSteps);
+  // Rounded by adding and taking away 1.5 * 2^52, which leaves no bits
+  // below the units: std::nearbyint's answer without its library call.
+  constexpr double kRound = 0x1.8p52;
+  const double k = (e * kExpSteps + kRound) - kRound;
   const double f = e - k / kExpSteps;
   const auto ki = static_cast<std::int64_t>(k);
   const std::int64_t j = ki & (kExpSteps - 1);
