@@ -43,14 +43,11 @@ TEST(Power, IsTheNearestFloatOverTheRenderersRanges) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   std::uniform_real_distribution<float> shininess(0.0f, 1000.0f);
-  int tested = 0;
   for (int i = 0; i < 300000; ++i) {
     const float x = std::max(unit(rng), 1e-6f);
     const float y = i % 4 == 0 ? 1.0f / 2.4f : shininess(rng);
     ASSERT_EQ(floatToBits(power(x, y)), floatToBits(nearest(x, y))) << std::hexfloat << x << " " << y;
-    ++tested;
   }
-  EXPECT_EQ(tested, 300000);
 }
 
 // Far from those ranges: subnormal and huge bases, results that underflow
