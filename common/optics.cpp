@@ -13,6 +13,11 @@ glm::vec3 reflect(const glm::vec3& d, const glm::vec3& n) {
   return glm::normalize(d - 2.0f * glm::dot(d, n) * n);
 }
 
+glm::vec3 mirrorDirection(const glm::vec3& d, const glm::vec3& ns, const glm::vec3& ng) {
+  const glm::vec3 r = reflect(d, ns);
+  return glm::dot(r, ng) <= 0.0f ? reflect(d, ng) : r;
+}
+
 std::optional<glm::vec3> refract(const glm::vec3& d, const glm::vec3& n, float eta) {
   // In double: near the critical angle cos^2 T = 1 - eta^2 (1 - cos^2 I)
   // cancels almost completely, and float would lose most of its digits.

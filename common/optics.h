@@ -9,6 +9,12 @@ namespace glint {
 // Mirror direction of unit d about unit n.
 glm::vec3 reflect(const glm::vec3& d, const glm::vec3& n);
 
+// A mirror bounce of unit d off a surface with unit shading normal ns and
+// unit geometric normal ng (both facing d's origin): d reflected about ns,
+// or about ng where that would leave below the surface (an interpolated
+// normal tilted away from the geometry).
+glm::vec3 mirrorDirection(const glm::vec3& d, const glm::vec3& ns, const glm::vec3& ng);
+
 // Snell's law for unit d arriving at a surface with unit normal n facing it
 // (dot(d, n) < 0) and eta = n1 / n2. Returns the unit refracted direction, or
 // nothing at total internal reflection.

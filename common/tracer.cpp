@@ -82,9 +82,7 @@ glm::vec3 Tracer::trace(const Ray& ray, int depth, float weight, bool inside,
   const float minWeight = tracing_.minWeight;
   if (e.reflects && kr > 0.0f && weight * kr >= minWeight) {
     ++stats.reflection;
-    glm::vec3 dir = reflect(ray.d, s.ns);
-    if (glm::dot(dir, s.ng) <= 0.0f) dir = reflect(ray.d, s.ng);
-    color += kr * trace(Ray(outside, dir), depth + 1, weight * kr, inside, stats);
+    color += kr * trace(Ray(outside, mirrorDirection(ray.d, s.ns, s.ng)), depth + 1, weight * kr, inside, stats);
   }
   if (e.refracts && kt > 0.0f && weight * kt >= minWeight) {
     ++stats.refraction;

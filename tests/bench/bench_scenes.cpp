@@ -38,6 +38,26 @@ Geometry terrain(int gridWidth, int gridDepth) {
   return g;
 }
 
+MeshInput rippledSphere(int n) {
+  MeshInput mesh;
+  for (int i = 0; i <= n; ++i) {
+    const double theta = M_PI * i / n;
+    for (int j = 0; j < n; ++j) {
+      const double phi = 2 * M_PI * j / n, r = 1 + 0.05 * std::sin(7 * theta) * std::cos(9 * phi);
+      mesh.positions.emplace_back(r * std::sin(theta) * std::cos(phi), r * std::cos(theta),
+                                  r * std::sin(theta) * std::sin(phi));
+    }
+  }
+  const auto row = static_cast<std::uint32_t>(n);
+  for (std::uint32_t i = 0; i < row; ++i) {
+    for (std::uint32_t j = 0; j < row; ++j) {
+      const std::uint32_t a = i * row + j, b = i * row + (j + 1) % row, c = a + row, d = b + row;
+      mesh.indices.insert(mesh.indices.end(), {a, c, b, b, c, d});
+    }
+  }
+  return mesh;
+}
+
 std::vector<Ray> terrainRays(int count, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> x(-50.0f, 50.0f), z(-25.0f, 25.0f), up(10.0f, 40.0f);

@@ -13,6 +13,11 @@ namespace glint::bench {
 // QSplit wastes levels on the thin axis.
 Geometry terrain(int gridWidth, int gridDepth);
 
+// A closed sphere of radius about 1 around the origin, n x n quads
+// (2 n^2 triangles), its radius rippled by 5 %: issue 14's "displaced
+// sphere" (n = 700: 980,000 triangles).
+MeshInput rippledSphere(int n);
+
 // count rays from 10 to 40 units above the terrain down to random points on
 // it, at most 10 units aside (like primary rays of a view from above).
 std::vector<Ray> terrainRays(int count, unsigned seed);

@@ -1,6 +1,5 @@
 #include "tests/bench/mesh_file_section.h"
 
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -15,30 +14,25 @@
 #include "common/file_source.h"
 #include "common/obj_load.h"
 #include "common/timing.h"
+#include "tests/bench/bench_scenes.h"
 
 namespace glint::bench {
 namespace {
 
 namespace fs = std::filesystem;
 
-// A sphere of n x n quads (2 n^2 triangles), its radius rippled.
+// The bench's rippled sphere as an OBJ file (one-based indices).
 void writeSphere(const fs::path& path, int n) {
+  const MeshInput sphere = rippledSphere(n);
   std::ofstream out(path);
   char line[96];
-  for (int i = 0; i <= n; ++i) {
-    const double theta = M_PI * i / n;
-    for (int j = 0; j < n; ++j) {
-      const double phi = 2 * M_PI * j / n, r = 1 + 0.05 * std::sin(7 * theta) * std::cos(9 * phi);
-      std::snprintf(line, sizeof line, "v %.6f %.6f %.6f\n", r * std::sin(theta) * std::cos(phi), r * std::cos(theta),
-                    r * std::sin(theta) * std::sin(phi));
-      out << line;
-    }
+  for (const glm::vec3& p : sphere.positions) {
+    std::snprintf(line, sizeof line, "v %.6f %.6f %.6f\n", p.x, p.y, p.z);
+    out << line;
   }
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) {
-      const int a = i * n + j + 1, b = i * n + (j + 1) % n + 1, c = a + n, d = b + n;
-      out << "f " << a << ' ' << c << ' ' << b << "\nf " << b << ' ' << c << ' ' << d << '\n';
-    }
+  for (std::size_t i = 0; i < sphere.indices.size(); i += 3) {
+    out << "f " << sphere.indices[i] + 1 << ' ' << sphere.indices[i + 1] + 1 << ' ' << sphere.indices[i + 2] + 1
+        << '\n';
   }
 }
 

@@ -15,6 +15,19 @@ TEST(Optics, ReflectMirrorsAboutTheNormal) {
   EXPECT_NEAR(r.y, std::sqrt(0.5f), 1e-6f);
 }
 
+// A shading normal tilted so far that its mirror direction would leave
+// below the geometric surface: the bounce is about the geometric normal.
+TEST(Optics, MirrorDirectionFallsBackToTheGeometricNormalBelowTheSurface) {
+  const glm::vec3 d = glm::normalize(glm::vec3(1, -0.2f, 0));
+  const glm::vec3 ng(0, 1, 0);
+  const glm::vec3 mild = glm::normalize(glm::vec3(-0.1f, 1, 0));
+  EXPECT_EQ(mirrorDirection(d, mild, ng), reflect(d, mild));
+  EXPECT_GT(glm::dot(reflect(d, mild), ng), 0.0f);
+  const glm::vec3 steep = glm::normalize(glm::vec3(1, 1, 0));
+  ASSERT_LE(glm::dot(reflect(d, steep), ng), 0.0f);
+  EXPECT_EQ(mirrorDirection(d, steep, ng), reflect(d, ng));
+}
+
 // Snell's law over a sweep of angles, both ways through the surface.
 TEST(Optics, RefractionFollowsSnellAndFailsExactlyAtTotalInternalReflection) {
   const glm::vec3 n(0, 1, 0);
