@@ -5,9 +5,12 @@
 
 #include <cmath>
 #include <cstring>
+#include <random>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+
+#include "common/float_bits.h"
 
 namespace glint {
 namespace {
@@ -114,6 +117,35 @@ TEST(Slab, RayThroughCornerAndAlongEdge) {
   float entry = -7.0f;
   ASSERT_TRUE(hitsBox(kUnit, Ray({-1.0f, 0.0f, 0.0f}, {1.0f, 0.0f, -0.0f}), 1e30f, &entry, 6));
   EXPECT_FALSE(std::isnan(entry));
+}
+
+// A box of a float step around a point of the ray, computed in double and
+// widened by that computation's error bound, so that the exact point lies
+// inside: the test must report the hit however the distances round.
+// Origins far from zero and directions with tiny components stress the
+// rounding; a test without the far scale misses.
+TEST(Slab, NeverCullsABoxAroundAPointOfTheRay) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  std::uniform_real_distribution<float> exponent(-30.0f, 4.0f);
+  std::uniform_real_distribution<double> along(0.0, 100.0);
+  for (int i = 0; i < 200000; ++i) {
+    glm::vec3 o, d;
+    for (int axis = 0; axis < 3; ++axis) {
+      o[axis] = unit(rng) * std::exp2(std::round(exponent(rng)));
+      d[axis] = unit(rng) * (i % 3 == axis ? std::exp2(-std::round(std::abs(exponent(rng)))) : 1.0f);
+    }
+    const Ray ray(o, glm::normalize(d));
+    const double t = along(rng);
+    Bounds3 box;
+    for (int axis = 0; axis < 3; ++axis) {
+      const double origin = ray.o[axis], step = t * static_cast<double>(ray.d[axis]);
+      const double p = origin + step, error = 0x1p-50 * (std::abs(origin) + std::abs(step));
+      box.min[axis] = std::nextafter(static_cast<float>(p - error), -kInfinity);
+      box.max[axis] = std::nextafter(static_cast<float>(p + error), kInfinity);
+    }
+    ASSERT_TRUE(hitsBox(box, ray, 1e30f, nullptr, i % kBvhWidth)) << "ray " << i << " at t " << t;
+  }
 }
 
 }  // namespace
