@@ -125,6 +125,8 @@ class Bvh {
   std::optional<Hit> nearestHit(const Ray& ray, float tMax) const;
   template <typename V>
   bool anyHit(const Ray& ray, float tMax) const;
+  std::optional<Hit> nearestHitFour(const Ray& ray, float tMax) const;
+  bool anyHitFour(const Ray& ray, float tMax) const;
   std::optional<Hit> nearestHitEight(const Ray& ray, float tMax) const;
   bool anyHitEight(const Ray& ray, float tMax) const;
   const Geometry* geometry_ = nullptr;

@@ -180,15 +180,24 @@ std::optional<Hit> Bvh::intersect(const Ray& ray, float tMax, BoxTestWidth width
 #if defined(__x86_64__)
   if (width == BoxTestWidth::kEight && avx2Available()) return nearestHitEight(ray, tMax);
 #endif
-  return nearestHit<Float4>(ray, tMax);
+  return nearestHitFour(ray, tMax);
 }
 
 bool Bvh::occluded(const Ray& ray, float tMax, BoxTestWidth width) const {
 #if defined(__x86_64__)
   if (width == BoxTestWidth::kEight && avx2Available()) return anyHitEight(ray, tMax);
 #endif
-  return anyHit<Float4>(ray, tMax);
+  return anyHitFour(ray, tMax);
 }
+
+// Never inlined into intersect or occluded: there the four-lane walk's 6 KB
+// stack frame and six saved registers came with every query, also those
+// that went on to the eight-lane walk.
+[[gnu::noinline]] std::optional<Hit> Bvh::nearestHitFour(const Ray& ray, float tMax) const {
+  return nearestHit<Float4>(ray, tMax);
+}
+
+[[gnu::noinline]] bool Bvh::anyHitFour(const Ray& ray, float tMax) const { return anyHit<Float4>(ray, tMax); }
 
 #if defined(__x86_64__)
 GLINT_AVX2 std::optional<Hit> Bvh::nearestHitEight(const Ray& ray, float tMax) const {
