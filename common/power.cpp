@@ -127,12 +127,8 @@ double log2Positive(float x, const Tables& t) {
   return exponent + (t.lnCell[cell] + log1pSmall(r)) * kLog2e;
 }
 
-}  // namespace
-
-float power(float x, float y) {
-  if (!(x > 0.0f) || !std::isfinite(x) || !std::isfinite(y)) return std::pow(x, y);
-  const Tables& t = tables();
-  const double e = y * log2Positive(x, t);
+// 2^e rounded to float, for finite e.
+float exp2ToFloat(double e, const Tables& t) {
   if (e >= 129.0) return kInfinity;  // beyond the largest float
   if (e <= -160.0) return 0.0f;      // below half the least subnormal
   // 2^e = 2^n 2^(j/64) 2^f, with k = 64 n + j the integer nearest to 64 e.
@@ -146,6 +142,19 @@ float power(float x, float y) {
   const std::int64_t n = (ki - j) / kExpSteps;
   const double scale = std::bit_cast<double>(static_cast<std::uint64_t>(n + 1023) << 52);
   return static_cast<float>(t.exp2Step[static_cast<std::size_t>(j)] * expSmall(f * kLn2) * scale);
+}
+
+}  // namespace
+
+float power(float x, float y) {
+  if (!(x > 0.0f) || !std::isfinite(x) || !std::isfinite(y)) return std::pow(x, y);
+  const Tables& t = tables();
+  return exp2ToFloat(y * log2Positive(x, t), t);
+}
+
+float exponential(float x) {
+  if (!std::isfinite(x)) return std::exp(x);
+  return exp2ToFloat(x * kLog2e, tables());
 }
 
 }  // namespace glint

@@ -18,4 +18,9 @@ namespace glint {
 // arithmetic.
 float power(float x, float y);
 
+// e^x for floats, the same way (the gaussian filter's table: glibc's expf
+// is picked at run time too). For finite x: within 2^-40 of e^x relative
+// before the rounding to float; infinities and NaN as std::exp.
+float exponential(float x);
+
 }  // namespace glint

@@ -92,6 +92,25 @@ TEST(Power, ExactCases) {
 }
 
 // Zero, negative, infinite and NaN operands: std::pow's special values.
+// e^x: the gaussian filter's arguments, -2 x^2 for |x| <= 1.5, and the
+// whole range where e^x is a normal float.
+TEST(Power, ExponentialIsTheNearestFloat) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<float> gaussian(-4.5f, 0.0f);
+  std::uniform_real_distribution<float> wide(-87.0f, 88.0f);
+  for (int i = 0; i < 300000; ++i) {
+    const float x = i % 2 == 0 ? gaussian(rng) : wide(rng);
+    const auto want = static_cast<float>(std::exp(static_cast<long double>(x)));
+    ASSERT_EQ(floatToBits(exponential(x)), floatToBits(want)) << std::hexfloat << x;
+  }
+  EXPECT_EQ(exponential(0.0f), 1.0f);
+  EXPECT_EQ(exponential(-std::numeric_limits<float>::infinity()), 0.0f);
+  EXPECT_EQ(exponential(std::numeric_limits<float>::infinity()), std::numeric_limits<float>::infinity());
+  EXPECT_EQ(exponential(1000.0f), std::numeric_limits<float>::infinity());
+  EXPECT_EQ(exponential(-1000.0f), 0.0f);
+  EXPECT_TRUE(std::isnan(exponential(std::numeric_limits<float>::quiet_NaN())));
+}
+
 TEST(Power, SpecialValuesAreStdPows) {
   const float inf = std::numeric_limits<float>::infinity();
   const float nan = std::numeric_limits<float>::quiet_NaN();
