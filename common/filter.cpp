@@ -62,7 +62,8 @@ float Filter::evaluate(float x) const {
       return std::max(0.0f, 1.0f - std::abs(x));
     case FilterType::kGaussian: {
       constexpr float kInvTwoSigma2 = 1.0f / (2.0f * 0.5f * 0.5f);
-      return std::max(0.0f, exponential(-x * x * kInvTwoSigma2) - exponential(-radius_ * radius_ * kInvTwoSigma2));
+      return std::max(0.0f, exponential(-x * x * kInvTwoSigma2) -
+                                exponential(-radius_ * radius_ * kInvTwoSigma2));
     }
     case FilterType::kMitchell:
       return mitchell(x);

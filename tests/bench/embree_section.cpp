@@ -201,7 +201,7 @@ void printTraced(const std::string& scene, const char* rays, const std::vector<R
               set.size(), mrays(t.ms.glintMs), mrays(t.ms.embreeMs), 1.0 / t.ms.glintOverEmbree, t.agree);
 }
 
-// Builds both trees of one case and traces both ray sets: the case's rows.
+// Builds both trees of one case and traces its three ray sets: the case's rows.
 void compare(RTCDevice device, const PeerCase& c, int runs) {
   RTCScene scene = nullptr;
   Bvh bvh;
