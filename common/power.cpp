@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "common/float_bits.h"
+#include "common/polynomial.h"
 
 namespace glint {
 namespace {
@@ -29,14 +30,6 @@ double estrin(const std::array<double, N>& c, double x) {
   double high = c[4] + c[5] * x;
   if constexpr (N == 7) high += c[6] * x2;
   return low + high * x4;
-}
-
-// sum c[k] x^k by Horner's rule, for the tables.
-template <std::size_t N>
-double horner(const std::array<double, N>& c, double x) {
-  double p = c[N - 1];
-  for (std::size_t k = N - 1; k-- > 0;) p = p * x + c[k];
-  return p;
 }
 
 // The series' coefficients, computed by the compiler: ln(1 + r) / r =

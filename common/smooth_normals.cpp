@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "common/array_hash.h"
+#include "common/circular.h"
 #include "common/float_bits.h"
 
 namespace glint {
@@ -52,7 +53,7 @@ PointFaces pointFaces(const MeshInput& mesh) {
 }  // namespace
 
 void smoothNormals(MeshInput& mesh, float creaseDegrees) {
-  const float cosLimit = std::cos(glm::radians(creaseDegrees));
+  const float cosLimit = sineCosine(glm::radians(creaseDegrees)).cos;
   const std::size_t faceCount = mesh.indices.size() / 3;
   std::vector<glm::vec3> weighted(faceCount), unit(faceCount);
   for (std::size_t f = 0; f < faceCount; ++f) {
