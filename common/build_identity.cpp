@@ -8,7 +8,7 @@ namespace {
 
 // Raised whenever a change to the tracer, the shading or the sampling
 // changes the bytes of any pixel.
-constexpr int kTracerVersion = 3;  // 2: the adaptive pattern; 3: power() (common/power.h)
+constexpr int kTracerVersion = 4;  // 2: the adaptive pattern; 3: power() (common/power.h); 4: exponential() and sineCosine() (common/power.h, common/circular.h)
 
 // FNV-1a: the flags only need a short, stable fingerprint.
 std::uint64_t fingerprint(const char* text) {
