@@ -18,7 +18,7 @@ glm::mat4 rotate(const glm::mat4& m, float angle, const glm::vec3& v) {
   const float s = sc.sin;
   const glm::vec3 axis(glm::normalize(v));
   const glm::vec3 temp((1.0f - c) * axis);
-  glm::mat4 rotation;
+  glm::mat3 rotation;  // glm's is a mat4 whose upper 3 x 3 alone it fills and reads
   rotation[0][0] = c + temp[0] * axis[0];
   rotation[0][1] = temp[0] * axis[1] + s * axis[2];
   rotation[0][2] = temp[0] * axis[2] - s * axis[1];
