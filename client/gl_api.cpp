@@ -13,9 +13,6 @@ Api loadApi(const std::function<void*(const char*)>& getProcAddress) {
   if (!api.name) throw InputError("OpenGL: the driver has no gl" #name " (OpenGL 3.3 or later is needed)");
   GLINT_GL_FUNCTIONS(GLINT_GL_LOAD)
 #undef GLINT_GL_LOAD
-#define GLINT_GL_LOAD_OPTIONAL(name) api.name = reinterpret_cast<decltype(api.name)>(getProcAddress("gl" #name));
-  GLINT_GL_OPTIONAL_FUNCTIONS(GLINT_GL_LOAD_OPTIONAL)
-#undef GLINT_GL_LOAD_OPTIONAL
   return api;
 }
 

@@ -12,88 +12,77 @@ namespace glint::gl {
 // The OpenGL entry points Glint uses, loaded through the context's own
 // GetProcAddress (OSMesa or GLFW), so that one program can drive either
 // without linking two GL libraries' symbols against each other.
-#define GLINT_GL_FUNCTIONS(X)                                           \
-  X(GetString)                                      \
-  X(GetError)                                        \
-  X(Viewport)                                        \
-  X(ClearColor)                                    \
-  X(ClearStencil)                                \
-  X(Clear)                                              \
-  X(Enable)                                            \
-  X(Disable)                                          \
-  X(CullFace)                                        \
-  X(DepthFunc)                                      \
-  X(StencilFunc)                                  \
-  X(StencilOp)                                      \
-  X(StencilMask)                                  \
-  X(PixelStorei)                                  \
-  X(ReadPixels)                                    \
-  X(DrawPixels)                                    \
-  X(WindowPos2i)                                  \
-  X(Finish)                                            \
-  X(CreateShader)                                \
-  X(ShaderSource)                                \
-  X(CompileShader)                              \
-  X(GetShaderiv)                                  \
-  X(GetShaderInfoLog)                        \
-  X(DeleteShader)                                \
-  X(CreateProgram)                              \
-  X(AttachShader)                                \
-  X(LinkProgram)                                  \
-  X(GetProgramiv)                                \
-  X(GetProgramInfoLog)                      \
-  X(DeleteProgram)                              \
-  X(UseProgram)                                    \
-  X(GetUniformLocation)                    \
-  X(Uniform1i)                                      \
-  X(Uniform1f)                                      \
-  X(Uniform3fv)                                    \
-  X(Uniform4fv)                                    \
-  X(UniformMatrix4fv)                        \
-  X(GenVertexArrays)                          \
-  X(BindVertexArray)                          \
-  X(DeleteVertexArrays)                    \
-  X(GenBuffers)                                    \
-  X(BindBuffer)                                    \
-  X(BufferData)                                    \
-  X(DeleteBuffers)                              \
-  X(EnableVertexAttribArray)          \
-  X(VertexAttribPointer)                  \
-  X(VertexAttribIPointer)                \
-  X(DrawArrays)                                    \
-  X(GenTextures)                                  \
-  X(BindTexture)                                  \
-  X(TexImage2D)                                    \
-  X(TexParameteri)                              \
-  X(ActiveTexture)                              \
-  X(DeleteTextures)                            \
-  X(GetIntegerv)                                \
-  X(GenFramebuffers)                        \
-  X(BindFramebuffer)                        \
-  X(DeleteFramebuffers)                  \
-  X(CheckFramebufferStatus)          \
-  X(GenRenderbuffers)                      \
-  X(BindRenderbuffer)                      \
-  X(DeleteRenderbuffers)                \
-  X(RenderbufferStorageMultisample) \
-  X(FramebufferRenderbuffer)        \
-  X(BlitFramebuffer)                        \
-  X(GetStringi)                                  \
-  X(DrawBuffer)                                  \
-  X(ReadBuffer)                                  \
-  X(TexImage3D)                                  \
-  X(FramebufferTextureLayer)                \
-  X(Uniform1iv)                                  \
-  X(Uniform1fv)
-
-// Entry points beyond OpenGL 3.3, used where the driver has them (null
-// where it has not): per-sample shading (4.0) for the raster's anti-aliasing.
-#define GLINT_GL_OPTIONAL_FUNCTIONS(X) X(MinSampleShading)
+#define GLINT_GL_FUNCTIONS(X) \
+  X(GetError) \
+  X(Viewport) \
+  X(Clear) \
+  X(ClearBufferfv) \
+  X(ClearBufferuiv) \
+  X(Enable) \
+  X(Disable) \
+  X(CullFace) \
+  X(DepthFunc) \
+  X(PixelStorei) \
+  X(ReadPixels) \
+  X(DrawPixels) \
+  X(WindowPos2i) \
+  X(Finish) \
+  X(CreateShader) \
+  X(ShaderSource) \
+  X(CompileShader) \
+  X(GetShaderiv) \
+  X(GetShaderInfoLog) \
+  X(DeleteShader) \
+  X(CreateProgram) \
+  X(AttachShader) \
+  X(LinkProgram) \
+  X(GetProgramiv) \
+  X(GetProgramInfoLog) \
+  X(DeleteProgram) \
+  X(UseProgram) \
+  X(GetUniformLocation) \
+  X(Uniform1i) \
+  X(Uniform1iv) \
+  X(Uniform1f) \
+  X(Uniform1fv) \
+  X(Uniform3fv) \
+  X(Uniform4fv) \
+  X(UniformMatrix4fv) \
+  X(GenVertexArrays) \
+  X(BindVertexArray) \
+  X(DeleteVertexArrays) \
+  X(GenBuffers) \
+  X(BindBuffer) \
+  X(BufferData) \
+  X(DeleteBuffers) \
+  X(EnableVertexAttribArray) \
+  X(VertexAttribPointer) \
+  X(VertexAttribIPointer) \
+  X(DrawArrays) \
+  X(GenTextures) \
+  X(BindTexture) \
+  X(TexImage2D) \
+  X(TexImage3D) \
+  X(TexParameteri) \
+  X(ActiveTexture) \
+  X(DeleteTextures) \
+  X(GenFramebuffers) \
+  X(BindFramebuffer) \
+  X(DeleteFramebuffers) \
+  X(CheckFramebufferStatus) \
+  X(GenRenderbuffers) \
+  X(BindRenderbuffer) \
+  X(DeleteRenderbuffers) \
+  X(RenderbufferStorage) \
+  X(FramebufferRenderbuffer) \
+  X(FramebufferTextureLayer) \
+  X(DrawBuffer) \
+  X(DrawBuffers) \
+  X(ReadBuffer)
 
 struct Api {
 #define GLINT_GL_MEMBER(name) decltype(&::gl##name) name = nullptr;
   GLINT_GL_FUNCTIONS(GLINT_GL_MEMBER)
-  GLINT_GL_OPTIONAL_FUNCTIONS(GLINT_GL_MEMBER)
 #undef GLINT_GL_MEMBER
 };
 

@@ -6,29 +6,33 @@
 #include <span>
 #include <string>
 
-#include "client/image_rows.h"
+#include "client/pixel_mark.h"
+#include "client/raster_edges.h"
 #include "common/error.h"
 #include "common/timing.h"
 
 namespace glint {
 namespace {
 
-
 // Pixels traced with one frame's settings: the masked objects' with the
-// frame's own; the shadow edges' (pixels of surfaces OpenGL draws, traced
-// only because the shadow maps could not decide) with direct light alone,
-// as OpenGL draws their neighbours: the tracer's shadows, no reflected or
-// refracted rays (max depth 1), the frame's samples.
+// frame's own; the others (pixels of surfaces OpenGL draws, traced because
+// the shadow maps could not decide or because they straddle an edge) with
+// direct light alone, as OpenGL draws their neighbours: the tracer's
+// shadows, no reflected or refracted rays (max depth 1), the frame's samples.
 struct TracedSet {
-  gl::StencilMark mark;
+  bool directLight;  // the set's pixels: those with tracedWithDirectLight(mark), else the masked ones
   FrameSettings frame;
-  std::vector<TileJob> jobs;  // the tiles holding pixels of `mark`, with those pixels' mask bits
+  std::vector<TileJob> jobs;  // the tiles holding pixels of the set, with those pixels' mask bits
   std::vector<TileOutput> outputs;
   std::size_t pixels = 0;
+
+  bool takes(std::uint8_t mark) const {
+    return mark != kRasterPixel && tracedWithDirectLight(mark) == directLight;
+  }
 };
 
 // Cuts the window into tiles once and gives each set the tiles that hold
-// pixels of its mark; w is the frame's width.
+// pixels of its marks; w is the frame's width.
 void collectTiles(const std::vector<std::uint8_t>& mask, int w, const TileRect& window, int tileSize,
                   std::span<TracedSet> sets) {
   for (const TileRect& rect : tileGrid(window, std::max(1, tileSize))) {
@@ -39,7 +43,7 @@ void collectTiles(const std::vector<std::uint8_t>& mask, int w, const TileRect& 
         const std::uint8_t mark =
             mask[static_cast<std::size_t>(rect.y + y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(rect.x + x)];
         for (std::size_t k = 0; k < sets.size(); ++k) {
-          if (mark != sets[k].mark) continue;
+          if (!sets[k].takes(mark)) continue;
           setMaskBit(jobs[k].mask, static_cast<std::size_t>(y * rect.width + x));
           ++counts[k];
         }
@@ -57,32 +61,26 @@ FrameSettings directLightOf(FrameSettings frame) {
   return frame;
 }
 
-// Draws one traced tile back (bottom-up rows for glDrawPixels); the stencil
-// test keeps the pixels that are not its set's. `rect` is scratch space
-// kept between tiles.
-void drawTile(const gl::Api& gl, const TileJob& job, std::size_t index, const TileOutput& out, int frameHeight,
-              std::vector<std::uint8_t>& rect) {
+// Lays one traced tile's pixels over the window's image (rows from the top).
+void composeTile(const TileJob& job, std::size_t index, const TileOutput& out, const TileRect& window,
+                 std::vector<std::uint8_t>& rgb) {
   const TileRect& r = job.rect;
   if (out.rgb.size() != countMasked(r, job.mask) * 3) {
     throw InputError("tile " + std::to_string(index) + ": the tile service returned " +
                      std::to_string(out.rgb.size()) + " bytes for " + std::to_string(countMasked(r, job.mask)) +
                      " masked pixels");
   }
-  rect.assign(r.pixelCount() * 3, 0);
   std::size_t k = 0;
   for (int y = 0; y < r.height; ++y) {
     for (int x = 0; x < r.width; ++x) {
-      const auto i = static_cast<std::size_t>(y * r.width + x);
-      if (!maskBit(job.mask, i)) continue;
-      const auto dst =
-          (static_cast<std::size_t>(r.height - 1 - y) * static_cast<std::size_t>(r.width) + static_cast<std::size_t>(x)) *
-          3;
-      std::memcpy(&rect[dst], &out.rgb[k], 3);
+      if (!maskBit(job.mask, static_cast<std::size_t>(y * r.width + x))) continue;
+      const auto dst = (static_cast<std::size_t>(r.y - window.y + y) * static_cast<std::size_t>(window.width) +
+                        static_cast<std::size_t>(r.x - window.x + x)) *
+                       3;
+      std::memcpy(&rgb[dst], &out.rgb[k], 3);
       k += 3;
     }
   }
-  gl.WindowPos2i(r.x, frameHeight - r.y - r.height);
-  gl.DrawPixels(r.width, r.height, GL_RGB, GL_UNSIGNED_BYTE, rect.data());
 }
 
 // Sends a set's jobs to the service (in batches when the frame may be
@@ -111,6 +109,24 @@ bool traceTiles(TileService& service, TracedSet& set, const CancelCheck& cancell
   return true;
 }
 
+// Reads the raster back: each pixel's mark (edges found here) into
+// result.mask, and the window's colour into result.colour.
+void readRaster(const gl::RasterScene& raster, const FrameSettings& frame, const TileRect& window,
+                HybridResult& result) {
+  raster.target().readSurface(result.surface);
+  raster.target().readDepth(result.depth);
+  result.mask.resize(static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height));
+  result.rasterEdgePixels = markRasterEdges(result.surface, result.depth, frame.width, frame.height, result.mask);
+  raster.target().readColour(window, result.colour);
+}
+
+// Under the rule "all" OpenGL draws nothing: every pixel is traced.
+void traceEverything(const FrameSettings& frame, const TileRect& window, HybridResult& result) {
+  result.rasterEdgePixels = 0;
+  result.mask.assign(static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height), kMaskedPixel);
+  result.colour.assign(window.pixelCount() * 3, 0);
+}
+
 }  // namespace
 
 double medianOf(const std::vector<HybridTimes>& frames, double HybridTimes::*step) {
@@ -123,37 +139,24 @@ bool renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
                   const MaskSettings& mask, int tileSize, HybridResult& result, const std::optional<TileRect>& crop,
                   const CancelCheck& cancelled) {
   const Clock::time_point start = Clock::now();
-  const int w = frame.width, h = frame.height;
-  const TileRect whole{0, 0, w, h};
-  const TileRect window = crop.value_or(whole);
+  const TileRect window = crop.value_or(TileRect{0, 0, frame.width, frame.height});
   result.rays = RayStats{};
   result.times = HybridTimes{};
 
-  // Several samples a pixel: the colour comes from the anti-aliased pass,
-  // the first draws the marks (and depth) alone.
-  const bool antialiased = mask.rule != MaskRule::kAll && raster.prepareAntialiased(frame);
-  result.times.shadowMapMs = raster.draw(frame, mask, !antialiased);
-  gl.Finish();
-  result.times.rasterMs = msSince(start);
-
-  const Clock::time_point readStart = Clock::now();
   if (mask.rule == MaskRule::kAll) {
-    result.mask.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), gl::kMaskedPixel);
+    traceEverything(frame, window, result);
   } else {
-    readPixels(gl, whole, h, GL_STENCIL_INDEX, 1, result.mask);
-  }
-  result.times.readbackMs = msSince(readStart);
-  // The raster's colour, anti-aliased (the stencil mask stays the pixel
-  // centre's); the pixels the tracer replaces are left unshaded.
-  if (antialiased) {
-    const Clock::time_point antialiasStart = Clock::now();
-    raster.drawAntialiased(frame, result.mask);
-    result.times.rasterMs += msSince(antialiasStart);
+    result.times.shadowMapMs = raster.draw(frame, mask);
+    gl.Finish();
+    result.times.rasterMs = msSince(start);
+    const Clock::time_point readStart = Clock::now();
+    readRaster(raster, frame, window, result);
+    result.times.readbackMs = msSince(readStart);
   }
 
-  TracedSet sets[2] = {{gl::kMaskedPixel, frame, {}, {}, 0}, {gl::kShadowEdgePixel, directLightOf(frame), {}, {}, 0}};
-  collectTiles(result.mask, w, window, tileSize, sets);
-  result.shadowEdgePixels = sets[1].pixels;
+  TracedSet sets[2] = {{false, frame, {}, {}, 0}, {true, directLightOf(frame), {}, {}, 0}};
+  collectTiles(result.mask, frame.width, window, tileSize, sets);
+  result.shadowEdgePixels = static_cast<std::size_t>(std::count(result.mask.begin(), result.mask.end(), kShadowEdgePixel));
   result.maskedPixels = sets[0].pixels + sets[1].pixels;
   result.tiles = static_cast<int>(sets[0].jobs.size() + sets[1].jobs.size());
   for (TracedSet& set : sets) {
@@ -161,23 +164,12 @@ bool renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
   }
 
   const Clock::time_point composeStart = Clock::now();
-  gl.Disable(GL_DEPTH_TEST);
-  if (mask.rule == MaskRule::kAll) {
-    gl.Disable(GL_STENCIL_TEST);
-  } else {
-    gl.Enable(GL_STENCIL_TEST);
-    gl.StencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-  }
-  gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  std::vector<std::uint8_t> scratch;
   for (const TracedSet& set : sets) {
-    gl.StencilFunc(GL_EQUAL, set.mark, 0xff);  // a tile's rectangle draws only its set's pixels
-    for (std::size_t j = 0; j < set.jobs.size(); ++j) drawTile(gl, set.jobs[j], j, set.outputs[j], h, scratch);
+    for (std::size_t j = 0; j < set.jobs.size(); ++j) composeTile(set.jobs[j], j, set.outputs[j], window, result.colour);
   }
   result.image.width = window.width;
   result.image.height = window.height;
-  readPixels(gl, window, h, GL_RGB, 3, result.image.rgb);
-  gl.Disable(GL_STENCIL_TEST);
+  result.image.rgb.swap(result.colour);
   result.times.composeMs = msSince(composeStart);
   result.times.totalMs = msSince(start);
   return true;

@@ -11,7 +11,8 @@
 namespace glint {
 
 // GL's rows run bottom-up; Glint's images top-down.
-inline void flipRows(std::vector<std::uint8_t>& pixels, int width, int height, int channels) {
+template <typename T>
+void flipRows(std::vector<T>& pixels, int width, int height, int channels) {
   const auto row = static_cast<std::size_t>(width) * static_cast<std::size_t>(channels);
   for (int y = 0; y < height / 2; ++y) {
     const auto top = pixels.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(y) * row);
@@ -20,14 +21,16 @@ inline void flipRows(std::vector<std::uint8_t>& pixels, int width, int height, i
   }
 }
 
-// Reads a window of the frame (y from the top) into `pixels` (resized, so
-// that its buffer is kept from one frame to the next) with rows top-down.
-inline void readPixels(const gl::Api& gl, const TileRect& window, int frameHeight, GLenum format, int channels,
-                       std::vector<std::uint8_t>& pixels) {
+// Reads a window of the bound read buffer (y from the top) into `pixels`
+// (resized, so that its buffer is kept from one frame to the next) with rows
+// top-down; `type` is GL's name for T.
+template <typename T>
+void readPixels(const gl::Api& gl, const TileRect& window, int frameHeight, GLenum format, GLenum type, int channels,
+                std::vector<T>& pixels) {
   pixels.resize(window.pixelCount() * static_cast<std::size_t>(channels));
   gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
-  gl.ReadPixels(window.x, frameHeight - window.y - window.height, window.width, window.height, format,
-                GL_UNSIGNED_BYTE, pixels.data());
+  gl.ReadPixels(window.x, frameHeight - window.y - window.height, window.width, window.height, format, type,
+                pixels.data());
   flipRows(pixels, window.width, window.height, channels);
 }
 

@@ -22,7 +22,7 @@ OffscreenContext::OffscreenContext(int width, int height)
       pixels_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4),
       width_(width),
       height_(height) {
-  const int attributes[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_STENCIL_BITS, 8,
+  const int attributes[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0, OSMESA_STENCIL_BITS, 0,
                             OSMESA_PROFILE, OSMESA_COMPAT_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 3,
                             OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
   impl_->context = OSMesaCreateContextAttribs(attributes, nullptr);

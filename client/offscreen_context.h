@@ -8,7 +8,8 @@
 namespace glint::gl {
 
 // A headless OpenGL context (OSMesa, software rasterizer): a compatibility
-// profile with 24-bit depth and 8-bit stencil, drawing into memory.
+// profile drawing into memory. Its own framebuffer has colour alone: the
+// raster pass draws into a framebuffer object (client/raster_target.h).
 class OffscreenContext {
  public:
   OffscreenContext(int width, int height);

@@ -1,8 +1,6 @@
 #include "client/raster_scene.h"
 
 #include <algorithm>
-#include <map>
-#include <stdexcept>
 #include <string>
 
 #include <glm/ext/matrix_clip_space.hpp>
@@ -10,7 +8,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
-#include "client/raster_shaders.h"
+#include "client/pixel_mark.h"
 #include "common/encoding.h"
 #include "common/error.h"
 #include "common/mask_rule.h"
@@ -20,7 +18,7 @@ namespace glint::gl {
 namespace {
 
 // The texture units the fragment shaders read.
-enum TextureUnit : int { kAtlasUnit = 0, kShadowMapUnit = 1, kStencilMarkUnit = 2 };
+enum TextureUnit : int { kImageUnit = 0, kShadowMapUnit = 1 };
 
 unsigned compile(const Api& gl, GLenum type, std::initializer_list<const char*> parts) {
   const unsigned shader = gl.CreateShader(type);
@@ -38,12 +36,12 @@ unsigned compile(const Api& gl, GLenum type, std::initializer_list<const char*> 
   return shader;
 }
 
-// variant: "" (colour and marks), or the #define of a variant that writes
-// less (raster_shaders.h).
-unsigned link(const Api& gl, const char* vertex, const char* fragment, const char* variant, bool stencilExport) {
-  const unsigned vs = compile(gl, GL_VERTEX_SHADER, {vertex});
-  const std::string prelude = fragmentPrelude(stencilExport);
-  const unsigned fs = compile(gl, GL_FRAGMENT_SHADER, {prelude.c_str(), variant, kFragmentShading, fragment});
+unsigned link(const Api& gl, const ShaderVariant& variant) {
+  const unsigned vs = compile(gl, GL_VERTEX_SHADER, {variant.sphere ? kSphereVertexShader : kMeshVertexShader});
+  const std::string prelude = fragmentPrelude(variant);
+  const unsigned fs = compile(gl, GL_FRAGMENT_SHADER,
+                              {prelude.c_str(), kFragmentShading,
+                               variant.sphere ? kSphereFragmentShader : kMeshFragmentShader});
   const unsigned program = gl.CreateProgram();
   gl.AttachShader(program, vs);
   gl.AttachShader(program, fs);
@@ -55,25 +53,26 @@ unsigned link(const Api& gl, const char* vertex, const char* fragment, const cha
   if (!ok) {
     char log[4096] = {};
     gl.GetProgramInfoLog(program, sizeof log, nullptr, log);
+    gl.DeleteProgram(program);
     throw InputError(std::string("OpenGL: shaders do not link: ") + log);
   }
   return program;
 }
 
-// Interleaved mesh vertex: position, shading normal, uv, face normal, material.
+// Interleaved mesh vertex: position, shading normal, uv, face normal, object.
 struct MeshVertex {
   glm::vec3 position;
   glm::vec3 normal;
   glm::vec2 uv;
   glm::vec3 faceNormal;
-  std::int32_t material;
+  std::int32_t object;
 };
 
-// Sphere impostor vertex: a corner of the bounding box and the sphere.
+// Sphere impostor vertex: a corner of the bounding box, the sphere, its object.
 struct SphereVertex {
   glm::vec3 position;
   glm::vec4 sphere;
-  std::int32_t material;
+  std::int32_t object;
 };
 
 void attribute(const Api& gl, unsigned index, int size, std::size_t stride, std::size_t offset) {
@@ -87,39 +86,20 @@ void intAttribute(const Api& gl, unsigned index, std::size_t stride, std::size_t
   gl.VertexAttribIPointer(index, 1, GL_INT, static_cast<GLsizei>(stride), reinterpret_cast<const void*>(offset));
 }
 
-bool hasExtension(const Api& gl, const char* name) {
-  GLint count = 0;
-  gl.GetIntegerv(GL_NUM_EXTENSIONS, &count);
-  for (GLint i = 0; i < count; ++i) {
-    const auto* extension = reinterpret_cast<const char*>(gl.GetStringi(GL_EXTENSIONS, static_cast<GLuint>(i)));
-    if (extension && std::string(extension) == name) return true;
-  }
-  return false;
+bool inside(const Bounds3& box, const glm::vec3& p) {
+  return p.x >= box.min.x && p.y >= box.min.y && p.z >= box.min.z && p.x <= box.max.x && p.y <= box.max.y &&
+         p.z <= box.max.z;
 }
 
 }  // namespace
 
 RasterScene::RasterScene(const Api& api, const Scene& scene)
-    : gl_(api),
-      scene_(scene),
-      plan_(EffectPlan::derive(scene)),
-      stencilExport_(hasExtension(api, "GL_ARB_shader_stencil_export")),
-      multisample_(api),
-      shadowMaps_(api) {
+    : gl_(api), scene_(scene), plan_(EffectPlan::derive(scene)), target_(api), shadowMaps_(api) {
   if (scene.lights.size() > kMaxLights) {
     throw InputError("the OpenGL path draws at most " + std::to_string(kMaxLights) + " lights; the scene has " +
-                     std::to_string(scene.lights.size()));
-  }
-  if (scene.materials.size() > kMaxMaterials || scene.textures.size() > kMaxTextures) {
-    throw InputError("the OpenGL path takes at most " + std::to_string(kMaxMaterials) + " materials and " +
-                     std::to_string(kMaxTextures) + " textures");
+                     std::to_string(scene.lights.size()) + " (--mask all traces them all)");
   }
   for (std::uint32_t i = 0; i < scene.geometry.primitiveCount(); ++i) bounds_.expand(scene.geometry.primitiveBounds(i));
-  const char* const variants[kShadings] = {"", "#define MARKS_ONLY\n", "#define TRACED\n"};
-  for (int shading = 0; shading < kShadings; ++shading) {
-    programs_[0][shading] = link(gl_, kMeshVertexShader, kMeshFragmentShader, variants[shading], stencilExport_);
-    programs_[1][shading] = link(gl_, kSphereVertexShader, kSphereFragmentShader, variants[shading], stencilExport_);
-  }
   uploadTextures();
   uploadMeshes();
   uploadSpheres();
@@ -130,41 +110,32 @@ RasterScene::~RasterScene() {
     gl_.DeleteBuffers(1, &b.vbo);
     gl_.DeleteVertexArrays(1, &b.vao);
   }
-  if (atlas_) gl_.DeleteTextures(1, &atlas_);
-  if (stencilMarks_) gl_.DeleteTextures(1, &stencilMarks_);
-  for (const auto& row : programs_) {
-    for (unsigned program : row) gl_.DeleteProgram(program);
+  for (unsigned image : images_) {
+    if (image) gl_.DeleteTextures(1, &image);
   }
+  for (const auto& [key, program] : programs_) gl_.DeleteProgram(program);
 }
 
 void RasterScene::uploadTextures() {
-  // Every image texture, one above the other, in one float RGB texture that
-  // texelFetch reads exactly (no GL filtering: the shader filters as the tracer).
-  int width = 1, height = 0;
+  // Each image texture as a float RGB texture that texelFetch reads exactly
+  // (no GL filtering: the shader filters as the tracer).
   for (const Texture& t : scene_.textures) {
-    textureRows_.push_back(static_cast<float>(height));
+    unsigned texture = 0;
     if (t.type == TextureType::kImage) {
-      width = std::max(width, t.image->width);
-      height += t.image->height;
-    }
-  }
-  std::vector<glm::vec3> texels(static_cast<std::size_t>(width) * static_cast<std::size_t>(std::max(height, 1)));
-  int row = 0;
-  for (const Texture& t : scene_.textures) {
-    if (t.type != TextureType::kImage) continue;
-    for (std::size_t y = 0; y < static_cast<std::size_t>(t.image->height); ++y) {
-      const std::size_t w = static_cast<std::size_t>(t.image->width);
-      for (std::size_t x = 0; x < w; ++x) {
-        texels[(static_cast<std::size_t>(row) + y) * static_cast<std::size_t>(width) + x] = t.image->texel(y * w + x);
+      std::vector<glm::vec3> texels(static_cast<std::size_t>(t.image->width) * static_cast<std::size_t>(t.image->height));
+      for (std::size_t i = 0; i < texels.size(); ++i) texels[i] = t.image->texel(i);
+      gl_.GenTextures(1, &texture);
+      gl_.BindTexture(GL_TEXTURE_2D, texture);
+      gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+      gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, t.image->width, t.image->height, 0, GL_RGB, GL_FLOAT, texels.data());
+      if (gl_.GetError() != GL_NO_ERROR) {
+        throw InputError("OpenGL: cannot hold a " + std::to_string(t.image->width) + " x " +
+                         std::to_string(t.image->height) + " image texture (--mask all traces every pixel)");
       }
     }
-    row += t.image->height;
+    images_.push_back(texture);
   }
-  gl_.GenTextures(1, &atlas_);
-  gl_.BindTexture(GL_TEXTURE_2D, atlas_);
-  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, width, std::max(height, 1), 0, GL_RGB, GL_FLOAT, texels.data());
 }
 
 // A vertex array and buffer holding `count` vertices; left bound, so the
@@ -180,7 +151,7 @@ void RasterScene::newBatch(std::uint32_t material, bool spheres, const void* ver
   gl_.GenBuffers(1, &b.vbo);
   gl_.BindBuffer(GL_ARRAY_BUFFER, b.vbo);
   gl_.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(count * vertexBytes), vertices, GL_STATIC_DRAW);
-  batches_.push_back(b);
+  batches_.push_back(std::move(b));
 }
 
 void RasterScene::uploadMeshes() {
@@ -190,10 +161,9 @@ void RasterScene::uploadMeshes() {
     const Triangle& t = g.triangles()[i];
     const std::uint32_t material = g.models()[t.model].material;
     const glm::vec3& face = g.faceNormals()[i];
+    const auto object = static_cast<std::int32_t>(t.model + 1);
     auto& vertices = byMaterial[material];
-    for (std::uint32_t v : t.v) {
-      vertices.push_back({g.positions()[v], g.normals()[v], g.uvs()[v], face, static_cast<std::int32_t>(material)});
-    }
+    for (std::uint32_t v : t.v) vertices.push_back({g.positions()[v], g.normals()[v], g.uvs()[v], face, object});
   }
   for (auto& [material, vertices] : byMaterial) {
     newBatch(material, false, vertices.data(), vertices.size(), sizeof(MeshVertex));
@@ -201,29 +171,34 @@ void RasterScene::uploadMeshes() {
     attribute(gl_, 1, 3, sizeof(MeshVertex), offsetof(MeshVertex, normal));
     attribute(gl_, 2, 2, sizeof(MeshVertex), offsetof(MeshVertex, uv));
     attribute(gl_, 3, 3, sizeof(MeshVertex), offsetof(MeshVertex, faceNormal));
-    intAttribute(gl_, 4, sizeof(MeshVertex), offsetof(MeshVertex, material));
+    intAttribute(gl_, 4, sizeof(MeshVertex), offsetof(MeshVertex, object));
   }
 }
 
 void RasterScene::uploadSpheres() {
-  // The 12 triangles of a unit cube, corners in [-1, 1].
+  // The 12 triangles of a unit cube, corners in [-1, 1], each wound
+  // counter-clockwise as seen from inside the cube.
   static const int kCube[36] = {0, 1, 3, 0, 3, 2, 4, 6, 7, 4, 7, 5, 0, 4, 5, 0, 5, 1,
                                 2, 3, 7, 2, 7, 6, 0, 2, 6, 0, 6, 4, 1, 5, 7, 1, 7, 3};
-  std::map<std::uint32_t, std::vector<SphereVertex>> byMaterial;
-  for (const Sphere& s : scene_.geometry.spheres()) {
-    auto& vertices = byMaterial[s.material];
+  std::map<std::uint32_t, std::pair<std::vector<SphereVertex>, std::vector<Bounds3>>> byMaterial;
+  const auto firstObject = static_cast<std::int32_t>(scene_.geometry.models().size() + 1);
+  for (std::size_t i = 0; i < scene_.geometry.spheres().size(); ++i) {
+    const Sphere& s = scene_.geometry.spheres()[i];
+    auto& [vertices, boxes] = byMaterial[s.material];
     // A box slightly larger than the sphere, so rasterization covers its edge.
     const float half = s.radius * 1.01f;
+    boxes.push_back(Bounds3{s.centre - glm::vec3(half), s.centre + glm::vec3(half)});
     for (int corner : kCube) {
       const glm::vec3 c(corner & 1 ? 1.0f : -1.0f, corner & 2 ? 1.0f : -1.0f, corner & 4 ? 1.0f : -1.0f);
-      vertices.push_back({s.centre + half * c, glm::vec4(s.centre, s.radius), static_cast<std::int32_t>(s.material)});
+      vertices.push_back({s.centre + half * c, glm::vec4(s.centre, s.radius), firstObject + static_cast<std::int32_t>(i)});
     }
   }
-  for (auto& [material, vertices] : byMaterial) {
-    newBatch(material, true, vertices.data(), vertices.size(), sizeof(SphereVertex));
+  for (auto& [material, spheres] : byMaterial) {
+    newBatch(material, true, spheres.first.data(), spheres.first.size(), sizeof(SphereVertex));
+    batches_.back().boxes = std::move(spheres.second);
     attribute(gl_, 0, 3, sizeof(SphereVertex), offsetof(SphereVertex, position));
     attribute(gl_, 1, 4, sizeof(SphereVertex), offsetof(SphereVertex, sphere));
-    intAttribute(gl_, 2, sizeof(SphereVertex), offsetof(SphereVertex, material));
+    intAttribute(gl_, 2, sizeof(SphereVertex), offsetof(SphereVertex, object));
   }
 }
 
@@ -238,27 +213,57 @@ RasterScene::Projection RasterScene::projection(const FrameSettings& frame) cons
     }
   }
   const glm::mat4 view = glm::lookAt(frame.camera.eye, frame.camera.lookAt, frame.camera.up);
-  // The near plane only clips (what is nearer to the eye than far / 1000);
-  // depth itself is written linear by the shaders.
+  // The planes only shape the projection: with GL_DEPTH_CLAMP neither near
+  // nor far clips (the x and y planes still cut what lies behind the eye),
+  // and depth is written linear by the shaders.
   const glm::mat4 perspective = glm::perspective(glm::radians(frame.camera.fovY),
                                                  static_cast<float>(frame.width) / static_cast<float>(frame.height),
-                                                 far * 1e-3f, far);
-  return {perspective * view, far};
+                                                 far * 1e-6f, far);
+  return {perspective * view, frame.camera.eye, far};
 }
 
-void RasterScene::setViewUniforms(unsigned program, const glm::mat4& viewProjection, const glm::vec3& eye, float far) {
+unsigned RasterScene::program(const ShaderVariant& variant) {
+  const auto found = programs_.find(variant.key());
+  if (found != programs_.end()) return found->second;
+  const unsigned made = link(gl_, variant);
+  programs_.emplace(variant.key(), made);
+  return made;
+}
+
+ShaderVariant RasterScene::variantOf(const Batch& batch, const FrameSettings& frame, const MaskSettings& mask) const {
+  ShaderVariant v;
+  v.sphere = batch.spheres;
+  const Material& m = scene_.materials[batch.material];
+  v.traced = materialMasked(m, mask);
+  if (v.traced) return v;
+  if (m.texture >= 0) {
+    const Texture& t = scene_.textures[static_cast<std::size_t>(m.texture)];
+    v.texture = t.type == TextureType::kChecker ? TextureKind::kChecker
+                : t.type == TextureType::kSolid ? TextureKind::kNone
+                : t.filter == ImageFilter::kBilinear ? TextureKind::kBilinear
+                                                    : TextureKind::kNearest;
+  }
+  v.lit = !scene_.lights.empty() && (m.diffuse > 0.0f || m.specular > 0.0f);
+  v.specular = v.lit && m.specular > 0.0f;
+  v.shadows = v.lit && shadows_;
+  v.srgb = frame.output.encoding == Encoding::kSrgb;
+  return v;
+}
+
+void RasterScene::setViewUniforms(unsigned program, const Projection& projection) {
   gl_.UseProgram(program);
-  gl_.UniformMatrix4fv(gl_.GetUniformLocation(program, "uViewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
-  gl_.Uniform1f(gl_.GetUniformLocation(program, "uFar"), far);
-  gl_.Uniform3fv(gl_.GetUniformLocation(program, "uEye"), 1, glm::value_ptr(eye));
+  gl_.UniformMatrix4fv(gl_.GetUniformLocation(program, "uViewProjection"), 1, GL_FALSE,
+                       glm::value_ptr(projection.viewProjection));
+  gl_.Uniform1f(gl_.GetUniformLocation(program, "uFar"), projection.far);
+  gl_.Uniform3fv(gl_.GetUniformLocation(program, "uEye"), 1, glm::value_ptr(projection.eye));
 }
 
-void RasterScene::setUniforms(unsigned program, const FrameSettings& frame, const Projection& projection,
-                              bool antialiased) {
-  setViewUniforms(program, projection.viewProjection, frame.camera.eye, projection.far);
+void RasterScene::setFrameUniforms(unsigned program, const FrameSettings& frame, const Projection& projection,
+                                   const MaskSettings& mask) {
+  setViewUniforms(program, projection);
   const auto at = [&](const char* name) { return gl_.GetUniformLocation(program, name); };
   gl_.Uniform1f(at("uExposureScale"), Encoder(frame.output).scale());
-  gl_.Uniform1i(at("uSrgb"), frame.output.encoding == Encoding::kSrgb ? 1 : 0);
+  gl_.Uniform1i(at("uMarkUndecided"), mask.rule == MaskRule::kAuto ? 1 : 0);
   std::vector<glm::vec3> positions, colors, attenuations;
   for (const PointLight& l : scene_.lights) {
     positions.push_back(l.position);
@@ -272,159 +277,89 @@ void RasterScene::setUniforms(unsigned program, const FrameSettings& frame, cons
     gl_.Uniform3fv(at("uLightColor"), n, glm::value_ptr(colors[0]));
     gl_.Uniform3fv(at("uLightAttenuation"), n, glm::value_ptr(attenuations[0]));
   }
-  std::vector<glm::vec4> materialColor, materialTerms;
-  for (const Material& m : scene_.materials) {
-    materialColor.emplace_back(m.color, static_cast<float>(m.texture));
-    materialTerms.emplace_back(m.ambient, m.diffuse, m.specular, m.shininess);
-  }
-  if (!materialColor.empty()) {
-    const auto n = static_cast<GLsizei>(materialColor.size());
-    gl_.Uniform4fv(at("uMaterialColor"), n, glm::value_ptr(materialColor[0]));
-    gl_.Uniform4fv(at("uMaterialTerms"), n, glm::value_ptr(materialTerms[0]));
-  }
-  std::vector<glm::vec4> info, size;
-  std::vector<glm::vec3> color0, color1;
-  for (std::size_t i = 0; i < scene_.textures.size(); ++i) {
-    const Texture& t = scene_.textures[i];
-    const bool image = t.type == TextureType::kImage;
-    info.emplace_back(image ? 2.0f : 1.0f, t.scale, t.filter == ImageFilter::kBilinear ? 1.0f : 0.0f, textureRows_[i]);
-    size.emplace_back(image ? static_cast<float>(t.image->width) : 1.0f, image ? static_cast<float>(t.image->height) : 1.0f,
-                      0.0f, 0.0f);
-    color0.push_back(t.colors[0]);
-    color1.push_back(t.colors[1]);
-  }
-  if (!info.empty()) {
-    const auto n = static_cast<GLsizei>(info.size());
-    gl_.Uniform4fv(at("uTextureInfo"), n, glm::value_ptr(info[0]));
-    gl_.Uniform4fv(at("uTextureSize"), n, glm::value_ptr(size[0]));
-    gl_.Uniform3fv(at("uTextureColor0"), n, glm::value_ptr(color0[0]));
-    gl_.Uniform3fv(at("uTextureColor1"), n, glm::value_ptr(color1[0]));
-  }
-  gl_.ActiveTexture(GL_TEXTURE0 + kAtlasUnit);
-  gl_.BindTexture(GL_TEXTURE_2D, atlas_);
-  gl_.Uniform1i(at("uAtlas"), kAtlasUnit);
+  gl_.Uniform1i(at("uImage"), kImageUnit);
   shadowMaps_.setUniforms(program, kShadowMapUnit, scene_.lights.size(), shadows_);
-  gl_.Uniform1i(at("uShadowRadius"), antialiased ? 0 : kShadowRadius);
-  gl_.Uniform1i(at("uUndecidedStencil"), undecidedStencil_);
-  gl_.Uniform1i(at("uSkipMarked"), antialiased ? 1 : 0);
-  gl_.Uniform1i(at("uStencilMarks"), kStencilMarkUnit);
 }
 
-std::string RasterScene::shadowEdgeNote(const MaskSettings& mask) const {
-  if (stencilExport_ || mask.rule != MaskRule::kAuto || !rasterShadows(scene_, plan_, mask)) return "";
-  return "note: this OpenGL has no ARB_shader_stencil_export: the edges of shadows on surfaces OpenGL draws are "
-         "the shadow map's estimate, not traced";
+void RasterScene::setMaterialUniforms(unsigned program, const Material& m) {
+  const auto at = [&](const char* name) { return gl_.GetUniformLocation(program, name); };
+  gl_.Uniform3fv(at("uColor"), 1, glm::value_ptr(m.color));
+  const glm::vec4 terms(m.ambient, m.diffuse, m.specular, m.shininess);
+  gl_.Uniform4fv(at("uTerms"), 1, glm::value_ptr(terms));
+  if (m.texture < 0) return;
+  const Texture& t = scene_.textures[static_cast<std::size_t>(m.texture)];
+  if (t.type == TextureType::kSolid) gl_.Uniform3fv(at("uColor"), 1, glm::value_ptr(t.colors[0]));
+  gl_.Uniform3fv(at("uCheckerColor0"), 1, glm::value_ptr(t.colors[0]));
+  gl_.Uniform3fv(at("uCheckerColor1"), 1, glm::value_ptr(t.colors[1]));
+  gl_.Uniform1f(at("uCheckerScale"), t.scale);
+  gl_.ActiveTexture(GL_TEXTURE0 + kImageUnit);
+  gl_.BindTexture(GL_TEXTURE_2D, images_[static_cast<std::size_t>(m.texture)]);
 }
 
 bool RasterScene::prepareShadows(const MaskSettings& mask) {
   if (!rasterShadows(scene_, plan_, mask)) return false;
   if (shadowMaps_.size() != mask.shadowMap) {
     shadowMaps_.build(scene_.lights, plan_.lights, bounds_, mask.shadowMap,
-                      [this](const glm::mat4& vp, const glm::vec3& eye, float far) { drawDepth(vp, eye, far); });
+                      [this](const glm::mat4& vp, const glm::vec3& eye, float far) { drawDepth({vp, eye, far}); });
   }
   return true;
 }
 
-void RasterScene::drawDepth(const glm::mat4& viewProjection, const glm::vec3& eye, float far) {
-  for (int spheres = 0; spheres < 2; ++spheres) {
-    setViewUniforms(programs_[spheres][kTraced], viewProjection, eye, far);
-    for (const Batch& b : batches_) {
-      if (b.spheres != (spheres == 1)) continue;
-      gl_.BindVertexArray(b.vao);
-      gl_.DrawArrays(GL_TRIANGLES, 0, b.vertices);
-    }
+void RasterScene::drawDepth(const Projection& projection) {
+  gl_.Enable(GL_DEPTH_CLAMP);
+  for (const Batch& b : batches_) {
+    ShaderVariant v;
+    v.sphere = b.spheres;
+    v.traced = true;
+    setViewUniforms(program(v), projection);
+    drawBatch(b, projection.eye);
   }
   gl_.BindVertexArray(0);
   gl_.UseProgram(0);
 }
 
-void RasterScene::beginPass(const FrameSettings& frame, GLbitfield clear) {
-  gl_.Viewport(0, 0, frame.width, frame.height);
-  gl_.ClearColor(scene_.background.r, scene_.background.g, scene_.background.b, 1.0f);
-  gl_.ClearStencil(0);
-  gl_.StencilMask(0xff);
-  gl_.Clear(clear);
-  gl_.Enable(GL_DEPTH_TEST);
-  gl_.DepthFunc(GL_LESS);
+void RasterScene::drawBatch(const Batch& batch, const glm::vec3& eye) {
+  const bool cull = batch.spheres && std::none_of(batch.boxes.begin(), batch.boxes.end(),
+                                                  [&](const Bounds3& box) { return inside(box, eye); });
+  if (cull) {
+    gl_.Enable(GL_CULL_FACE);
+    gl_.CullFace(GL_FRONT);  // the faces wound counter-clockwise from inside: the far ones
+  }
+  gl_.BindVertexArray(batch.vao);
+  gl_.DrawArrays(GL_TRIANGLES, 0, batch.vertices);
+  if (cull) gl_.Disable(GL_CULL_FACE);
 }
 
-bool RasterScene::prepareAntialiased(const FrameSettings& frame) {
-  return frame.sampling.samples >= 2 && multisample_.prepare(frame.width, frame.height, frame.sampling.samples);
-}
-
-double RasterScene::draw(const FrameSettings& frame, const MaskSettings& mask, bool colour) {
+double RasterScene::draw(const FrameSettings& frame, const MaskSettings& mask) {
   const Clock::time_point start = Clock::now();
   shadows_ = prepareShadows(mask);
   const double shadowMs = msSince(start);
-  undecidedStencil_ = mask.rule == MaskRule::kAuto ? kShadowEdgePixel : kRasterPixel;
-  beginPass(frame, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
-  gl_.Enable(GL_STENCIL_TEST);
-  gl_.StencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);  // the visible object's flag wins
-  drawBatches(frame, mask, colour ? Pass::kColourAndMarks : Pass::kMarks);
-  return shadowMs;
-}
-
-void RasterScene::drawAntialiased(const FrameSettings& frame, std::span<const std::uint8_t> marks) {
-  uploadMarks(frame, marks);
-  multisample_.bind();
-  beginPass(frame, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  gl_.Disable(GL_STENCIL_TEST);
-  drawBatches(frame, MaskSettings{}, Pass::kAntialiased);
-  multisample_.resolve();
-}
-
-// draw()'s marks as an integer texture the anti-aliased pass's fragments
-// read (one byte a pixel, rows from the top: the shader flips).
-void RasterScene::uploadMarks(const FrameSettings& frame, std::span<const std::uint8_t> marks) {
-  if (marks.size() != static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height)) {
-    throw std::invalid_argument("drawAntialiased: one stencil mark a pixel of the frame");
-  }
-  gl_.ActiveTexture(GL_TEXTURE0 + kStencilMarkUnit);
-  if (!stencilMarks_) {
-    gl_.GenTextures(1, &stencilMarks_);
-    gl_.BindTexture(GL_TEXTURE_2D, stencilMarks_);
-    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  }
-  gl_.BindTexture(GL_TEXTURE_2D, stencilMarks_);
-  gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_R8UI, frame.width, frame.height, 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE,
-                 marks.data());
-  gl_.ActiveTexture(GL_TEXTURE0);
-}
-
-void RasterScene::drawBatches(const FrameSettings& frame, const MaskSettings& mask, Pass pass) {
+  target_.bind(frame.width, frame.height);
+  gl_.Viewport(0, 0, frame.width, frame.height);
+  const Encoder encoder(frame.output);
+  const std::uint8_t background[3] = {encoder.byte(scene_.background.r), encoder.byte(scene_.background.g),
+                                      encoder.byte(scene_.background.b)};
+  target_.clear(background);
+  gl_.Enable(GL_DEPTH_TEST);
+  gl_.DepthFunc(GL_LESS);
+  gl_.Enable(GL_DEPTH_CLAMP);
   const Projection vp = projection(frame);
-  const bool antialiased = pass == Pass::kAntialiased;
-  for (int spheres = 0; spheres < 2; ++spheres) {
-    // A sphere's silhouette is decided in its fragment shader (discard): in
-    // the anti-aliased pass it runs for every sample, where a mesh's edges
-    // are the samples' coverage alone (4x the shading would cost the room
-    // 48 ms of raster instead of 19).
-    const bool perSample = antialiased && spheres == 1 && gl_.MinSampleShading;
-    if (perSample) {
-      gl_.Enable(GL_SAMPLE_SHADING);
-      gl_.MinSampleShading(1.0f);
+  std::map<int, bool> framed;  // programs whose frame uniforms are set
+  for (const Batch& b : batches_) {
+    const ShaderVariant variant = variantOf(b, frame, mask);
+    const unsigned p = program(variant);
+    gl_.UseProgram(p);
+    if (!framed[variant.key()]) {
+      setFrameUniforms(p, frame, vp, mask);
+      framed[variant.key()] = true;
     }
-    for (int shading = 0; shading < kShadings; ++shading) {
-      bool uniformsSet = false;
-      for (const Batch& b : batches_) {
-        const bool masked = !antialiased && materialMasked(scene_.materials[b.material], mask);
-        const Shading wanted = masked ? kTraced : pass == Pass::kMarks ? kMarksOnly : kColour;
-        if (b.spheres != (spheres == 1) || wanted != shading) continue;
-        if (!uniformsSet) {
-          setUniforms(programs_[spheres][shading], frame, vp, antialiased);
-          uniformsSet = true;
-        }
-        gl_.StencilFunc(GL_ALWAYS, masked ? kMaskedPixel : kRasterPixel, 0xff);
-        gl_.BindVertexArray(b.vao);
-        gl_.DrawArrays(GL_TRIANGLES, 0, b.vertices);
-      }
-    }
-    if (perSample) gl_.Disable(GL_SAMPLE_SHADING);
+    if (!variant.traced) setMaterialUniforms(p, scene_.materials[b.material]);
+    drawBatch(b, vp.eye);
   }
+  gl_.Disable(GL_DEPTH_CLAMP);
   gl_.BindVertexArray(0);
   gl_.UseProgram(0);
+  return shadowMs;
 }
 
 }  // namespace glint::gl

@@ -9,27 +9,41 @@ namespace glint::gl {
 // shadow rays answered by the shadow maps where they can decide, see
 // client/shadow_maps.h): the same terms, face-forwarded normals, attenuation,
 // checker index and image lookups (common/texture.cpp).
-// Fragment shaders are fragmentPrelude(), kFragmentShading and their own main(),
-// in three variants (RasterScene::Shading): as they are, the colour and the
-// marks; with MARKS_ONLY defined, the marks and a black colour (the
-// anti-aliased pass draws the colour); with TRACED, neither (masked objects).
-// With stencilExport (ARB_shader_stencil_export) a fragment whose shadow the
-// maps cannot decide writes the stencil uUndecidedStencil.
-std::string fragmentPrelude(bool stencilExport);  // #version, extensions and the limits below as GLSL defines
+//
+// Each material is drawn by a program made for what it needs (a variant):
+// llvmpipe runs both sides of every branch of a fragment shader, so a term a
+// material does not have (a texture, the specular lobe, the shadow maps)
+// costs nothing only when it is compiled out. The material's own values are
+// uniforms set per draw call, so the number of materials and textures is
+// bounded by memory alone.
+enum class TextureKind { kNone, kChecker, kNearest, kBilinear };
+struct ShaderVariant {
+  bool sphere = false;
+  bool traced = false;  // a masked material: depth and surface only, no shading
+  TextureKind texture = TextureKind::kNone;
+  bool lit = false;       // diffuse or specular terms (else ambient alone)
+  bool specular = false;
+  bool shadows = false;   // the shadow maps are read
+  bool srgb = false;      // the 8-bit encoding (else linear)
+
+  int key() const;
+  // The #defines that select the variant in the sources below.
+  std::string defines() const;
+};
+
+// Every fragment shader is fragmentPrelude(variant), kFragmentShading and
+// its own main(); it writes the colour (location 0) and the surface value
+// `object << kPixelMarkBits | mark` (location 1, client/pixel_mark.h).
+std::string fragmentPrelude(const ShaderVariant& variant);
 extern const char* const kFragmentShading;
 extern const char* const kMeshVertexShader;
 extern const char* const kMeshFragmentShader;
 extern const char* const kSphereVertexShader;
 extern const char* const kSphereFragmentShader;
 
-// Limits of the uniform arrays the shaders declare (defined only here).
+// The length of the shaders' light arrays (defined only here).
 constexpr int kMaxLights = 16;
-constexpr int kMaxMaterials = 128;
-constexpr int kMaxTextures = 32;
-// Texels on each side of a point's own that its shadow test reads (1: 3 x 3)
-// where it decides the mask; the anti-aliased pass reads the point's own
-// texel alone (a pixel it decided has the same answer there, and one it did
-// not is traced).
+// Texels on each side of a point's own that its shadow test reads (1: 3 x 3).
 constexpr int kShadowRadius = 1;
 
 }  // namespace glint::gl

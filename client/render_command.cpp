@@ -230,8 +230,6 @@ std::optional<LinearImage> renderFrames(const RenderRun& run, TileBackend& backe
   if (hybridPath) {
     context.emplace(frame.width, frame.height);
     raster.emplace(context->api(), scene);
-    const std::string note = raster->shadowEdgeNote(scene.mask);
-    if (!note.empty()) std::fprintf(stderr, "%s\n", note.c_str());
   }
   std::optional<StatsWriter> stats;
   if (!options.statsPath.empty()) stats.emplace(options.statsPath);
@@ -253,6 +251,7 @@ std::optional<LinearImage> renderFrames(const RenderRun& run, TileBackend& backe
                     .crop = options.crop,
                     .maskedPixels = r.maskedPixels,
                     .shadowEdgePixels = r.shadowEdgePixels,
+                    .rasterEdgePixels = r.rasterEdgePixels,
                     .tiles = r.tiles,
                     .rays = r.rays,
                     .plan = &run.plan,

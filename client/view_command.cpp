@@ -118,7 +118,7 @@ std::vector<std::uint8_t> maskOverlay(const HybridResult& r) {
 // Draws a top-down RGB image over the window.
 void drawImage(const gl::Api& gl, std::vector<std::uint8_t> rgb, int width, int height) {
   flipRows(rgb, width, height, 3);
-  gl.Disable(GL_STENCIL_TEST);
+  gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
   gl.WindowPos2i(0, 0);
   gl.DrawPixels(width, height, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
 }
@@ -180,10 +180,11 @@ Shown showFrame(GLFWwindow* window, const gl::Api& api, gl::RasterScene& raster,
     renderHybrid(api, raster, none, frame, mask, tileSize, last);
     missing = true;
   }
-  if (controls.overlay) drawImage(api, maskOverlay(last), frame.width, frame.height);
+  std::vector<std::uint8_t> shown = controls.overlay ? maskOverlay(last) : last.image.rgb;
   if (controls.provenance && backend.distributed() && !missing) {
-    drawImage(api, provenanceImage(last.image, backend.distributed()->lastFrame()).rgb, frame.width, frame.height);
+    shown = provenanceImage(last.image, backend.distributed()->lastFrame()).rgb;
   }
+  drawImage(api, std::move(shown), frame.width, frame.height);
   glfwSwapBuffers(window);
   char title[320];
   std::snprintf(title, sizeof title,
@@ -215,8 +216,6 @@ void runView(const ViewOptions& options) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_COMPAT_PROFILE);
-  glfwWindowHint(GLFW_STENCIL_BITS, 8);
-  glfwWindowHint(GLFW_DEPTH_BITS, 24);
   glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
   GLFWwindow* window = glfwCreateWindow(loaded.scene.frame.width, loaded.scene.frame.height, "glint view", nullptr, nullptr);
   if (!window) throw InputError("glint view: cannot open an OpenGL 3.3 compatibility window");
@@ -227,8 +226,6 @@ void runView(const ViewOptions& options) {
   TileBackend backend({options.remote, options.threads, options.bvh, false}, std::move(loaded));
   const Scene& scene = backend.scene();
   gl::RasterScene raster(api, scene);
-  const std::string note = raster.shadowEdgeNote(scene.mask);
-  if (!note.empty()) std::fprintf(stderr, "%s\n", note.c_str());
 
   Controls controls;
   controls.camera = scene.frame.camera;

@@ -1,0 +1,44 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "client/gl_api.h"
+#include "common/tile.h"
+
+namespace glint::gl {
+
+// The framebuffer the raster pass draws into, one sample a pixel:
+// - colour (RGBA8): GL's shading of the pixel;
+// - surface (R32UI): what the pixel shows, `object << 2 | mark` (object 0 is
+//   the background, objects count from 1; mark a PixelMark of the fragment);
+// - depth (32-bit float): the distance from the eye / the far plane, written
+//   by the shaders (linear: a float keeps 24 bits of it at every distance).
+// Reads give rows from the top, as Glint's images are.
+class RasterTarget {
+ public:
+  explicit RasterTarget(const Api& gl) : gl_(gl) {}
+  ~RasterTarget();
+  RasterTarget(const RasterTarget&) = delete;
+  RasterTarget& operator=(const RasterTarget&) = delete;
+
+  // Binds a target of this size (made anew when the size changes) with both
+  // colour attachments drawn; throws InputError when GL cannot make it.
+  void bind(int width, int height);
+  // Clears colour to `background` (exact 8-bit values), surface to 0 and
+  // depth to 1.
+  void clear(const std::uint8_t background[3]);
+  void readColour(const TileRect& window, std::vector<std::uint8_t>& rgb) const;
+  void readSurface(std::vector<std::uint32_t>& surface) const;
+  void readDepth(std::vector<float>& depth) const;
+
+ private:
+  void release();
+  const Api& gl_;
+  unsigned framebuffer_ = 0;
+  unsigned buffers_[3] = {};  // colour, surface, depth
+  int width_ = 0;
+  int height_ = 0;
+};
+
+}  // namespace glint::gl
