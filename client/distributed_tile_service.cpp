@@ -29,6 +29,7 @@ struct DistributedTileService::Frame {
   TileDispatcher dispatcher;
   std::vector<std::uint64_t> bytesIn;   // per server, at the frame's start
   std::vector<std::uint64_t> bytesOut;
+  std::size_t reportBase = 0;  // report_'s index of jobs[0]
 };
 
 DistributedTileService::DistributedTileService(std::vector<ServerAddress> servers, const proto::SceneBundle& bundle,
@@ -160,7 +161,7 @@ void DistributedTileService::linkResult(ServerLink& link, std::uint32_t frameId,
   r.maskedPixels += out.rgb.size() / 3;
   r.rays += out.rays;
   r.busyMs += out.computeMs;
-  report_.deliveredBy[job] = static_cast<int>(index);
+  report_.deliveredBy[frame_->reportBase + job] = static_cast<int>(index);
   measured_[tileKey(frame_->jobs[job])] = {frame_->costs[tileId], out.computeMs};
   frame_->done(job, std::move(out));
 }
@@ -171,15 +172,15 @@ std::vector<double> DistributedTileService::tileCosts(std::span<const TileJob> j
                                                       const std::vector<std::size_t>& sent) const {
   double estimated = 0.0;
   double measured = 0.0;
-  for (const auto& [key, m] : measured_) {
+  for (const auto& [key, m] : lastMeasured_) {
     estimated += m.first;
     measured += m.second;
   }
   const double scale = measured > 0.0 ? estimated / measured : 0.0;
   std::vector<double> costs;
   for (const std::size_t j : sent) {
-    const auto it = measured_.find(tileKey(jobs[j]));
-    costs.push_back(it != measured_.end() && scale > 0.0 ? it->second.second * scale
+    const auto it = lastMeasured_.find(tileKey(jobs[j]));
+    costs.push_back(it != lastMeasured_.end() && scale > 0.0 ? it->second.second * scale
                                                           : static_cast<double>(tracedPixels(jobs[j])));
   }
   return costs;
@@ -197,7 +198,6 @@ void DistributedTileService::render(const FrameSettings& settings, std::span<con
     }
   }
   std::vector<double> costs = tileCosts(jobs, sent);
-  measured_.clear();
   DispatchSettings dispatch;
   dispatch.stallTimeoutMs = static_cast<double>(settings_.stallTimeout.count());
   Frame frame{++frameId_, settings, jobs, done, std::move(sent), costs, TileDispatcher(costs, paces_, dispatch), {}, {}};
@@ -237,23 +237,34 @@ void DistributedTileService::step() {
   }
 }
 
-void DistributedTileService::startReport(Frame& frame) {
+void DistributedTileService::beginFrame() {
   report_ = {};
-  report_.rects.reserve(frame.jobs.size());
-  for (const TileJob& job : frame.jobs) report_.rects.push_back(job.rect);
-  report_.deliveredBy.assign(frame.jobs.size(), -1);
+  for (Server& s : servers_) s.report = {s.address.name, s.report.state, s.report.why, 0, 0, {}, 0.0, 0.0, 0, 0};
+  lastMeasured_ = std::move(measured_);
+  measured_.clear();
+}
+
+void DistributedTileService::startReport(Frame& frame) {
+  frame.reportBase = report_.rects.size();
+  for (const TileJob& job : frame.jobs) {
+    report_.rects.push_back(job.rect);
+    report_.masks.push_back(job.mask);
+  }
+  report_.deliveredBy.resize(report_.rects.size(), -1);
   for (Server& s : servers_) {
-    s.report = {s.address.name, s.report.state, s.report.why, 0, 0, {}, 0.0, 0.0, 0, 0};
     frame.bytesIn.push_back(s.link->bytesReceived());
     frame.bytesOut.push_back(s.link->bytesSent());
   }
 }
 
 void DistributedTileService::finishReport(const Frame& frame) {
-  report_.reissuedTiles = frame.dispatcher.reissued();
-  report_.duplicatedTiles = frame.dispatcher.duplicated();
-  report_.reissued.resize(frame.jobs.size(), false);
-  for (std::size_t t = 0; t < frame.sent.size(); ++t) report_.reissued[frame.sent[t]] = frame.dispatcher.wasReissued(t);
+  report_.reissuedTiles += frame.dispatcher.reissued();
+  report_.duplicatedTiles += frame.dispatcher.duplicated();
+  report_.reissued.resize(report_.rects.size(), false);
+  for (std::size_t t = 0; t < frame.sent.size(); ++t) {
+    report_.reissued[frame.reportBase + frame.sent[t]] = frame.dispatcher.wasReissued(t);
+  }
+  report_.servers.clear();
   for (std::size_t i = 0; i < servers_.size(); ++i) {
     Server& s = servers_[i];
     if (!s.link->ready() && !s.link->failed()) {
@@ -261,8 +272,8 @@ void DistributedTileService::finishReport(const Frame& frame) {
       s.report.why = "not ready yet (connecting, or receiving and building the scene)";
     }
     s.report.rttMs = std::max(0.0, paces_[i].rttMs);
-    s.report.bytesIn = s.link->bytesReceived() - std::min(s.link->bytesReceived(), frame.bytesIn[i]);
-    s.report.bytesOut = s.link->bytesSent() - std::min(s.link->bytesSent(), frame.bytesOut[i]);
+    s.report.bytesIn += s.link->bytesReceived() - std::min(s.link->bytesReceived(), frame.bytesIn[i]);
+    s.report.bytesOut += s.link->bytesSent() - std::min(s.link->bytesSent(), frame.bytesOut[i]);
     report_.servers.push_back(s.report);
   }
 }

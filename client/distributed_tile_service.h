@@ -47,6 +47,7 @@ class DistributedTileService : public TileService, private LinkListener {
   void render(const FrameSettings& frame, std::span<const TileJob> jobs,
               const std::function<void(std::size_t, TileOutput&&)>& done) override;
   int parallelism() const override;
+  void beginFrame() override;
 
   // Waits until no server is still connecting or receiving the scene, or
   // `limit` passes (render does not: a frame starts on the servers ready).
@@ -98,10 +99,13 @@ class DistributedTileService : public TileService, private LinkListener {
   std::uint32_t frameId_ = 0;
   Frame* frame_ = nullptr;
   std::optional<std::string> sceneError_;
-  // The last frame's estimate and measured tracing time per tile (x, y, w,
-  // h, masked pixels), to refine the next frame's costs.
-  std::map<std::array<int, 5>, std::pair<double, double>> measured_;
-  DistributionReport report_;
+  // The estimate and measured tracing time per tile (x, y, w, h, masked
+  // pixels) of the last frame, which refine this frame's costs, and of this
+  // frame so far.
+  using TileTimes = std::map<std::array<int, 5>, std::pair<double, double>>;
+  TileTimes lastMeasured_;
+  TileTimes measured_;
+  DistributionReport report_;  // the frame since beginFrame(), every render() in it
 };
 
 }  // namespace glint

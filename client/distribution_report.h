@@ -47,6 +47,7 @@ struct DistributionReport {
   std::size_t reissuedTiles = 0;    // taken again from a lost server
   std::size_t duplicatedTiles = 0;  // copies of the last bucket sent to an idle server
   std::vector<TileRect> rects;      // the frame's tiles
+  std::vector<std::vector<std::uint8_t>> masks;  // per tile: its traced pixels (common/tile.h bits; empty: all)
   std::vector<int> deliveredBy;     // per tile: the server's index, -1 when nothing was traced
   std::vector<bool> reissued;       // per tile
 };

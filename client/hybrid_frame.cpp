@@ -109,14 +109,21 @@ bool traceTiles(TileService& service, TracedSet& set, const CancelCheck& cancell
   return true;
 }
 
-// Reads the raster back: each pixel's mark (edges found here) into
-// result.mask, and the window's colour into result.colour.
-void readRaster(const gl::RasterScene& raster, const FrameSettings& frame, const TileRect& window,
-                HybridResult& result) {
+// Reads the raster back: each pixel's mark into result.mask, and the
+// window's colour into result.colour. The edges of what OpenGL draws are
+// traced under the rule auto when the frame takes several samples a pixel
+// (one sample at the centre would give the raster's own value).
+void readRaster(const gl::RasterScene& raster, const FrameSettings& frame, const MaskSettings& mask,
+                const TileRect& window, HybridResult& result) {
   raster.target().readSurface(result.surface);
-  raster.target().readDepth(result.depth);
-  result.mask.resize(static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height));
-  result.rasterEdgePixels = markRasterEdges(result.surface, result.depth, frame.width, frame.height, result.mask);
+  result.mask.resize(result.surface.size());
+  result.rasterEdgePixels = 0;
+  if (mask.rule == MaskRule::kAuto && frame.sampling.samples > 1) {
+    raster.target().readDepth(result.depth);
+    result.rasterEdgePixels = markRasterEdges(result.surface, result.depth, frame.width, frame.height, result.mask);
+  } else {
+    std::transform(result.surface.begin(), result.surface.end(), result.mask.begin(), markOf);
+  }
   raster.target().readColour(window, result.colour);
 }
 
@@ -150,12 +157,13 @@ bool renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
     gl.Finish();
     result.times.rasterMs = msSince(start);
     const Clock::time_point readStart = Clock::now();
-    readRaster(raster, frame, window, result);
+    readRaster(raster, frame, mask, window, result);
     result.times.readbackMs = msSince(readStart);
   }
 
   TracedSet sets[2] = {{false, frame, {}, {}, 0}, {true, directLightOf(frame), {}, {}, 0}};
   collectTiles(result.mask, frame.width, window, tileSize, sets);
+  service.beginFrame();
   result.shadowEdgePixels = static_cast<std::size_t>(std::count(result.mask.begin(), result.mask.end(), kShadowEdgePixel));
   result.maskedPixels = sets[0].pixels + sets[1].pixels;
   result.tiles = static_cast<int>(sets[0].jobs.size() + sets[1].jobs.size());

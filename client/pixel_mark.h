@@ -14,6 +14,9 @@ enum PixelMark : std::uint8_t {
   kRasterEdgePixel = 3,  // a geometric edge of surfaces OpenGL draws: traced with direct light (anti-aliasing)
 };
 constexpr unsigned kPixelMarkBits = 2;  // a surface value is object << kPixelMarkBits | mark
+constexpr std::uint8_t markOf(std::uint32_t surface) {
+  return static_cast<std::uint8_t>(surface & ((1u << kPixelMarkBits) - 1));
+}
 
 // Traced with direct light alone (max depth 1): the pixel's neighbours are
 // OpenGL's, which draws no reflections.

@@ -17,9 +17,12 @@ constexpr std::array<Named, 8> kPalette{{{{230, 40, 40}, "red"},
                                          {{140, 70, 220}, "purple"}}};
 constexpr int kOutline = 2;  // pixels of a re-issued tile's border
 
-void tint(FrameImage& image, const TileRect& r, const std::array<std::uint8_t, 3>& colour) {
+// Tints the tile's traced pixels (`mask`, empty: all).
+void tint(FrameImage& image, const TileRect& r, const std::vector<std::uint8_t>& mask,
+          const std::array<std::uint8_t, 3>& colour) {
   for (int y = r.y; y < r.y + r.height; ++y) {
     for (int x = r.x; x < r.x + r.width; ++x) {
+      if (!mask.empty() && !maskBit(mask, static_cast<std::size_t>((y - r.y) * r.width + x - r.x))) continue;
       std::uint8_t* p = &image.rgb[3 * (static_cast<std::size_t>(y) * image.width + x)];
       for (int c = 0; c < 3; ++c) p[c] = static_cast<std::uint8_t>((p[c] + colour[c]) / 2);
     }
@@ -47,7 +50,7 @@ FrameImage provenanceImage(const FrameImage& frame, const DistributionReport& re
   FrameImage image = frame;
   for (std::size_t t = 0; t < report.rects.size(); ++t) {
     if (report.deliveredBy[t] < 0) continue;
-    tint(image, report.rects[t], serverColour(static_cast<std::size_t>(report.deliveredBy[t])));
+    tint(image, report.rects[t], report.masks[t], serverColour(static_cast<std::size_t>(report.deliveredBy[t])));
     if (report.reissued[t]) outline(image, report.rects[t]);
   }
   return image;

@@ -14,10 +14,10 @@ namespace glint {
 std::array<std::uint8_t, 3> serverColour(std::size_t index);
 const char* serverColourName(std::size_t index);
 
-// Who traced what: the frame with every traced tile half-tinted with the
-// colour of the server that delivered it, and a white outline around tiles
-// that were re-issued after their first server was lost. Tiles with no
-// traced pixel are left as drawn.
+// Who traced what: the frame with every traced pixel half-tinted with the
+// colour of the server that delivered its tile, and a white outline around
+// tiles that were re-issued after their first server was lost. Pixels
+// OpenGL drew are left as drawn.
 FrameImage provenanceImage(const FrameImage& frame, const DistributionReport& report);
 
 // "red = 127.0.0.1:7001 (41 tiles), green = ..." with lost servers named.

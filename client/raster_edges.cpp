@@ -12,7 +12,7 @@ struct Pixels {
   std::span<const std::uint32_t> surface;
   std::span<const float> depth;
   std::uint32_t object(std::size_t i) const { return surface[i] >> kPixelMarkBits; }
-  std::uint8_t mark(std::size_t i) const { return static_cast<std::uint8_t>(surface[i] & ((1u << kPixelMarkBits) - 1)); }
+  std::uint8_t mark(std::size_t i) const { return markOf(surface[i]); }
 };
 
 // Whether p's depth, extrapolated through p from `before` (p's other

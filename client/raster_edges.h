@@ -11,11 +11,15 @@ namespace glint {
 // traced with the frame's samples (NVIDIA's adaptive temporal anti-aliasing
 // traces a rasterizer's edges the same way). Two neighbouring pixels (left
 // and right, or above and below) straddle an edge when they show different
-// objects (the background among them), or one object whose depth jumps: each
-// pixel's depth, extrapolated linearly from it and its other neighbour on
-// that line, misses the other pixel's by more than kEdgeDepthTolerance of
-// its depth, seen from both sides (a plane extrapolates exactly; an occluding
-// contour or a sharp crease does not).
+// objects (the background among them), or one object whose depth jumps or
+// bends between them: each pixel's depth, extrapolated linearly from it and
+// its other neighbour on that line, misses the other pixel's by more than
+// kEdgeDepthTolerance of its depth, seen from both sides (a plane
+// extrapolates exactly; an occluding contour or a sharp crease between the
+// two does not). Requiring both sides keeps the pixels one further from the
+// edge out (their extrapolation crosses it from one side only): tracing
+// them too marked 55 % more pixels of the room and the glass scene for no
+// change in their error.
 //
 // `surface` holds the raster's `object << kPixelMarkBits | mark` per pixel
 // and `depth` its depth (any unit proportional to the distance), rows from

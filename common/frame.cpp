@@ -22,6 +22,7 @@ FrameResult renderFrame(TileService& service, const FrameSettings& frame, const 
     jobs.push_back({rect, {}});
   }
   int done = 0;
+  service.beginFrame();
   service.render(frame, jobs, [&](std::size_t i, TileOutput&& out) {
     const TileRect& rect = jobs[i].rect;
     if (out.rgb.size() != rect.pixelCount() * 3) {

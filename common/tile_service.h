@@ -45,6 +45,10 @@ class TileService {
                       const std::function<void(std::size_t, TileOutput&&)>& done) = 0;
   // Tiles traced at once (threads of the pool or of the server).
   virtual int parallelism() const = 0;
+  // A frame's tiles may come in several render() calls (the hybrid frame
+  // traces its sets apart): what a service reports and learns of a frame
+  // covers every call from one beginFrame() to the next.
+  virtual void beginFrame() {}
 };
 
 class Renderer;

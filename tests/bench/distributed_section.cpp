@@ -31,6 +31,7 @@ class RecordingService : public TileService {
     });
   }
   int parallelism() const override { return inner_.parallelism(); }
+  void beginFrame() override { inner_.beginFrame(); }
 
   static constexpr std::size_t kResultOverheadBytes = 96;  // a TileResult's fields and framing
   std::vector<sim::SimTile> tiles;

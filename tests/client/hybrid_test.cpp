@@ -10,8 +10,10 @@
 #include "client/hybrid_frame.h"
 #include "client/image_rows.h"
 #include "client/offscreen_context.h"
+#include "client/pixel_mark.h"
 #include "client/raster_scene.h"
 #include "client/distributed_tile_service.h"
+#include "common/encoding.h"
 #include "common/file_source.h"
 #include "common/mask_rule.h"
 #include "common/scene_load.h"
@@ -43,14 +45,6 @@ MaskSettings rule(MaskRule rule, int shadowMap = 0) {
   mask.rule = rule;
   mask.shadowMap = shadowMap;
   return mask;
-}
-
-// The whole default framebuffer's colour (GL_RGB, 3 bytes a pixel) or
-// stencil (GL_STENCIL_INDEX, 1), rows from the top.
-std::vector<std::uint8_t> readBack(const gl::Api& api, int width, int height, GLenum format, int channels) {
-  std::vector<std::uint8_t> pixels;
-  readPixels(api, TileRect{0, 0, width, height}, height, format, channels, pixels);
-  return pixels;
 }
 
 HybridResult hybrid(const Scene& scene, TileService& service, const FrameSettings& frame, const MaskSettings& mask) {
@@ -218,7 +212,7 @@ TEST(Hybrid, RasterSurfacesReceiveShadows) {
     const std::vector<bool> covered = fullyCovered(prepared, s.frame);
     int compared = 0, bad = 0, inShadow = 0, litWithoutMaps = 0;
     for (std::size_t i = 0; i < covered.size(); ++i) {
-      if (!covered[i] || maps.mask[i] != gl::kRasterPixel) continue;
+      if (!covered[i] || maps.mask[i] != kRasterPixel) continue;
       ++compared;
       if (channelDifference(maps.image, shadowed, i) > 2 && bad++ < 5) {
         ADD_FAILURE() << sceneFile << " pixel " << i % 160 << "," << i / 160 << " differs from the traced shadow";
@@ -295,13 +289,15 @@ TEST(Hybrid, DenseMeshHasNoStrayAmbientPixels) {
   EXPECT_LT(off, compared / 1000) << off << " of " << compared << " pixels more than 8/255 off";
 }
 
-// With 4 samples a pixel the raster is multisampled (every sample shaded):
-// on the pixels an object's edge crosses (rays through the pixel meet
-// different primitives), GL's frame is measurably closer to the converged
-// direct light (the tracer's, 64 samples a pixel) than the single-sampled
-// raster was. (Checker squares smaller than a pixel, at the room's horizon,
+// With 4 samples a pixel the raster's edges are traced: on the pixels an
+// object's edge crosses (rays through the pixel meet different primitives),
+// the hybrid frame is measurably closer to the converged direct light (the
+// tracer's, 64 samples a pixel) than the raster at one sample a pixel.
+// Nothing is masked for its reflectivity (threshold 1; the glass is masked
+// for its transparency, and its pixels are not counted) and there are no
+// shadow maps. (Checker squares smaller than a pixel, at the room's horizon,
 // alias with 4 samples whichever way they are placed; they are not counted.)
-TEST(Hybrid, MultisampledRasterEdgesAreCloserToTheTrace) {
+TEST(Hybrid, TracedEdgesAreCloserToTheTrace) {
   for (const char* sceneFile : {"scenes/room.json", "scenes/glass.json"}) {
     SceneSetup s = load(sceneFile);
     s.frame.sampling = {SamplePattern::kRegular, 4, FilterType::kBox, 0};
@@ -311,97 +307,29 @@ TEST(Hybrid, MultisampledRasterEdgesAreCloserToTheTrace) {
     converged.sampling.samples = 64;
     const FrameImage traced =
         renderFrame(Renderer(prepared, converged, test::directLightOnly(prepared.scene(), converged)), pool, {}).image;
-    gl::OffscreenContext context(s.frame.width, s.frame.height);
-    gl::RasterScene raster(context.api(), prepared.scene());
-    // GL's frame, multisampled when `frame` takes several samples.
-    const auto frameOf = [&](const FrameSettings& frame, bool antialiased) {
-      EXPECT_EQ(raster.prepareAntialiased(frame), antialiased);
-      raster.draw(frame, rule(MaskRule::kNone), !antialiased);
-      const std::vector<std::uint8_t> noMarks(traced.rgb.size() / 3, gl::kRasterPixel);
-      if (antialiased) raster.drawAntialiased(frame, noMarks);
-      return readBack(context.api(), frame.width, frame.height, GL_RGB, 3);
-    };
+    LocalTileService service(prepared, pool);
+    MaskSettings edgesOnly = rule(MaskRule::kAuto);
+    edgesOnly.minReflectivity = 1.0f;
     FrameSettings single = s.frame;
     single.sampling.samples = 1;
-    const std::vector<std::uint8_t> aliased = frameOf(single, false), smooth = frameOf(s.frame, true);
+    const HybridResult aliased = hybrid(prepared.scene(), service, single, edgesOnly);
+    const HybridResult smooth = hybrid(prepared.scene(), service, s.frame, edgesOnly);
+    EXPECT_EQ(smooth.maskedPixels, smooth.rasterEdgePixels + aliased.maskedPixels) << sceneFile;
+    EXPECT_GT(smooth.rasterEdgePixels, 100u) << sceneFile;
+    EXPECT_LT(smooth.rasterEdgePixels, smooth.mask.size() / 5) << sceneFile;
     const std::vector<bool> covered = fullyCovered(prepared, s.frame, 0.45f, false);
     double aliasedError = 0.0, smoothError = 0.0;
     for (std::size_t i = 0; i < covered.size(); ++i) {
-      if (covered[i]) continue;
+      if (covered[i] || smooth.mask[i] == kMaskedPixel) continue;
       for (std::size_t k = 3 * i; k < 3 * i + 3; ++k) {
-        aliasedError += std::abs(aliased[k] - traced.rgb[k]);
-        smoothError += std::abs(smooth[k] - traced.rgb[k]);
+        aliasedError += std::abs(aliased.image.rgb[k] - traced.rgb[k]);
+        smoothError += std::abs(smooth.image.rgb[k] - traced.rgb[k]);
       }
     }
-    std::printf("%s: edge error single-sampled %.0f, multisampled %.0f\n", sceneFile, aliasedError, smoothError);
+    std::printf("%s: edge error one sample %.0f, edges traced %.0f (%zu pixels of %zu)\n", sceneFile, aliasedError,
+                smoothError, smooth.rasterEdgePixels, smooth.mask.size());
     EXPECT_LT(smoothError, 0.6 * aliasedError) << sceneFile;
   }
-}
-
-// The raster encodes as the tracer does: sRGB and exposure in the shader.
-// The anti-aliased pass leaves out the pixels draw() marked for the tracer
-// (every sample discarded: they resolve to the clear colour) and draws
-// every other pixel to the bit as with nothing marked. The top third is
-// marked: marks read upside down would leave out the bottom third instead.
-TEST(Hybrid, AntialiasedPassLeavesOutTheMarkedPixels) {
-  const SceneSetup s = load("scenes/room.json");
-  const int w = s.frame.width, h = s.frame.height;
-  gl::OffscreenContext context(w, h);
-  gl::RasterScene raster(context.api(), s.loaded.scene);
-  const auto frameWith = [&](const std::vector<std::uint8_t>& marks) {
-    EXPECT_TRUE(raster.prepareAntialiased(s.frame));
-    raster.draw(s.frame, rule(MaskRule::kNone), false);
-    raster.drawAntialiased(s.frame, marks);
-    return readBack(context.api(), w, h, GL_RGB, 3);
-  };
-  std::vector<std::uint8_t> marks(static_cast<std::size_t>(w * h), gl::kRasterPixel);
-  const std::vector<std::uint8_t> whole = frameWith(marks);
-  const auto markedEnd = static_cast<std::size_t>(w * (h / 3));
-  std::fill(marks.begin(), marks.begin() + static_cast<std::ptrdiff_t>(markedEnd), gl::kMaskedPixel);
-  marks[markedEnd - 1] = gl::kShadowEdgePixel;
-  const std::vector<std::uint8_t> partial = frameWith(marks);
-  int changedUnmarked = 0, changedMarked = 0, notCleared = 0;
-  for (std::size_t i = 0; i < marks.size(); ++i) {
-    bool changed = false, cleared = true;
-    for (std::size_t k = 3 * i; k < 3 * i + 3; ++k) {
-      changed = changed || partial[k] != whole[k];
-      cleared = cleared && partial[k] == partial[k % 3];  // the first pixel is marked: the clear colour
-    }
-    if (marks[i] == gl::kRasterPixel) changedUnmarked += changed ? 1 : 0;
-    if (marks[i] != gl::kRasterPixel) {
-      changedMarked += changed ? 1 : 0;
-      notCleared += cleared ? 0 : 1;
-    }
-  }
-  EXPECT_EQ(changedUnmarked, 0);
-  EXPECT_EQ(notCleared, 0);
-  EXPECT_GT(changedMarked, static_cast<int>(markedEnd) / 2);  // the room's walls are not the clear colour
-}
-
-// draw() without colour (an anti-aliased pass will draw it) marks the
-// same pixels as with it, the shadow edges too, and leaves GL's pixels
-// black: its shaders keep the shadow votes and drop the colour terms.
-TEST(Hybrid, MarksWithoutColourAreTheMarksWithColour) {
-  const SceneSetup s = load("scenes/glass.json");
-  const int w = s.frame.width, h = s.frame.height;
-  gl::OffscreenContext context(w, h);
-  gl::RasterScene raster(context.api(), s.loaded.scene);
-  const MaskSettings mask = rule(MaskRule::kAuto, 256);
-  raster.draw(s.frame, mask, true);
-  const std::vector<std::uint8_t> marks = readBack(context.api(), w, h, GL_STENCIL_INDEX, 1);
-  raster.draw(s.frame, mask, false);
-  EXPECT_EQ(readBack(context.api(), w, h, GL_STENCIL_INDEX, 1), marks);
-  const std::vector<std::uint8_t> rgb = readBack(context.api(), w, h, GL_RGB, 3);
-  std::size_t edges = 0, drawn = 0, lit = 0;
-  for (std::size_t i = 0; i < marks.size(); ++i) {
-    edges += marks[i] == gl::kShadowEdgePixel ? 1 : 0;
-    if (marks[i] != gl::kRasterPixel) continue;
-    ++drawn;
-    lit += rgb[3 * i] != 0 || rgb[3 * i + 1] != 0 || rgb[3 * i + 2] != 0 ? 1 : 0;
-  }
-  EXPECT_GT(edges, 0u);
-  EXPECT_GT(drawn, marks.size() / 2);
-  EXPECT_EQ(lit, 0u);
 }
 
 TEST(Hybrid, RasterEncodesAsTheTracer) {
@@ -431,16 +359,20 @@ TEST(Hybrid, MaskFollowsTheObjectAtThePixelCentre) {
       const bool expected =
           hit && materialMasked(prepared.scene().materials[prepared.scene().geometry.materialOf(hit->prim)], mask);
       masked += expected ? 1 : 0;
-      if (covered[i] && expected != (h.mask[i] == gl::kMaskedPixel)) ++mismatches;
+      if (covered[i] && expected != (markOf(h.surface[i]) == kMaskedPixel)) ++mismatches;
     }
   }
   EXPECT_EQ(mismatches, 0);
   EXPECT_GT(masked, 1000);
-  const auto marked = [&](gl::StencilMark mark) {
+  const auto marked = [&](PixelMark mark) {
     return static_cast<std::size_t>(std::count(h.mask.begin(), h.mask.end(), mark));
   };
-  EXPECT_EQ(h.maskedPixels, marked(gl::kMaskedPixel) + marked(gl::kShadowEdgePixel));
-  EXPECT_EQ(h.shadowEdgePixels, marked(gl::kShadowEdgePixel));
+  std::size_t changedByEdges = 0;
+  for (std::size_t i = 0; i < h.mask.size(); ++i) changedByEdges += h.mask[i] != markOf(h.surface[i]) ? 1 : 0;
+  EXPECT_EQ(h.maskedPixels, h.mask.size() - marked(kRasterPixel));
+  EXPECT_EQ(h.shadowEdgePixels, marked(kShadowEdgePixel));
+  EXPECT_EQ(h.rasterEdgePixels, changedByEdges);
+  EXPECT_GT(h.rasterEdgePixels, 0u);
 }
 
 // Masked pixels of the hybrid frame are the full trace's, byte for byte, in
@@ -469,13 +401,13 @@ TEST(Hybrid, MaskedPixelsEqualTheFullTrace) {
     const HybridResult h = hybrid(prepared.scene(), *service, s.frame, prepared.scene().mask);
     int differing = 0, edges = 0, edgesDiffering = 0, edgesUnlikeFullTrace = 0;
     for (std::size_t i = 0; i < h.mask.size(); ++i) {
-      if (h.mask[i] == gl::kRasterPixel) continue;
-      const FrameImage& expected = h.mask[i] == gl::kMaskedPixel ? full : directFull;
-      edges += h.mask[i] == gl::kShadowEdgePixel ? 1 : 0;
+      if (h.mask[i] == kRasterPixel) continue;
+      const FrameImage& expected = tracedWithDirectLight(h.mask[i]) ? directFull : full;
+      edges += tracedWithDirectLight(h.mask[i]) ? 1 : 0;
       for (int k = 0; k < 3; ++k) {
         const bool off = h.image.rgb[3 * i + k] != expected.rgb[3 * i + k];
         differing += off ? 1 : 0;
-        if (h.mask[i] == gl::kShadowEdgePixel) {
+        if (tracedWithDirectLight(h.mask[i])) {
           edgesDiffering += off ? 1 : 0;
           edgesUnlikeFullTrace += h.image.rgb[3 * i + k] != full.rgb[3 * i + k] ? 1 : 0;
         }
@@ -508,6 +440,7 @@ class CountingService : public TileService {
     inner_.render(frame, jobs, done);
   }
   int parallelism() const override { return inner_.parallelism(); }
+  void beginFrame() override { inner_.beginFrame(); }
   std::size_t tiles = 0;
 
  private:
@@ -589,6 +522,123 @@ TEST(Hybrid, ReusedResultEqualsAFreshOne) {
   EXPECT_EQ(reused.tiles, fresh.tiles);
   EXPECT_EQ(reused.rays.total(), fresh.rays.total());
   EXPECT_LT(reused.maskedPixels, static_cast<std::size_t>(s.frame.width * s.frame.height));
+}
+
+
+// The share of pixels where two images differ by at most `tolerance` in
+// every channel.
+double shareWithin(const FrameImage& a, const FrameImage& b, int tolerance) {
+  std::size_t close = 0;
+  for (std::size_t i = 0; i < a.rgb.size() / 3; ++i) close += channelDifference(a, b, i) <= tolerance ? 1 : 0;
+  return static_cast<double>(close) / static_cast<double>(a.rgb.size() / 3);
+}
+
+// The hybrid frame of a scene (its own mask rule, shadow maps at 1024)
+// beside the full trace, one sample a pixel.
+void expectHybridNearFullTrace(const std::string& json, const char* what) {
+  const Scene scene = test::sceneFromJson(json);
+  const PreparedScene prepared(scene, BvhSettings{});
+  ThreadPool pool(2);
+  LocalTileService service(prepared, pool);
+  const FrameImage full = renderFrame(service, scene.frame, {}).image;
+  const HybridResult h = hybrid(prepared.scene(), service, scene.frame, rule(scene.mask.rule, 1024));
+  const double share = shareWithin(h.image, full, 8);
+  std::printf("%s: %.4f of the pixels within 8/255 of the full trace\n", what, share);
+  EXPECT_GE(share, 0.99) << what;
+}
+
+// Nothing the tracer sees is clipped by the raster: a ground 10 km wide seen
+// from 6 m (the far plane is 7 km away) and a room with a sphere 10,000
+// units behind it. With the projection's near plane at far / 1000 the first
+// lost both spheres and the near ground, and the second the whole room.
+TEST(Hybrid, NearGeometryIsDrawnInScenesOfLargeExtent) {
+  const std::string lights = R"("lights": [{"type": "point", "position": [3, 8, 4]}],
+    "sampling": {"pattern": "regular", "samples": 1, "filter": "box"},
+    "materials": {"ground": {"color": [0.6, 0.6, 0.5], "ambient": 0.1, "diffuse": 0.8},
+                  "red": {"color": [0.9, 0.2, 0.2], "ambient": 0.1, "diffuse": 0.7, "specular": 0.3, "shininess": 30},
+                  "mirror": {"color": [0.8, 0.8, 0.8], "ambient": 0.02, "diffuse": 0.1, "reflectivity": 0.8}},)";
+  expectHybridNearFullTrace(R"({"glint": 1, "image": {"width": 160, "height": 120},
+    "camera": {"eye": [0, 2, 6], "look_at": [0, 1, 0], "fov_y": 50}, )" + lights + R"(
+    "objects": [
+      {"type": "quad", "corners": [[-5000, 0, 5000], [5000, 0, 5000], [5000, 0, -5000], [-5000, 0, -5000]],
+       "material": "ground"},
+      {"type": "sphere", "center": [-1, 1, 0], "radius": 1, "material": "red"},
+      {"type": "sphere", "center": [1.5, 0.7, 1], "radius": 0.7, "material": "mirror"}]})",
+                            "ground 10 km wide");
+  expectHybridNearFullTrace(R"({"glint": 1, "image": {"width": 160, "height": 120},
+    "camera": {"eye": [0.3, 1.6, 5.2], "look_at": [0, 1.2, 0], "fov_y": 50}, )" + lights + R"(
+    "objects": [
+      {"type": "quad", "corners": [[-3, 0, 6], [3, 0, 6], [3, 0, -3], [-3, 0, -3]], "material": "ground"},
+      {"type": "quad", "corners": [[-3, 0, -3], [3, 0, -3], [3, 3, -3], [-3, 3, -3]], "material": "ground"},
+      {"type": "sphere", "center": [0.9, 0.7, -0.6], "radius": 0.7, "material": "mirror"},
+      {"type": "sphere", "center": [-1, 1.2, 0], "radius": 0.5, "material": "red"},
+      {"type": "sphere", "center": [0, 0, -10000], "radius": 1, "material": "red"}]})",
+                            "room with a sphere 10,000 behind it");
+}
+
+// Materials and textures are bounded by memory alone: 300 quads, each with
+// a material of its own, 40 of them with checker textures of their own (the
+// uniform arrays held 128 and 32), drawn as the tracer's direct light.
+TEST(Hybrid, ManyMaterialsAndTextures) {
+  std::string materials, textures, objects;
+  for (int i = 0; i < 300; ++i) {
+    const std::string n = std::to_string(i);
+    const double r = 0.2 + 0.7 * (i % 7) / 6.0, g = 0.2 + 0.7 * (i % 5) / 4.0, b = 0.2 + 0.7 * (i % 3) / 2.0;
+    if (i < 40) {
+      textures += std::string(textures.empty() ? "" : ",") + "\"t" + n + "\": {\"type\": \"checker\", \"scale\": " +
+                  std::to_string(2 + i % 5) + ", \"colors\": [[" + std::to_string(r) + ", 0.2, 0.2], [0.1, 0.1, " +
+                  std::to_string(b) + "]]}";
+    }
+    materials += std::string(materials.empty() ? "" : ",") + "\"m" + n + "\": {" +
+                 (i < 40 ? "\"texture\": \"t" + n + "\"" :
+                           "\"color\": [" + std::to_string(r) + ", " + std::to_string(g) + ", " + std::to_string(b) + "]") +
+                 ", \"ambient\": 0.1, \"diffuse\": 0.8, \"specular\": " + std::to_string((i % 4) * 0.1) +
+                 ", \"shininess\": 20}";
+    const double x = -3.0 + 0.3 * (i % 20), y = 0.3 * (i / 20);
+    objects += std::string(objects.empty() ? "" : ",") + "{\"type\": \"quad\", \"corners\": [[" + std::to_string(x) +
+               ", " + std::to_string(y) + ", 0], [" + std::to_string(x + 0.3) + ", " + std::to_string(y) + ", 0], [" +
+               std::to_string(x + 0.3) + ", " + std::to_string(y + 0.3) + ", 0], [" + std::to_string(x) + ", " +
+               std::to_string(y + 0.3) + ", 0]], \"material\": \"m" + n + "\"}";
+  }
+  const Scene scene = test::sceneFromJson(R"({"glint": 1, "image": {"width": 160, "height": 120},
+    "camera": {"eye": [0, 2.25, 5], "look_at": [0, 2.25, 0], "fov_y": 60},
+    "sampling": {"pattern": "regular", "samples": 1, "filter": "box"},
+    "lights": [{"type": "point", "position": [1, 3, 4]}],
+    "textures": {)" + textures + R"(}, "materials": {)" + materials + R"(}, "objects": [)" + objects + "]}");
+  ASSERT_EQ(scene.materials.size(), 300u);
+  const PreparedScene prepared(scene, BvhSettings{});
+  ThreadPool pool(2);
+  const FrameImage traced =
+      renderFrame(Renderer(prepared, scene.frame, test::directLightOnly(scene, scene.frame)), pool, {}).image;
+  LocalTileService service(prepared, pool);
+  const HybridResult gl = hybrid(prepared.scene(), service, scene.frame, rule(MaskRule::kNone));
+  const std::vector<bool> covered = fullyCovered(prepared, scene.frame);
+  int compared = 0, bad = 0;
+  for (std::size_t i = 0; i < covered.size(); ++i) {
+    if (!covered[i]) continue;
+    ++compared;
+    bad += channelDifference(gl.image, traced, i) > 2 ? 1 : 0;
+  }
+  EXPECT_GT(compared, static_cast<int>(covered.size()) / 2);
+  EXPECT_EQ(bad, 0);
+}
+
+// The raster and the tracer encode the background alike: an empty scene's
+// hybrid frame is the full trace's, byte for byte (a background of 0.3 was
+// 76 rasterized and 77 traced), linear and sRGB with an exposure.
+TEST(Hybrid, BackgroundIsTheTracersToTheByte) {
+  const Scene scene = test::sceneFromJson(R"({"glint": 1, "image": {"width": 64, "height": 48},
+    "camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0]}, "background": [0.3, 0.5, 0.7], "objects": []})");
+  const PreparedScene prepared(scene, BvhSettings{});
+  ThreadPool pool(2);
+  LocalTileService service(prepared, pool);
+  for (const OutputSettings output : {OutputSettings{}, OutputSettings{Encoding::kSrgb, 0.7f}}) {
+    FrameSettings frame = scene.frame;
+    frame.output = output;
+    const FrameImage full = renderFrame(service, frame, {}).image;
+    EXPECT_EQ(full.rgb[0], output.encoding == Encoding::kLinear ? 77 : Encoder(output).byte(0.3f));
+    EXPECT_EQ(hybrid(prepared.scene(), service, frame, rule(MaskRule::kNone)).image.rgb, full.rgb);
+  }
 }
 
 }  // namespace
