@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -329,24 +330,55 @@ void protocolSection(const Options& o, const Scene& room) {
   }
 }
 
-// The thesis's Table 4.1 with Glint's hybrid frame: scenes 1 and 2, each
-// step's median over the frames, in process and through glintd, beside
-// POV-Ray's full trace of the same room measured in the same run.
+// One scene's hybrid frames through one tile service, each beside the
+// same frame traced in full (--mask all) by the same service, alternating
+// so that both see the same stretch of the machine; `between` runs before
+// every pair (POV-Ray's runs for scene 1).
+struct HybridRow {
+  std::vector<HybridTimes> times;
+  std::vector<double> glPass;  // raster + readback + compose, per frame
+  std::vector<double> full;
+  HybridResult last;
+};
+
+HybridRow hybridRow(gl::RasterScene& raster, const gl::OffscreenContext& context, TileService& service,
+                    const FrameSettings& frame, const MaskSettings& mask, int frames,
+                    const std::function<void(int)>& between) {
+  HybridRow row;
+  FrameOptions full;
+  full.tileSize = 64;
+  for (int f = 0; f < frames + 1; ++f) {
+    between(f);
+    renderHybrid(context.api(), raster, service, frame, mask, 64, row.last);
+    const double fullMs = medianMs(1, [&] { renderFrame(service, frame, full); });
+    if (f == 0) continue;  // the first frame compiles the shaders
+    row.times.push_back(row.last.times);
+    row.glPass.push_back(row.last.times.rasterMs + row.last.times.readbackMs + row.last.times.composeMs);
+    row.full.push_back(fullMs);
+  }
+  return row;
+}
+
+// The thesis's Table 4.1 with Glint's hybrid frame: each step's median over
+// the frames, in process and (scenes 1 and 2) through glintd, beside the
+// same scene's full trace and POV-Ray's full trace of the room, all
+// measured in the same run.
 void hybridSection(const Options& o) {
   const int frames = o.quick ? 2 : 21;
   server::BackgroundServer glintd(loopbackServer());
   const std::string address = glintd.address();
   std::printf("\n## The hybrid frame: the thesis's Table 4.1 (median of %d frames, 2 tracing threads)\n\n", frames);
-  std::printf("| scene | tiles from | raster ms | readback ms | RT unit ms | compose ms | frame ms | thesis RT unit / frame ms |\n");
-  std::printf("|---|---|---|---|---|---|---|---|\n");
-  const char* thesis[2] = {"2046 / 2068", "878 / 902"};
+  std::printf("GL pass = raster + readback + compose; traced = masked pixels (of them, raster edges); full = the "
+              "same frame traced in full (--mask all) by the same service, alternating with the hybrid frames.\n\n");
+  std::printf("| scene | tiles from | raster ms | readback ms | compose ms | **GL pass ms** | traced (edges) | RT unit ms "
+              "| frame ms | full trace ms | **frame / full** | thesis RT unit / frame ms |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  const char* const scenes[4] = {"room.json", "room-gl-floor.json", "glass.json", "bunny.json"};
+  const char* const thesis[4] = {"2046 / 2068", "878 / 902", "", ""};
   double sceneOneFrame = 0.0;
-  // POV-Ray's runs are spread between scene 1's in-process frames, so that
-  // both sides of the ratio see the same stretch of this noisy machine.
   std::vector<double> povTimes, povProcessTimes;
-  int index = 0;
-  for (const char* name : {"room.json", "room-gl-floor.json"}) {
-    proto::LoadedBundle loaded = proto::loadSceneBundle(std::filesystem::path(o.scenes) / name);
+  for (int index = 0; index < 4; ++index) {
+    proto::LoadedBundle loaded = proto::loadSceneBundle(std::filesystem::path(o.scenes) / scenes[index]);
     FrameSettings frame = loaded.scene.frame;
     if (o.quick) {
       frame.width = 160;
@@ -355,32 +387,31 @@ void hybridSection(const Options& o) {
     const PreparedScene prepared(loaded.scene, BvhSettings{});
     ThreadPool pool(2);
     LocalTileService local(prepared, pool);
-    DistributedTileService remote(resolveServers({address}), loaded.bundle);
+    std::optional<DistributedTileService> remote;
+    if (index < 2) remote.emplace(resolveServers({address}), loaded.bundle);
     gl::OffscreenContext context(frame.width, frame.height);
     gl::RasterScene raster(context.api(), prepared.scene());
-    for (TileService* service : {static_cast<TileService*>(&local), static_cast<TileService*>(&remote)}) {
-      std::vector<HybridTimes> times;
-      HybridResult r;
-      for (int f = 0; f < frames + 1; ++f) {
-        if (o.povray && !o.quick && index == 0 && service == &local && f % 4 == 0) {
-          const PovrayTimes pov = povrayTimes(o, 640, 480, 1);
-          if (pov.traceMs > 0.0) {
-            povTimes.push_back(pov.traceMs);
-            povProcessTimes.push_back(pov.processMs);
-          }
-        }
-        renderHybrid(context.api(), raster, *service, frame, prepared.scene().mask, 64, r);
-        if (f > 0) times.push_back(r.times);  // the first frame compiles the shaders
-      }
-      const auto median = [&times](double HybridTimes::*step) { return medianOf(times, step); };
+    std::vector<TileService*> services{&local};
+    if (remote) services.push_back(&*remote);
+    for (TileService* service : services) {
       const bool inProcess = service == &local;
-      std::printf("| %d (%s) | %s | %.1f | %.1f | %.1f | %.1f | %.1f | %s |\n", index + 1, name,
-                  inProcess ? "in process" : "glintd", median(&HybridTimes::rasterMs), median(&HybridTimes::readbackMs),
-                  median(&HybridTimes::traceMs), median(&HybridTimes::composeMs), median(&HybridTimes::totalMs),
-                  thesis[index]);
-      if (index == 0 && inProcess) sceneOneFrame = median(&HybridTimes::totalMs);
+      const auto between = [&](int f) {
+        if (!o.povray || o.quick || index != 0 || !inProcess || f % 4 != 0) return;
+        const PovrayTimes pov = povrayTimes(o, 640, 480, 1);
+        if (pov.traceMs <= 0.0) return;
+        povTimes.push_back(pov.traceMs);
+        povProcessTimes.push_back(pov.processMs);
+      };
+      HybridRow row = hybridRow(raster, context, *service, frame, prepared.scene().mask, frames, between);
+      const auto step = [&row](double HybridTimes::*s) { return medianOf(row.times, s); };
+      const double frameMs = step(&HybridTimes::totalMs), fullMs = median(row.full);
+      std::printf("| %d (%s) | %s | %.1f | %.1f | %.1f | **%.1f** | %zu (%zu) | %.1f | %.1f | %.1f | **%.2f** | %s |\n",
+                  index + 1, scenes[index], inProcess ? "in process" : "glintd", step(&HybridTimes::rasterMs),
+                  step(&HybridTimes::readbackMs), step(&HybridTimes::composeMs), median(row.glPass),
+                  row.last.maskedPixels, row.last.rasterEdgePixels, step(&HybridTimes::traceMs), frameMs, fullMs,
+                  frameMs / fullMs, thesis[index]);
+      if (index == 0 && inProcess) sceneOneFrame = frameMs;
     }
-    ++index;
   }
   if (!povTimes.empty()) {
     const double pov = median(povTimes);
