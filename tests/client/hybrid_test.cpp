@@ -11,6 +11,7 @@
 #include "client/image_rows.h"
 #include "client/offscreen_context.h"
 #include "client/pixel_mark.h"
+#include "client/provenance.h"
 #include "client/raster_scene.h"
 #include "client/distributed_tile_service.h"
 #include "common/encoding.h"
@@ -639,6 +640,45 @@ TEST(Hybrid, BackgroundIsTheTracersToTheByte) {
     EXPECT_EQ(full.rgb[0], output.encoding == Encoding::kLinear ? 77 : Encoder(output).byte(0.3f));
     EXPECT_EQ(hybrid(prepared.scene(), service, frame, rule(MaskRule::kNone)).image.rgb, full.rgb);
   }
+}
+
+// A hybrid frame hands its tiles to the service in sets (the masked
+// objects; the shadow and raster edges): through two glintd the frame's
+// report counts them all. The servers' pixels add up to the frame's, and
+// the provenance image tints every traced pixel and no other.
+TEST(Hybrid, ReportCountsEveryTracedSet) {
+  const SceneSetup s = load("scenes/room.json");
+  server::setLogging(false);
+  server::ServerOptions o;
+  o.listen = "127.0.0.1:0";
+  o.threads = 1;
+  o.handleSignals = false;
+  server::BackgroundServer first(o), second(o);
+  DistributedTileService remote(resolveServers({first.address(), second.address()}), s.loaded.bundle);
+  remote.awaitServers(std::chrono::seconds(10));
+  const HybridResult h = hybrid(s.loaded.scene, remote, s.frame, rule(MaskRule::kAuto, 256));
+  ASSERT_GT(h.shadowEdgePixels + h.rasterEdgePixels, 0u);
+  const DistributionReport& report = remote.lastFrame();
+  std::size_t pixels = 0, tiles = 0;
+  for (const ServerReport& server : report.servers) {
+    pixels += server.maskedPixels;
+    tiles += server.tiles;
+  }
+  EXPECT_EQ(pixels, h.maskedPixels);
+  EXPECT_EQ(tiles, static_cast<std::size_t>(h.tiles));
+  const FrameImage tinted = provenanceImage(h.image, report);
+  std::size_t untinted = 0, changedRaster = 0;
+  for (std::size_t i = 0; i < h.mask.size(); ++i) {
+    bool changed = false;
+    for (std::size_t k = 3 * i; k < 3 * i + 3; ++k) changed = changed || tinted.rgb[k] != h.image.rgb[k];
+    if (h.mask[i] == kRasterPixel) {
+      changedRaster += changed ? 1 : 0;
+    } else {
+      untinted += changed ? 0 : 1;
+    }
+  }
+  EXPECT_EQ(changedRaster, 0u);
+  EXPECT_LT(untinted, h.maskedPixels / 1000 + 1);  // a pixel already of its server's colour stays as it is
 }
 
 }  // namespace
