@@ -8,7 +8,7 @@ namespace {
 
 // Raised whenever a change to the tracer, the shading or the sampling
 // changes the bytes of any pixel.
-constexpr int kTracerVersion = 4;  // 2: the adaptive pattern; 3: power() (common/power.h); 4: exponential() and sineCosine() (common/power.h, common/circular.h)
+constexpr int kTracerVersion = 5;  // 2: the adaptive pattern; 3: power() (common/power.h); 4: exponential() and sineCosine() (common/power.h, common/circular.h); 5: the hybrid frame rasterizes at one sample a pixel and traces its edges (client/raster_edges.h)
 
 // FNV-1a: the flags only need a short, stable fingerprint.
 std::uint64_t fingerprint(const char* text) {
