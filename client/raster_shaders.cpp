@@ -26,7 +26,8 @@ std::string ShaderVariant::defines() const {
 }
 
 std::string fragmentPrelude(const ShaderVariant& variant) {
-  return "#version 330\n#define MAX_LIGHTS " + std::to_string(kMaxLights) + "\n" + variant.defines();
+  return "#version 330\n#define MAX_LIGHTS " + std::to_string(kMaxLights) + "\n#define SHADOW_RADIUS " +
+         std::to_string(kShadowRadius) + "\n" + variant.defines();
 }
 
 // Shared by both fragment shaders, after the prelude: the material's and the
@@ -148,12 +149,12 @@ void shadowVote(int light, ivec3 texel, vec3 u, float plane, vec3 ng, inout int 
 }
 
 // Whether the light reaches p (ng faces the light): 1 lit, 0 shadowed, by
-// the map's 3 x 3 texels around p's. Each texel's centre direction meets p's
-// tangent plane at a distance from the light; a texel holding a nearer
-// surface sees an occluder. All texels open: lit; all occluded: shadowed; a
-// mix (a shadow edge, or a receiver curving towards the light), a direction
-// grazing the plane or p within a texel of its face's edge: undecided
-// (gShadowUndecided), and the fraction open.
+// the map's texels within SHADOW_RADIUS of p's (3 x 3). Each texel's centre
+// direction meets p's tangent plane at a distance from the light; a texel
+// holding a nearer surface sees an occluder. All texels open: lit; all
+// occluded: shadowed; a mix (a shadow edge, or a receiver curving towards
+// the light), a direction grazing the plane or p within a texel of its
+// face's edge: undecided (gShadowUndecided), and the fraction open.
 float shadowVisibility(int light, vec3 p, vec3 ng) {
   if (uShadowLayer[light] < 0) return 1.0;
   vec3 v = p - uLightPosition[light];
@@ -163,14 +164,15 @@ float shadowVisibility(int light, vec3 p, vec3 ng) {
   float step = 2.0 / float(uShadowSize);
   vec3 s = step * uShadowFaceS[own.z], t = step * uShadowFaceT[own.z];
   vec3 centre = shadowTexelDirection(own.xy, own.z);
-  for (int dy = -1; dy <= 1; ++dy) {
-    for (int dx = -1; dx <= 1; ++dx) {
+  for (int dy = -SHADOW_RADIUS; dy <= SHADOW_RADIUS; ++dy) {
+    for (int dx = -SHADOW_RADIUS; dx <= SHADOW_RADIUS; ++dx) {
       ivec2 xy = clamp(own.xy + ivec2(dx, dy), ivec2(0), ivec2(uShadowSize - 1));
       vec2 d = vec2(xy - own.xy);
       shadowVote(light, ivec3(xy, own.z), centre + d.x * s + d.y * t, plane, ng, open, count);
     }
   }
-  if (any(lessThan(own.xy, ivec2(1))) || any(greaterThanEqual(own.xy, ivec2(uShadowSize - 1)))) {
+  if (any(lessThan(own.xy, ivec2(SHADOW_RADIUS))) ||
+      any(greaterThanEqual(own.xy, ivec2(uShadowSize - SHADOW_RADIUS)))) {
     gShadowUndecided = true;
   }
   if (open != 0 && open != count) gShadowUndecided = true;

@@ -41,9 +41,10 @@ extern const char* const kMeshFragmentShader;
 extern const char* const kSphereVertexShader;
 extern const char* const kSphereFragmentShader;
 
-// The length of the shaders' light arrays (defined only here).
+// The length of the shaders' light arrays (defined only here; MAX_LIGHTS).
 constexpr int kMaxLights = 16;
-// Texels on each side of a point's own that its shadow test reads (1: 3 x 3).
+// Texels on each side of a point's own that its shadow test reads (1: 3 x 3;
+// the shaders' SHADOW_RADIUS).
 constexpr int kShadowRadius = 1;
 
 }  // namespace glint::gl
