@@ -208,7 +208,7 @@ std::function<void()> declareRender(CLI::App* render) {
   addEnumOption(render, "--bvh", o.bvh, "BVH builder in process (default: sah; qsplit is the thesis's)");
   addServerOptions(render, o.remote);
   render->add_option("--provenance-out", o.provenanceOut,
-                     "With --server: also write the frame with each tile tinted by the server that traced it "
+                     "With --server: also write the frame with each traced pixel tinted by the server that traced it "
                      "(tiles re-issued from a lost server outlined; the legend is printed)");
   render->add_option("--stats", o.statsPath,
                      "Write one JSON object per frame (rays by kind, timings, effect plan; docs/stats.md) to FILE; "
