@@ -56,6 +56,19 @@ void collectTiles(const std::vector<std::uint8_t>& mask, int w, const TileRect& 
   }
 }
 
+// The window's pixels traced for a shadow's edge, and those the raster's
+// edges marked (their mark is not the raster's own).
+void countEdges(const TileRect& window, int w, HybridResult& result) {
+  result.shadowEdgePixels = result.rasterEdgePixels = 0;
+  for (int y = window.y; y < window.y + window.height; ++y) {
+    for (int x = window.x; x < window.x + window.width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
+      result.shadowEdgePixels += result.mask[i] == kShadowEdgePixel ? 1 : 0;
+      result.rasterEdgePixels += !result.surface.empty() && result.mask[i] != markOf(result.surface[i]) ? 1 : 0;
+    }
+  }
+}
+
 FrameSettings directLightOf(FrameSettings frame) {
   frame.tracing.maxDepth = 1;
   return frame;
@@ -117,10 +130,9 @@ void readRaster(const gl::RasterScene& raster, const FrameSettings& frame, const
                 const TileRect& window, HybridResult& result) {
   raster.target().readSurface(result.surface);
   result.mask.resize(result.surface.size());
-  result.rasterEdgePixels = 0;
   if (mask.rule == MaskRule::kAuto && frame.sampling.samples > 1) {
     raster.target().readDepth(result.depth);
-    result.rasterEdgePixels = markRasterEdges(result.surface, result.depth, frame.width, frame.height, result.mask);
+    markRasterEdges(result.surface, result.depth, frame.width, frame.height, result.mask);
   } else {
     std::transform(result.surface.begin(), result.surface.end(), result.mask.begin(), markOf);
   }
@@ -129,7 +141,7 @@ void readRaster(const gl::RasterScene& raster, const FrameSettings& frame, const
 
 // Under the rule "all" OpenGL draws nothing: every pixel is traced.
 void traceEverything(const FrameSettings& frame, const TileRect& window, HybridResult& result) {
-  result.rasterEdgePixels = 0;
+  result.surface.clear();
   result.mask.assign(static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height), kMaskedPixel);
   result.colour.assign(window.pixelCount() * 3, 0);
 }
@@ -164,7 +176,7 @@ bool renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
   TracedSet sets[2] = {{false, frame, {}, {}, 0}, {true, directLightOf(frame), {}, {}, 0}};
   collectTiles(result.mask, frame.width, window, tileSize, sets);
   service.beginFrame();
-  result.shadowEdgePixels = static_cast<std::size_t>(std::count(result.mask.begin(), result.mask.end(), kShadowEdgePixel));
+  countEdges(window, frame.width, result);
   result.maskedPixels = sets[0].pixels + sets[1].pixels;
   result.tiles = static_cast<int>(sets[0].jobs.size() + sets[1].jobs.size());
   for (TracedSet& set : sets) {
