@@ -86,11 +86,6 @@ void intAttribute(const Api& gl, unsigned index, std::size_t stride, std::size_t
   gl.VertexAttribIPointer(index, 1, GL_INT, static_cast<GLsizei>(stride), reinterpret_cast<const void*>(offset));
 }
 
-bool inside(const Bounds3& box, const glm::vec3& p) {
-  return p.x >= box.min.x && p.y >= box.min.y && p.z >= box.min.z && p.x <= box.max.x && p.y <= box.max.y &&
-         p.z <= box.max.z;
-}
-
 }  // namespace
 
 RasterScene::RasterScene(const Api& api, const Scene& scene)
@@ -320,7 +315,7 @@ void RasterScene::drawDepth(const Projection& projection) {
 
 void RasterScene::drawBatch(const Batch& batch, const glm::vec3& eye) {
   const bool cull = batch.spheres && std::none_of(batch.boxes.begin(), batch.boxes.end(),
-                                                  [&](const Bounds3& box) { return inside(box, eye); });
+                                                  [&](const Bounds3& box) { return box.contains(eye); });
   if (cull) {
     gl_.Enable(GL_CULL_FACE);
     gl_.CullFace(GL_FRONT);  // the faces wound counter-clockwise from inside: the far ones

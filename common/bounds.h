@@ -16,6 +16,10 @@ struct Bounds3 {
   bool empty() const { return min.x > max.x || min.y > max.y || min.z > max.z; }
   glm::vec3 extent() const { return max - min; }
   glm::vec3 centre() const { return 0.5f * (min + max); }
+  // p inside the box or on its boundary.
+  bool contains(const glm::vec3& p) const {
+    return p.x >= min.x && p.y >= min.y && p.z >= min.z && p.x <= max.x && p.y <= max.y && p.z <= max.z;
+  }
   float surfaceArea() const;
   int longestAxis() const;
   void expand(const glm::vec3& p) {

@@ -18,5 +18,15 @@ TEST(Bounds, DefaultIsEmptyAndUnionNeedsNoSpecialCase) {
   EXPECT_FLOAT_EQ(b.surfaceArea(), 2.0f * (2 * 2 + 2 * 3 + 3 * 2));
 }
 
+// A point is inside on the boundary too; an empty box holds nothing.
+TEST(Bounds, ContainsItsInsideAndBoundary) {
+  const Bounds3 b{glm::vec3(-1.0f, 0.0f, 2.0f), glm::vec3(1.0f, 3.0f, 4.0f)};
+  EXPECT_TRUE(b.contains(glm::vec3(0.0f, 1.0f, 3.0f)));
+  EXPECT_TRUE(b.contains(glm::vec3(1.0f, 3.0f, 2.0f)));
+  EXPECT_FALSE(b.contains(glm::vec3(1.0001f, 1.0f, 3.0f)));
+  EXPECT_FALSE(b.contains(glm::vec3(0.0f, -0.5f, 3.0f)));
+  EXPECT_FALSE(Bounds3{}.contains(glm::vec3(0.0f)));
+}
+
 }  // namespace
 }  // namespace glint
