@@ -15,6 +15,7 @@ namespace glint::gl {
 #define GLINT_GL_FUNCTIONS(X) \
   X(GetError) \
   X(Viewport) \
+  X(Scissor) \
   X(Clear) \
   X(ClearBufferfv) \
   X(ClearBufferuiv) \
@@ -22,6 +23,7 @@ namespace glint::gl {
   X(Disable) \
   X(CullFace) \
   X(DepthFunc) \
+  X(ClipControl) \
   X(PixelStorei) \
   X(ReadPixels) \
   X(DrawPixels) \
@@ -59,6 +61,7 @@ namespace glint::gl {
   X(VertexAttribPointer) \
   X(VertexAttribIPointer) \
   X(DrawArrays) \
+  X(DrawElements) \
   X(GenTextures) \
   X(BindTexture) \
   X(TexImage2D) \

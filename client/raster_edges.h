@@ -22,8 +22,9 @@ namespace glint {
 // change in their error.
 //
 // `surface` holds the raster's `object << kPixelMarkBits | mark` per pixel
-// and `depth` its depth (any unit proportional to the distance), rows from
-// the top. Writes each pixel's PixelMark into `marks`: the raster's own, and
+// and `depth` its depth (proportional to the distance along the view axis,
+// or to its reciprocal, which OpenGL's depth is and which is linear across a
+// plane's pixels; the test is relative, so either serves), rows from the top. Writes each pixel's PixelMark into `marks`: the raster's own, and
 // for a pixel OpenGL drew that straddles an edge, kRasterEdgePixel, or
 // kMaskedPixel where the pixel across the edge is masked (its samples that
 // fall on the masked object then get that object's reflections, as the

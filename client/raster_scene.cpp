@@ -1,6 +1,7 @@
 #include "client/raster_scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include <glm/ext/matrix_clip_space.hpp>
@@ -9,6 +10,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "client/pixel_mark.h"
+#include "client/shadow_rects.h"
 #include "common/encoding.h"
 #include "common/error.h"
 #include "common/mask_rule.h"
@@ -98,11 +100,13 @@ RasterScene::RasterScene(const Api& api, const Scene& scene)
   uploadTextures();
   uploadMeshes();
   uploadSpheres();
+  if (plan_.shadows) assignSpots(LightProof::prove(scene, plan_.lights));
 }
 
 RasterScene::~RasterScene() {
   for (Batch& b : batches_) {
     gl_.DeleteBuffers(1, &b.vbo);
+    if (b.elements) gl_.DeleteBuffers(1, &b.elements);
     gl_.DeleteVertexArrays(1, &b.vao);
   }
   for (unsigned image : images_) {
@@ -151,17 +155,20 @@ void RasterScene::newBatch(std::uint32_t material, bool spheres, const void* ver
 
 void RasterScene::uploadMeshes() {
   const Geometry& g = scene_.geometry;
-  std::map<std::uint32_t, std::vector<MeshVertex>> byMaterial;
-  for (std::size_t i = 0; i < g.triangles().size(); ++i) {
+  std::map<std::uint32_t, std::pair<std::vector<MeshVertex>, std::vector<std::uint32_t>>> byMaterial;
+  for (std::uint32_t i = 0; i < g.triangles().size(); ++i) {
     const Triangle& t = g.triangles()[i];
     const std::uint32_t material = g.models()[t.model].material;
     const glm::vec3& face = g.faceNormals()[i];
     const auto object = static_cast<std::int32_t>(t.model + 1);
-    auto& vertices = byMaterial[material];
+    auto& [vertices, triangles] = byMaterial[material];
     for (std::uint32_t v : t.v) vertices.push_back({g.positions()[v], g.normals()[v], g.uvs()[v], face, object});
+    triangles.push_back(i);
   }
-  for (auto& [material, vertices] : byMaterial) {
+  for (auto& [material, mesh] : byMaterial) {
+    auto& [vertices, triangles] = mesh;
     newBatch(material, false, vertices.data(), vertices.size(), sizeof(MeshVertex));
+    batches_.back().triangles = std::move(triangles);
     attribute(gl_, 0, 3, sizeof(MeshVertex), offsetof(MeshVertex, position));
     attribute(gl_, 1, 3, sizeof(MeshVertex), offsetof(MeshVertex, normal));
     attribute(gl_, 2, 2, sizeof(MeshVertex), offsetof(MeshVertex, uv));
@@ -197,6 +204,18 @@ void RasterScene::uploadSpheres() {
   }
 }
 
+void RasterScene::assignSpots(const LightProof& proof) {
+  const Geometry& g = scene_.geometry;
+  for (const ShadowSpot& spot : proof.spots) {
+    const bool sphere = g.isSphere(spot.prim);
+    const std::uint32_t material = sphere ? g.spheres()[spot.prim - g.triangles().size()].material
+                                          : g.models()[g.triangles()[spot.prim].model].material;
+    const auto batch = std::find_if(batches_.begin(), batches_.end(),
+                                    [&](const Batch& b) { return b.material == material && b.spheres == sphere; });
+    batch->spots.push_back(spot);
+  }
+}
+
 RasterScene::Projection RasterScene::projection(const FrameSettings& frame) const {
   // The far plane just beyond the scene's farthest corner as seen from the eye.
   float far = 1.0f;
@@ -208,12 +227,16 @@ RasterScene::Projection RasterScene::projection(const FrameSettings& frame) cons
     }
   }
   const glm::mat4 view = glm::lookAt(frame.camera.eye, frame.camera.lookAt, frame.camera.up);
-  // The planes only shape the projection: with GL_DEPTH_CLAMP neither near
-  // nor far clips (the x and y planes still cut what lies behind the eye),
-  // and depth is written linear by the shaders.
-  const glm::mat4 perspective = glm::perspective(glm::radians(frame.camera.fovY),
-                                                 static_cast<float>(frame.width) / static_cast<float>(frame.height),
-                                                 far * 1e-6f, far);
+  // Reversed, infinite: clip w = the distance along the view axis, clip z =
+  // near, so depth = near / distance (with GL_ZERO_TO_ONE); with
+  // GL_DEPTH_CLAMP the near plane does not clip (the x and y planes still cut
+  // what lies behind the eye).
+  const float focal = 1.0f / std::tan(glm::radians(frame.camera.fovY) / 2.0f);
+  glm::mat4 perspective(0.0f);
+  perspective[0][0] = focal * static_cast<float>(frame.height) / static_cast<float>(frame.width);
+  perspective[1][1] = focal;
+  perspective[2][3] = -1.0f;
+  perspective[3][2] = far * 1e-6f;
   return {perspective * view, frame.camera.eye, far};
 }
 
@@ -240,7 +263,7 @@ ShaderVariant RasterScene::variantOf(const Batch& batch, const FrameSettings& fr
   }
   v.lit = !scene_.lights.empty() && (m.diffuse > 0.0f || m.specular > 0.0f);
   v.specular = v.lit && m.specular > 0.0f;
-  v.shadows = v.lit && shadows_;
+  v.shadows = v.lit && shadows_ && !batch.spots.empty();
   v.srgb = frame.output.encoding == Encoding::kSrgb;
   return v;
 }
@@ -306,6 +329,7 @@ void RasterScene::drawDepth(const Projection& projection) {
     ShaderVariant v;
     v.sphere = b.spheres;
     v.traced = true;
+    v.depthMap = true;
     setViewUniforms(program(v), projection);
     drawBatch(b, projection.eye);
   }
@@ -313,7 +337,7 @@ void RasterScene::drawDepth(const Projection& projection) {
   gl_.UseProgram(0);
 }
 
-void RasterScene::drawBatch(const Batch& batch, const glm::vec3& eye) {
+void RasterScene::drawBatch(const Batch& batch, const glm::vec3& eye, const Elements* elements) {
   const bool cull = batch.spheres && std::none_of(batch.boxes.begin(), batch.boxes.end(),
                                                   [&](const Bounds3& box) { return box.contains(eye); });
   if (cull) {
@@ -321,8 +345,80 @@ void RasterScene::drawBatch(const Batch& batch, const glm::vec3& eye) {
     gl_.CullFace(GL_FRONT);  // the faces wound counter-clockwise from inside: the far ones
   }
   gl_.BindVertexArray(batch.vao);
-  gl_.DrawArrays(GL_TRIANGLES, 0, batch.vertices);
+  if (elements) {
+    gl_.DrawElements(GL_TRIANGLES, static_cast<GLsizei>(elements->count), GL_UNSIGNED_INT,
+                     reinterpret_cast<const void*>(elements->first * sizeof(std::uint32_t)));
+  } else {
+    gl_.DrawArrays(GL_TRIANGLES, 0, batch.vertices);
+  }
   if (cull) gl_.Disable(GL_CULL_FACE);
+}
+
+void RasterScene::drawProgram(const Batch& batch, const ShaderVariant& variant, FrameDraw& draw,
+                              const Elements* elements) {
+  const unsigned p = program(variant);
+  gl_.UseProgram(p);
+  if (draw.framed.insert(variant.key()).second) setFrameUniforms(p, draw.frame, draw.projection, draw.mask);
+  if (!variant.traced) setMaterialUniforms(p, scene_.materials[batch.material]);
+  drawBatch(batch, draw.projection.eye, elements);
+}
+
+void RasterScene::drawShaded(Batch& batch, const ShaderVariant& variant, FrameDraw& draw) {
+  ShaderVariant unshadowed = variant;
+  unshadowed.shadows = false;
+  const std::vector<ScissorRect> rects =
+      variant.shadows ? shadowRects(batch.spots, draw.projection.viewProjection, draw.projection.eye,
+                                    draw.frame.width, draw.frame.height)
+                      : std::vector<ScissorRect>{};
+  if (rects.size() <= 1) {
+    drawProgram(batch, rects.empty() || rects[0].shadows ? variant : unshadowed, draw);
+    return;
+  }
+  const std::vector<Elements> elements = binPrimitives(batch, rects, draw);
+  gl_.Enable(GL_SCISSOR_TEST);
+  for (std::size_t i = 0; i < rects.size(); ++i) {
+    if (elements[i].count == 0) continue;
+    gl_.Scissor(rects[i].x, rects[i].y, rects[i].width, rects[i].height);
+    drawProgram(batch, rects[i].shadows ? variant : unshadowed, draw, &elements[i]);
+  }
+  gl_.Disable(GL_SCISSOR_TEST);
+}
+
+std::vector<RasterScene::Elements> RasterScene::binPrimitives(Batch& batch, const std::vector<ScissorRect>& rects,
+                                                              const FrameDraw& draw) {
+  const glm::vec2 size(static_cast<float>(draw.frame.width), static_cast<float>(draw.frame.height));
+  const glm::mat4& vp = draw.projection.viewProjection;
+  std::vector<WindowBox> boxes;
+  for (const Bounds3& b : batch.boxes) {
+    const std::array<glm::vec3, 2> corners{b.min, b.max};
+    std::array<glm::vec3, 8> all;
+    for (std::size_t i = 0; i < 8; ++i) all[i] = {corners[i & 1].x, corners[i >> 1 & 1].y, corners[i >> 2 & 1].z};
+    boxes.push_back(windowBox(all, vp, size));
+  }
+  const Geometry& g = scene_.geometry;
+  for (std::uint32_t t : batch.triangles) {
+    const Triangle& tri = g.triangles()[t];
+    const std::array<glm::vec3, 3> v{g.positions()[tri.v[0]], g.positions()[tri.v[1]], g.positions()[tri.v[2]]};
+    boxes.push_back(windowBox(v, vp, size));
+  }
+  const std::uint32_t perBox = batch.spheres ? 36 : 3;
+  std::vector<std::uint32_t> indices;
+  std::vector<Elements> ranges;
+  for (const ScissorRect& r : rects) {
+    Elements range{indices.size(), 0};
+    for (std::uint32_t k = 0; k < boxes.size(); ++k) {
+      if (!boxes[k].overlaps(r)) continue;
+      for (std::uint32_t v = k * perBox; v < (k + 1) * perBox; ++v) indices.push_back(v);
+    }
+    range.count = indices.size() - range.first;
+    ranges.push_back(range);
+  }
+  gl_.BindVertexArray(batch.vao);
+  if (!batch.elements) gl_.GenBuffers(1, &batch.elements);
+  gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, batch.elements);
+  gl_.BufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)),
+                 indices.data(), GL_STREAM_DRAW);
+  return ranges;
 }
 
 double RasterScene::draw(const FrameSettings& frame, const MaskSettings& mask) {
@@ -336,21 +432,19 @@ double RasterScene::draw(const FrameSettings& frame, const MaskSettings& mask) {
                                       encoder.byte(scene_.background.b)};
   target_.clear(background);
   gl_.Enable(GL_DEPTH_TEST);
-  gl_.DepthFunc(GL_LESS);
+  gl_.DepthFunc(GL_GREATER);
+  gl_.ClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
   gl_.Enable(GL_DEPTH_CLAMP);
-  const Projection vp = projection(frame);
-  std::map<int, bool> framed;  // programs whose frame uniforms are set
-  for (const Batch& b : batches_) {
-    const ShaderVariant variant = variantOf(b, frame, mask);
-    const unsigned p = program(variant);
-    gl_.UseProgram(p);
-    if (!framed[variant.key()]) {
-      setFrameUniforms(p, frame, vp, mask);
-      framed[variant.key()] = true;
+  FrameDraw context{frame, mask, projection(frame), {}};
+  // The masked batches first: their program is cheap, and the depth they
+  // leave spares the fragments behind them the shading.
+  for (const bool traced : {true, false}) {
+    for (Batch& b : batches_) {
+      const ShaderVariant variant = variantOf(b, frame, mask);
+      if (variant.traced == traced) drawShaded(b, variant, context);
     }
-    if (!variant.traced) setMaterialUniforms(p, scene_.materials[b.material]);
-    drawBatch(b, vp.eye);
   }
+  gl_.ClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
   gl_.Disable(GL_DEPTH_CLAMP);
   gl_.BindVertexArray(0);
   gl_.UseProgram(0);

@@ -2,14 +2,17 @@
 
 #include <cstdint>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
 
 #include "client/gl_api.h"
+#include "client/light_proof.h"
 #include "client/raster_shaders.h"
 #include "client/raster_target.h"
+#include "client/shadow_rects.h"
 #include "client/shadow_maps.h"
 #include "common/bounds.h"
 #include "common/effects.h"
@@ -45,16 +48,23 @@ class RasterScene {
     int vertices = 0;
     std::uint32_t material = 0;
     bool spheres = false;
-    std::vector<Bounds3> boxes;  // the spheres' impostor boxes
+    std::vector<Bounds3> boxes;              // the spheres' impostor boxes, 36 vertices each
+    std::vector<std::uint32_t> triangles;    // a mesh batch's triangles (Geometry's), 3 vertices each
+    std::vector<ShadowSpot> spots;           // where a light may be blocked on its primitives (LightProof)
+    unsigned elements = 0;                   // element buffer of its draws in rectangles, made on first use
   };
   void newBatch(std::uint32_t material, bool spheres, const void* vertices, std::size_t count,
                 std::size_t vertexBytes);
   void uploadMeshes();
   void uploadSpheres();
   void uploadTextures();
-  // The frame's view and projection, and its far plane: depth is written as
-  // the distance from the eye / far (linear, exact per fragment), and the
-  // near plane clips nothing (depth clamping).
+  // Hands each spot to the batch that draws its primitive.
+  void assignSpots(const LightProof& proof);
+  // The frame's view and projection, and its far plane. The frame's depth is
+  // reversed and infinite (near / the distance along the view axis, 1 at the
+  // near plane, 0 at infinity, in a float: the same relative precision at
+  // every distance); the near plane clips nothing (depth clamping). The
+  // shadow maps use the far plane for their own, linear depth.
   struct Projection {
     glm::mat4 viewProjection;
     glm::vec3 eye;
@@ -73,7 +83,29 @@ class RasterScene {
   void drawDepth(const Projection& projection);
   // A sphere batch's impostor boxes are drawn by their near faces, unless
   // `eye` is inside one of them.
-  void drawBatch(const Batch& batch, const glm::vec3& eye);
+  // With `elements`, only that range of its element buffer.
+  struct Elements {
+    std::size_t first = 0;
+    std::size_t count = 0;
+  };
+  void drawBatch(const Batch& batch, const glm::vec3& eye, const Elements* elements = nullptr);
+  // What a frame's draws share; `framed` holds the programs whose frame
+  // uniforms are set.
+  struct FrameDraw {
+    const FrameSettings& frame;
+    const MaskSettings& mask;
+    Projection projection;
+    std::set<int> framed;
+  };
+  // Draws the batch with the program of `variant`; a batch that reads the
+  // shadow maps reads them only in the rectangles its spots may show in
+  // (shadowRects), and is drawn without them elsewhere.
+  void drawShaded(Batch& batch, const ShaderVariant& variant, FrameDraw& draw);
+  // For each rectangle, the vertices of the batch's primitives whose window
+  // box overlaps it, written to the batch's element buffer.
+  std::vector<Elements> binPrimitives(Batch& batch, const std::vector<ScissorRect>& rects, const FrameDraw& draw);
+  void drawProgram(const Batch& batch, const ShaderVariant& variant, FrameDraw& draw,
+                   const Elements* elements = nullptr);
 
   const Api& gl_;
   const Scene& scene_;

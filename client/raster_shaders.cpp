@@ -6,7 +6,7 @@ namespace glint::gl {
 
 int ShaderVariant::key() const {
   return (sphere ? 1 : 0) | (traced ? 2 : 0) | static_cast<int>(texture) << 2 | (lit ? 16 : 0) |
-         (specular ? 32 : 0) | (shadows ? 64 : 0) | (srgb ? 128 : 0);
+         (specular ? 32 : 0) | (shadows ? 64 : 0) | (srgb ? 128 : 0) | (depthMap ? 256 : 0);
 }
 
 std::string ShaderVariant::defines() const {
@@ -22,6 +22,7 @@ std::string ShaderVariant::defines() const {
   define(specular, "SPECULAR");
   define(shadows, "SHADOWS");
   define(srgb, "SRGB");
+  define(depthMap, "DEPTH_MAP");
   return d;
 }
 
@@ -36,7 +37,7 @@ std::string fragmentPrelude(const ShaderVariant& variant) {
 // encodeOutput(), which mirrors Encoder::byte before the rounding.
 const char* const kFragmentShading = R"(
 uniform vec3 uEye;
-uniform float uFar;            // depth = distance from the eye / uFar (RasterScene::Projection)
+uniform float uFar;            // a shadow map's depth = distance from the eye / uFar
 uniform float uExposureScale;  // 2^exposure
 uniform int uLightCount;
 uniform vec3 uLightPosition[MAX_LIGHTS];
@@ -245,7 +246,9 @@ in vec2 vUv;
 flat in vec3 vFaceNormal;
 flat in int vObject;
 void main() {
+#ifdef DEPTH_MAP
   gl_FragDepth = length(vPosition - uEye) / uFar;
+#endif
 #ifdef TRACED
   fragColor = vec4(0.0, 0.0, 0.0, 1.0);
   fragSurface = uint(vObject) << 2 | 1u;
@@ -258,9 +261,9 @@ void main() {
 
 // Spheres are exact on screen: each sphere's bounding box is drawn and each
 // fragment casts the eye ray through it against the sphere (the tracer's
-// formula), writing the hit's depth; front and back faces of the box give
-// the same hit, so the camera may also be inside the box (the box's far
-// faces are then drawn, its near ones otherwise).
+// formula), writing the hit's depth as OpenGL would a mesh's; front and
+// back faces of the box give the same hit, so the camera may also be inside
+// the box (the box's far faces are then drawn, its near ones otherwise).
 const char* const kSphereVertexShader = R"(#version 330
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec4 aSphere;  // centre, radius
@@ -278,6 +281,7 @@ void main() {
 )";
 
 const char* const kSphereFragmentShader = R"(
+uniform mat4 uViewProjection;
 in vec3 vPosition;
 flat in vec4 vSphere;
 flat in int vObject;
@@ -298,7 +302,12 @@ void main() {
   vec3 p = uEye + t * d;
   vec3 n = normalize(p - vSphere.xyz);
   p = vSphere.xyz + vSphere.w * n;
+#ifdef DEPTH_MAP
   gl_FragDepth = length(p - uEye) / uFar;
+#else
+  vec4 clip = uViewProjection * vec4(p, 1.0);
+  gl_FragDepth = clip.z / clip.w;
+#endif
 #ifdef TRACED
   fragColor = vec4(0.0, 0.0, 0.0, 1.0);
   fragSurface = uint(vObject) << 2 | 1u;

@@ -25,6 +25,11 @@ struct ShaderVariant {
   bool specular = false;
   bool shadows = false;   // the shadow maps are read
   bool srgb = false;      // the 8-bit encoding (else linear)
+  // Drawn into a shadow map: writes the distance from the eye / far, which
+  // the maps hold. The frame's own depth is the projection's (reversed: 1 at
+  // the near plane, falling as 1 / distance), so that OpenGL tests it before
+  // shading a mesh's fragment.
+  bool depthMap = false;
 
   int key() const;
   // The #defines that select the variant in the sources below.

@@ -12,8 +12,8 @@ namespace glint::gl {
 // - colour (RGBA8): GL's shading of the pixel;
 // - surface (R32UI): what the pixel shows, `object << 2 | mark` (object 0 is
 //   the background, objects count from 1; mark a PixelMark of the fragment);
-// - depth (32-bit float): the distance from the eye / the far plane, written
-//   by the shaders (linear: a float keeps 24 bits of it at every distance).
+// - depth (32-bit float): near / the distance along the view axis (reversed,
+//   0 where nothing was drawn; RasterScene::Projection).
 // Reads give rows from the top, as Glint's images are.
 class RasterTarget {
  public:
@@ -26,7 +26,7 @@ class RasterTarget {
   // colour attachments drawn; throws InputError when GL cannot make it.
   void bind(int width, int height);
   // Clears colour to `background` (exact 8-bit values), surface to 0 and
-  // depth to 1.
+  // depth to 0 (infinitely far).
   void clear(const std::uint8_t background[3]);
   void readColour(const TileRect& window, std::vector<std::uint8_t>& rgb) const;
   void readSurface(std::vector<std::uint32_t>& surface) const;

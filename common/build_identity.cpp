@@ -8,7 +8,13 @@ namespace {
 
 // Raised whenever a change to the tracer, the shading or the sampling
 // changes the bytes of any pixel.
-constexpr int kTracerVersion = 5;  // 2: the adaptive pattern; 3: power() (common/power.h); 4: exponential() and sineCosine() (common/power.h, common/circular.h); 5: the hybrid frame rasterizes at one sample a pixel and traces its edges (client/raster_edges.h)
+// 2: the adaptive pattern; 3: power() (common/power.h); 4: exponential()
+// and sineCosine() (common/power.h, common/circular.h); 5: the hybrid frame
+// rasterizes at one sample a pixel and traces its edges
+// (client/raster_edges.h); 6: the raster reads the shadow maps only where
+// the geometry does not prove the light reaches (client/light_proof.h), and
+// tests OpenGL's own depth.
+constexpr int kTracerVersion = 6;
 
 // FNV-1a: the flags only need a short, stable fingerprint.
 std::uint64_t fingerprint(const char* text) {

@@ -1,0 +1,43 @@
+#pragma once
+
+#include <cmath>
+#include <span>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "client/light_proof.h"
+
+namespace glint::gl {
+
+// A rectangle of the frame in GL window coordinates (origin at the bottom
+// left), and whether what is drawn in it reads the shadow maps.
+struct ScissorRect {
+  int x = 0, y = 0, width = 0, height = 0;
+  bool shadows = false;
+};
+
+// A box in GL window coordinates.
+struct WindowBox {
+  glm::vec2 min{INFINITY}, max{-INFINITY};
+  bool overlaps(const ScissorRect& r) const {
+    return max.x >= r.x && min.x <= r.x + r.width && max.y >= r.y && min.y <= r.y + r.height;
+  }
+};
+// The window box of `points` seen through viewProjection in a frame of
+// `size` pixels; the whole frame (and beyond) when one lies behind the eye.
+WindowBox windowBox(std::span<const glm::vec3> points, const glm::mat4& viewProjection, glm::vec2 size);
+
+// The pixels of a kShadowRectTile-pixel grid whose cells may show a shadow
+// spot (LightProof) are drawn with the maps, the rest without: the frame cut
+// into few rectangles (runs of equal cells along a row, merged with the row
+// below where they match). A spot counts unless the eye sees its plane from
+// the side away from its light (no light there to block). A spot reaching
+// behind the eye covers the frame.
+constexpr int kShadowRectTile = 32;
+std::vector<ScissorRect> shadowRects(const std::vector<ShadowSpot>& spots, const glm::mat4& viewProjection,
+                                     const glm::vec3& eye, int width, int height);
+
+}  // namespace glint::gl
