@@ -161,14 +161,14 @@ void RasterScene::uploadMeshes() {
     const std::uint32_t material = g.models()[t.model].material;
     const glm::vec3& face = g.faceNormals()[i];
     const auto object = static_cast<std::int32_t>(t.model + 1);
-    auto& [vertices, triangles] = byMaterial[material];
+    auto& [vertices, prims] = byMaterial[material];
     for (std::uint32_t v : t.v) vertices.push_back({g.positions()[v], g.normals()[v], g.uvs()[v], face, object});
-    triangles.push_back(i);
+    prims.push_back(i);
   }
   for (auto& [material, mesh] : byMaterial) {
-    auto& [vertices, triangles] = mesh;
+    auto& [vertices, prims] = mesh;
     newBatch(material, false, vertices.data(), vertices.size(), sizeof(MeshVertex));
-    batches_.back().triangles = std::move(triangles);
+    batches_.back().prims = std::move(prims);
     attribute(gl_, 0, 3, sizeof(MeshVertex), offsetof(MeshVertex, position));
     attribute(gl_, 1, 3, sizeof(MeshVertex), offsetof(MeshVertex, normal));
     attribute(gl_, 2, 2, sizeof(MeshVertex), offsetof(MeshVertex, uv));
@@ -182,22 +182,31 @@ void RasterScene::uploadSpheres() {
   // counter-clockwise as seen from inside the cube.
   static const int kCube[36] = {0, 1, 3, 0, 3, 2, 4, 6, 7, 4, 7, 5, 0, 4, 5, 0, 5, 1,
                                 2, 3, 7, 2, 7, 6, 0, 2, 6, 0, 6, 4, 1, 5, 7, 1, 7, 3};
-  std::map<std::uint32_t, std::pair<std::vector<SphereVertex>, std::vector<Bounds3>>> byMaterial;
-  const auto firstObject = static_cast<std::int32_t>(scene_.geometry.models().size() + 1);
-  for (std::size_t i = 0; i < scene_.geometry.spheres().size(); ++i) {
-    const Sphere& s = scene_.geometry.spheres()[i];
-    auto& [vertices, boxes] = byMaterial[s.material];
+  struct Spheres {
+    std::vector<SphereVertex> vertices;
+    std::vector<Bounds3> boxes;
+    std::vector<std::uint32_t> prims;
+  };
+  std::map<std::uint32_t, Spheres> byMaterial;
+  const Geometry& g = scene_.geometry;
+  const auto firstObject = static_cast<std::int32_t>(g.models().size() + 1);
+  for (std::uint32_t i = 0; i < g.spheres().size(); ++i) {
+    const Sphere& s = g.spheres()[i];
+    Spheres& batch = byMaterial[s.material];
     // A box slightly larger than the sphere, so rasterization covers its edge.
     const float half = s.radius * 1.01f;
-    boxes.push_back(Bounds3{s.centre - glm::vec3(half), s.centre + glm::vec3(half)});
+    batch.boxes.push_back(Bounds3{s.centre - glm::vec3(half), s.centre + glm::vec3(half)});
+    batch.prims.push_back(static_cast<std::uint32_t>(g.triangles().size()) + i);
     for (int corner : kCube) {
       const glm::vec3 c(corner & 1 ? 1.0f : -1.0f, corner & 2 ? 1.0f : -1.0f, corner & 4 ? 1.0f : -1.0f);
-      vertices.push_back({s.centre + half * c, glm::vec4(s.centre, s.radius), firstObject + static_cast<std::int32_t>(i)});
+      batch.vertices.push_back(
+          {s.centre + half * c, glm::vec4(s.centre, s.radius), firstObject + static_cast<std::int32_t>(i)});
     }
   }
   for (auto& [material, spheres] : byMaterial) {
-    newBatch(material, true, spheres.first.data(), spheres.first.size(), sizeof(SphereVertex));
-    batches_.back().boxes = std::move(spheres.second);
+    newBatch(material, true, spheres.vertices.data(), spheres.vertices.size(), sizeof(SphereVertex));
+    batches_.back().boxes = std::move(spheres.boxes);
+    batches_.back().prims = std::move(spheres.prims);
     attribute(gl_, 0, 3, sizeof(SphereVertex), offsetof(SphereVertex, position));
     attribute(gl_, 1, 4, sizeof(SphereVertex), offsetof(SphereVertex, sphere));
     intAttribute(gl_, 2, sizeof(SphereVertex), offsetof(SphereVertex, object));
@@ -366,52 +375,65 @@ void RasterScene::drawProgram(const Batch& batch, const ShaderVariant& variant, 
 void RasterScene::drawShaded(Batch& batch, const ShaderVariant& variant, FrameDraw& draw) {
   ShaderVariant unshadowed = variant;
   unshadowed.shadows = false;
-  const std::vector<ScissorRect> rects =
-      variant.shadows ? shadowRects(batch.spots, draw.projection.viewProjection, draw.projection.eye,
-                                    draw.frame.width, draw.frame.height)
-                      : std::vector<ScissorRect>{};
-  if (rects.size() <= 1) {
-    drawProgram(batch, rects.empty() || rects[0].shadows ? variant : unshadowed, draw);
+  const ShadowLayout layout =
+      variant.shadows ? shadowLayout(batch.spots, draw.projection.viewProjection, draw.projection.eye,
+                                     draw.frame.width, draw.frame.height)
+                      : ShadowLayout{};
+  if (layout.spotted.empty()) {
+    drawProgram(batch, unshadowed, draw);
     return;
   }
-  const std::vector<Elements> elements = binPrimitives(batch, rects, draw);
+  const std::vector<Elements> elements = binPrimitives(batch, layout, draw);
+  if (elements[0].count > 0) drawProgram(batch, unshadowed, draw, &elements[0]);
   gl_.Enable(GL_SCISSOR_TEST);
-  for (std::size_t i = 0; i < rects.size(); ++i) {
-    if (elements[i].count == 0) continue;
-    gl_.Scissor(rects[i].x, rects[i].y, rects[i].width, rects[i].height);
-    drawProgram(batch, rects[i].shadows ? variant : unshadowed, draw, &elements[i]);
+  for (std::size_t i = 0; i < layout.rects.size(); ++i) {
+    if (elements[i + 1].count == 0) continue;
+    const ScissorRect& r = layout.rects[i];
+    gl_.Scissor(r.x, r.y, r.width, r.height);
+    drawProgram(batch, r.shadows ? variant : unshadowed, draw, &elements[i + 1]);
   }
   gl_.Disable(GL_SCISSOR_TEST);
 }
 
-std::vector<RasterScene::Elements> RasterScene::binPrimitives(Batch& batch, const std::vector<ScissorRect>& rects,
+std::vector<RasterScene::Elements> RasterScene::binPrimitives(Batch& batch, const ShadowLayout& layout,
                                                               const FrameDraw& draw) {
   const glm::vec2 size(static_cast<float>(draw.frame.width), static_cast<float>(draw.frame.height));
   const glm::mat4& vp = draw.projection.viewProjection;
-  std::vector<WindowBox> boxes;
-  for (const Bounds3& b : batch.boxes) {
-    const std::array<glm::vec3, 2> corners{b.min, b.max};
-    std::array<glm::vec3, 8> all;
-    for (std::size_t i = 0; i < 8; ++i) all[i] = {corners[i & 1].x, corners[i >> 1 & 1].y, corners[i >> 2 & 1].z};
-    boxes.push_back(windowBox(all, vp, size));
-  }
   const Geometry& g = scene_.geometry;
-  for (std::uint32_t t : batch.triangles) {
-    const Triangle& tri = g.triangles()[t];
-    const std::array<glm::vec3, 3> v{g.positions()[tri.v[0]], g.positions()[tri.v[1]], g.positions()[tri.v[2]]};
-    boxes.push_back(windowBox(v, vp, size));
+  const std::uint32_t perPrim = batch.spheres ? 36 : 3;
+  std::vector<std::uint32_t> free, spotted;  // batch-local indices
+  for (std::uint32_t k = 0; k < batch.prims.size(); ++k) {
+    const bool named = std::binary_search(layout.spotted.begin(), layout.spotted.end(), batch.prims[k]);
+    (named ? spotted : free).push_back(k);
   }
-  const std::uint32_t perBox = batch.spheres ? 36 : 3;
+  std::vector<WindowBox> boxes;
+  for (std::uint32_t k : spotted) {
+    if (batch.spheres) {
+      const Bounds3& b = batch.boxes[k];
+      std::array<glm::vec3, 8> corners;
+      for (std::size_t i = 0; i < 8; ++i) {
+        corners[i] = {i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y, i & 4 ? b.max.z : b.min.z};
+      }
+      boxes.push_back(windowBox(corners, vp, size));
+    } else {
+      const Triangle& t = g.triangles()[batch.prims[k]];
+      const std::array<glm::vec3, 3> v{g.positions()[t.v[0]], g.positions()[t.v[1]], g.positions()[t.v[2]]};
+      boxes.push_back(windowBox(v, vp, size));
+    }
+  }
   std::vector<std::uint32_t> indices;
   std::vector<Elements> ranges;
-  for (const ScissorRect& r : rects) {
-    Elements range{indices.size(), 0};
-    for (std::uint32_t k = 0; k < boxes.size(); ++k) {
-      if (!boxes[k].overlaps(r)) continue;
-      for (std::uint32_t v = k * perBox; v < (k + 1) * perBox; ++v) indices.push_back(v);
+  const auto add = [&](std::uint32_t k) {
+    for (std::uint32_t v = k * perPrim; v < (k + 1) * perPrim; ++v) indices.push_back(v);
+  };
+  for (std::uint32_t k : free) add(k);
+  ranges.push_back({0, indices.size()});
+  for (const ScissorRect& r : layout.rects) {
+    const std::size_t first = indices.size();
+    for (std::size_t i = 0; i < spotted.size(); ++i) {
+      if (boxes[i].overlaps(r)) add(spotted[i]);
     }
-    range.count = indices.size() - range.first;
-    ranges.push_back(range);
+    ranges.push_back({first, indices.size() - first});
   }
   gl_.BindVertexArray(batch.vao);
   if (!batch.elements) gl_.GenBuffers(1, &batch.elements);

@@ -49,7 +49,7 @@ class RasterScene {
     std::uint32_t material = 0;
     bool spheres = false;
     std::vector<Bounds3> boxes;              // the spheres' impostor boxes, 36 vertices each
-    std::vector<std::uint32_t> triangles;    // a mesh batch's triangles (Geometry's), 3 vertices each
+    std::vector<std::uint32_t> prims;        // its primitives (Geometry's ids), ascending: 3 or 36 vertices each
     std::vector<ShadowSpot> spots;           // where a light may be blocked on its primitives (LightProof)
     unsigned elements = 0;                   // element buffer of its draws in rectangles, made on first use
   };
@@ -97,13 +97,15 @@ class RasterScene {
     Projection projection;
     std::set<int> framed;
   };
-  // Draws the batch with the program of `variant`; a batch that reads the
-  // shadow maps reads them only in the rectangles its spots may show in
-  // (shadowRects), and is drawn without them elsewhere.
+  // Draws the batch with the program of `variant`. A batch that reads the
+  // shadow maps reads them only on the primitives with a spot that counts
+  // and only in the rectangles such spots may show in (shadowLayout); it is
+  // drawn without them elsewhere.
   void drawShaded(Batch& batch, const ShaderVariant& variant, FrameDraw& draw);
-  // For each rectangle, the vertices of the batch's primitives whose window
+  // The vertices of the batch's primitives that `layout` does not name
+  // (first), then for each rectangle those of the named ones whose window
   // box overlaps it, written to the batch's element buffer.
-  std::vector<Elements> binPrimitives(Batch& batch, const std::vector<ScissorRect>& rects, const FrameDraw& draw);
+  std::vector<Elements> binPrimitives(Batch& batch, const ShadowLayout& layout, const FrameDraw& draw);
   void drawProgram(const Batch& batch, const ShaderVariant& variant, FrameDraw& draw,
                    const Elements* elements = nullptr);
 

@@ -80,17 +80,22 @@ WindowBox windowBox(std::span<const glm::vec3> points, const glm::mat4& viewProj
   return box;
 }
 
-std::vector<ScissorRect> shadowRects(const std::vector<ShadowSpot>& spots, const glm::mat4& viewProjection,
-                                     const glm::vec3& eye, int width, int height) {
+ShadowLayout shadowLayout(const std::vector<ShadowSpot>& spots, const glm::mat4& viewProjection,
+                          const glm::vec3& eye, int width, int height) {
   CellGrid grid(width, height);
+  ShadowLayout layout;
   const glm::vec2 size(static_cast<float>(width), static_cast<float>(height));
   for (const ShadowSpot& spot : spots) {
     if (seenFromBehind(spot, eye)) continue;
+    layout.spotted.push_back(spot.prim);
     const WindowBox box = windowBox(std::span(spot.corners).first(static_cast<std::size_t>(spot.cornerCount)),
                                     viewProjection, size);
     grid.mark(box.min - kMarginPixels, box.max + kMarginPixels);
   }
-  return grid.rects();
+  std::sort(layout.spotted.begin(), layout.spotted.end());
+  layout.spotted.erase(std::unique(layout.spotted.begin(), layout.spotted.end()), layout.spotted.end());
+  if (!layout.spotted.empty()) layout.rects = grid.rects();
+  return layout;
 }
 
 }  // namespace glint::gl

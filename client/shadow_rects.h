@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -30,14 +31,20 @@ struct WindowBox {
 // `size` pixels; the whole frame (and beyond) when one lies behind the eye.
 WindowBox windowBox(std::span<const glm::vec3> points, const glm::mat4& viewProjection, glm::vec2 size);
 
-// The pixels of a kShadowRectTile-pixel grid whose cells may show a shadow
-// spot (LightProof) are drawn with the maps, the rest without: the frame cut
-// into few rectangles (runs of equal cells along a row, merged with the row
-// below where they match). A spot counts unless the eye sees its plane from
-// the side away from its light (no light there to block). A spot reaching
+// Where a batch reads the shadow maps this frame. A spot counts unless the
+// eye sees its plane from the side away from its light (no light reaches
+// that side); `spotted` lists the primitives (ShadowSpot::prim) with a spot
+// that counts, ascending, each once. The frame is cut into cells of
+// kShadowRectTile pixels; `rects` covers it, few rectangles (runs of equal
+// cells along a row, merged with the row below where they match), those
+// holding a counted spot's window box reading the maps. A spot reaching
 // behind the eye covers the frame.
 constexpr int kShadowRectTile = 32;
-std::vector<ScissorRect> shadowRects(const std::vector<ShadowSpot>& spots, const glm::mat4& viewProjection,
-                                     const glm::vec3& eye, int width, int height);
+struct ShadowLayout {
+  std::vector<std::uint32_t> spotted;
+  std::vector<ScissorRect> rects;
+};
+ShadowLayout shadowLayout(const std::vector<ShadowSpot>& spots, const glm::mat4& viewProjection,
+                          const glm::vec3& eye, int width, int height);
 
 }  // namespace glint::gl

@@ -41,19 +41,22 @@ std::vector<int> cover(const std::vector<ScissorRect>& rects) {
   return owner;
 }
 
-TEST(ShadowRects, NoSpotIsOneRectangleWithoutMaps) {
-  const auto rects = shadowRects({}, viewProjection(), kEye, kWidth, kHeight);
-  ASSERT_EQ(rects.size(), 1u);
-  EXPECT_FALSE(rects[0].shadows);
-  EXPECT_EQ(rects[0].width, kWidth);
-  EXPECT_EQ(rects[0].height, kHeight);
+TEST(ShadowRects, NoSpotNamesNothing) {
+  const ShadowLayout layout = shadowLayout({}, viewProjection(), kEye, kWidth, kHeight);
+  EXPECT_TRUE(layout.spotted.empty());
+  EXPECT_TRUE(layout.rects.empty());
 }
 
 // A spot in view: the rectangles cover every pixel once, those under the
 // spot's projected corners read the maps, and far from it they do not.
 TEST(ShadowRects, SpotInViewIsCoveredExactlyOnce) {
-  const ShadowSpot spot = floorSpot({0.5f, 0.0f, 0.0f}, 0.3f);
-  const auto rects = shadowRects({spot}, viewProjection(), kEye, kWidth, kHeight);
+  ShadowSpot spot = floorSpot({0.5f, 0.0f, 0.0f}, 0.3f);
+  spot.prim = 7;
+  ShadowSpot again = spot;  // a second light's spot on the same primitive
+  again.light = 1;
+  const ShadowLayout layout = shadowLayout({spot, again}, viewProjection(), kEye, kWidth, kHeight);
+  EXPECT_EQ(layout.spotted, std::vector<std::uint32_t>{7});
+  const std::vector<ScissorRect>& rects = layout.rects;
   EXPECT_GT(rects.size(), 2u);
   const std::vector<int> owner = cover(rects);
   for (int o : owner) ASSERT_GE(o, 0);
@@ -67,17 +70,18 @@ TEST(ShadowRects, SpotInViewIsCoveredExactlyOnce) {
   EXPECT_FALSE(shadowsAt({-2.0f, 0.0f, 1.0f}));
 }
 
-// Seen from below its plane (the side away from its light) a spot needs no
-// maps; reaching behind the eye, it covers the frame.
+// Seen from below its plane (the side away from its light) a spot does not
+// count; reaching behind the eye, it covers the frame.
 TEST(ShadowRects, SpotSeenFromBehindOrReachingBehindTheEye) {
   ShadowSpot below = floorSpot({0.5f, 2.0f, 0.0f}, 0.3f);
   below.plane = {0.0f, 1.0f, 0.0f, 2.0f};  // y = 2, light above: the eye at y = 1 is below
-  auto rects = shadowRects({below}, viewProjection(), kEye, kWidth, kHeight);
-  ASSERT_EQ(rects.size(), 1u);
-  EXPECT_FALSE(rects[0].shadows);
-  rects = shadowRects({floorSpot({0.0f, 0.0f, 5.0f}, 2.0f)}, viewProjection(), kEye, kWidth, kHeight);
-  ASSERT_EQ(rects.size(), 1u);
-  EXPECT_TRUE(rects[0].shadows);
+  EXPECT_TRUE(shadowLayout({below}, viewProjection(), kEye, kWidth, kHeight).spotted.empty());
+  const ShadowLayout behind =
+      shadowLayout({floorSpot({0.0f, 0.0f, 5.0f}, 2.0f)}, viewProjection(), kEye, kWidth, kHeight);
+  ASSERT_EQ(behind.rects.size(), 1u);
+  EXPECT_TRUE(behind.rects[0].shadows);
+  EXPECT_EQ(behind.rects[0].width, kWidth);
+  EXPECT_EQ(behind.rects[0].height, kHeight);
 }
 
 }  // namespace
