@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <optional>
+#include <thread>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -216,36 +217,59 @@ ShadowSpot triangleSpot(const Geometry& g, std::uint32_t prim, const glm::vec3& 
   return spot;
 }
 
+// The spot of the light at `light` on primitive `prim`; none when the light
+// provably reaches all of it.
+std::optional<ShadowSpot> spotOf(const Geometry& g, const Bvh& bvh, std::uint32_t prim, const glm::vec3& light) {
+  if (g.isSphere(prim)) {
+    const Sphere& sphere = g.spheres()[prim - g.triangles().size()];
+    const auto region = pyramid(light, sphere);
+    if (region && primitivesInRegion(bvh, g, *region, prim).empty()) return std::nullopt;
+    ShadowSpot spot;
+    spot.prim = prim;
+    spot.corners = boxCorners(sphere.bounds());
+    spot.cornerCount = 8;
+    return spot;
+  }
+  const Triangle& t = g.triangles()[prim];
+  const auto region = tetrahedron(light, {g.positions()[t.v[0]], g.positions()[t.v[1]], g.positions()[t.v[2]]});
+  const auto inside = region ? primitivesInRegion(bvh, g, *region, prim) : std::vector<std::uint32_t>{};
+  if (region && inside.empty()) return std::nullopt;
+  const ShadowSpot spot = triangleSpot(g, prim, light, inside, region ? region->slack : 0.0f, !region);
+  if (spot.cornerCount == 0) return std::nullopt;
+  return spot;
+}
+
 }  // namespace
 
 LightProof LightProof::prove(const Scene& scene, const std::vector<bool>& casts) {
   const Geometry& g = scene.geometry;
-  LightProof proof;
   const Bvh bvh = Bvh::build(g, BvhSettings{});
-  const auto triangles = static_cast<std::uint32_t>(g.triangles().size());
-  for (std::size_t light = 0; light < scene.lights.size(); ++light) {
-    if (!casts[light]) continue;
-    const glm::vec3& at = scene.lights[light].position;
-    for (std::uint32_t i = 0; i < triangles; ++i) {
-      const Triangle& t = g.triangles()[i];
-      const auto region = tetrahedron(at, {g.positions()[t.v[0]], g.positions()[t.v[1]], g.positions()[t.v[2]]});
-      const auto inside = region ? primitivesInRegion(bvh, g, *region, i) : std::vector<std::uint32_t>{};
-      if (region && inside.empty()) continue;
-      ShadowSpot spot = triangleSpot(g, i, at, inside, region ? region->slack : 0.0f, !region);
-      spot.light = static_cast<int>(light);
-      if (spot.cornerCount > 0) proof.spots.push_back(spot);
-    }
-    for (std::uint32_t i = 0; i < g.spheres().size(); ++i) {
-      const auto region = pyramid(at, g.spheres()[i]);
-      if (region && primitivesInRegion(bvh, g, *region, triangles + i).empty()) continue;
-      ShadowSpot spot;
-      spot.prim = triangles + i;
-      spot.light = static_cast<int>(light);
-      spot.corners = boxCorners(g.spheres()[i].bounds());
-      spot.cornerCount = 8;
-      proof.spots.push_back(spot);
-    }
+  // Each primitive's proof stands alone: the primitives are cut into one
+  // run per hardware thread, and the runs' spots joined in order.
+  const std::uint32_t count = g.primitiveCount();
+  const std::uint32_t runs = std::clamp(std::thread::hardware_concurrency(), 1u, std::max(1u, count / 64));
+  std::vector<std::vector<ShadowSpot>> found(runs);
+  std::vector<std::thread> threads;
+  for (std::uint32_t r = 0; r < runs; ++r) {
+    threads.emplace_back([&, r] {
+      for (std::size_t light = 0; light < scene.lights.size(); ++light) {
+        if (!casts[light]) continue;
+        for (std::uint32_t prim = count * r / runs; prim < count * (r + 1) / runs; ++prim) {
+          if (auto spot = spotOf(g, bvh, prim, scene.lights[light].position)) {
+            spot->light = static_cast<int>(light);
+            found[r].push_back(*spot);
+          }
+        }
+      }
+    });
   }
+  LightProof proof;
+  for (std::uint32_t r = 0; r < runs; ++r) {
+    threads[r].join();
+    proof.spots.insert(proof.spots.end(), found[r].begin(), found[r].end());
+  }
+  std::stable_sort(proof.spots.begin(), proof.spots.end(),
+                   [](const ShadowSpot& a, const ShadowSpot& b) { return a.light < b.light; });
   return proof;
 }
 
