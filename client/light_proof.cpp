@@ -87,14 +87,6 @@ std::optional<ConvexRegion> pyramid(const glm::vec3& light, const Sphere& sphere
   return region;
 }
 
-std::array<glm::vec3, 8> boxCorners(const Bounds3& b) {
-  std::array<glm::vec3, 8> corners;
-  for (int i = 0; i < 8; ++i) {
-    corners[static_cast<std::size_t>(i)] = {i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y, i & 4 ? b.max.z : b.min.z};
-  }
-  return corners;
-}
-
 // A rectangle in a triangle's plane, in coordinates along two unit axes of
 // the plane from its first vertex; a side may be infinite.
 struct PlaneRect {
@@ -129,7 +121,7 @@ struct Caster {
 Caster casterOf(const Geometry& g, std::uint32_t prim) {
   Caster c;
   if (g.isSphere(prim)) {
-    const std::array<glm::vec3, 8> box = boxCorners(g.primitiveBounds(prim));
+    const std::array<glm::vec3, 8> box = g.primitiveBounds(prim).corners();
     c.corners.assign(box.begin(), box.end());
     for (int i = 0; i < 8; ++i) {
       for (int bit : {1, 2, 4}) {
@@ -226,7 +218,7 @@ std::optional<ShadowSpot> spotOf(const Geometry& g, const Bvh& bvh, std::uint32_
     if (region && primitivesInRegion(bvh, g, *region, prim).empty()) return std::nullopt;
     ShadowSpot spot;
     spot.prim = prim;
-    spot.corners = boxCorners(sphere.bounds());
+    spot.corners = sphere.bounds().corners();
     spot.cornerCount = 8;
     return spot;
   }

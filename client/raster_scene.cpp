@@ -229,11 +229,7 @@ RasterScene::Projection RasterScene::projection(const FrameSettings& frame) cons
   // The far plane just beyond the scene's farthest corner as seen from the eye.
   float far = 1.0f;
   if (!bounds_.empty()) {
-    for (int corner = 0; corner < 8; ++corner) {
-      const glm::vec3 p(corner & 1 ? bounds_.max.x : bounds_.min.x, corner & 2 ? bounds_.max.y : bounds_.min.y,
-                        corner & 4 ? bounds_.max.z : bounds_.min.z);
-      far = std::max(far, glm::length(p - frame.camera.eye) * 1.01f);
-    }
+    for (const glm::vec3& p : bounds_.corners()) far = std::max(far, glm::length(p - frame.camera.eye) * 1.01f);
   }
   const glm::mat4 view = glm::lookAt(frame.camera.eye, frame.camera.lookAt, frame.camera.up);
   // Reversed, infinite: clip w = the distance along the view axis, clip z =
@@ -409,12 +405,7 @@ std::vector<RasterScene::Elements> RasterScene::binPrimitives(Batch& batch, cons
   std::vector<WindowBox> boxes;
   for (std::uint32_t k : spotted) {
     if (batch.spheres) {
-      const Bounds3& b = batch.boxes[k];
-      std::array<glm::vec3, 8> corners;
-      for (std::size_t i = 0; i < 8; ++i) {
-        corners[i] = {i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y, i & 4 ? b.max.z : b.min.z};
-      }
-      boxes.push_back(windowBox(corners, vp, size));
+      boxes.push_back(windowBox(batch.boxes[k].corners(), vp, size));
     } else {
       const Triangle& t = g.triangles()[batch.prims[k]];
       const std::array<glm::vec3, 3> v{g.positions()[t.v[0]], g.positions()[t.v[1]], g.positions()[t.v[2]]};

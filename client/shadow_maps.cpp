@@ -39,11 +39,7 @@ glm::mat4 faceViewProjection(const Face& face, const glm::vec3& light, float far
 // Just beyond the scene's farthest corner as seen from the light.
 float farPlane(const Bounds3& bounds, const glm::vec3& light) {
   float far = 1.0f;
-  for (int corner = 0; corner < 8; ++corner) {
-    const glm::vec3 p(corner & 1 ? bounds.max.x : bounds.min.x, corner & 2 ? bounds.max.y : bounds.min.y,
-                      corner & 4 ? bounds.max.z : bounds.min.z);
-    far = std::max(far, glm::length(p - light) * 1.01f);
-  }
+  for (const glm::vec3& p : bounds.corners()) far = std::max(far, glm::length(p - light) * 1.01f);
   return far;
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <limits>
 
 #include <glm/common.hpp>
@@ -19,6 +20,13 @@ struct Bounds3 {
   // p inside the box or on its boundary.
   bool contains(const glm::vec3& p) const {
     return p.x >= min.x && p.y >= min.y && p.z >= min.z && p.x <= max.x && p.y <= max.y && p.z <= max.z;
+  }
+  // The eight corners: corner i takes max.x where bit 0 of i is set, max.y
+  // bit 1, max.z bit 2.
+  std::array<glm::vec3, 8> corners() const {
+    std::array<glm::vec3, 8> c;
+    for (std::size_t i = 0; i < 8; ++i) c[i] = {i & 1 ? max.x : min.x, i & 2 ? max.y : min.y, i & 4 ? max.z : min.z};
+    return c;
   }
   float surfaceArea() const;
   int longestAxis() const;

@@ -28,5 +28,19 @@ TEST(Bounds, ContainsItsInsideAndBoundary) {
   EXPECT_FALSE(Bounds3{}.contains(glm::vec3(0.0f)));
 }
 
+// The eight corners, each once, bit i of the index choosing max on axis i.
+TEST(Bounds, CornersAreTheEightCombinations) {
+  const Bounds3 b{glm::vec3(-1.0f, 0.0f, 2.0f), glm::vec3(1.0f, 3.0f, 4.0f)};
+  const auto c = b.corners();
+  EXPECT_EQ(c[0], b.min);
+  EXPECT_EQ(c[7], b.max);
+  EXPECT_EQ(c[1], glm::vec3(1.0f, 0.0f, 2.0f));
+  EXPECT_EQ(c[2], glm::vec3(-1.0f, 3.0f, 2.0f));
+  EXPECT_EQ(c[4], glm::vec3(-1.0f, 0.0f, 4.0f));
+  for (std::size_t i = 0; i < 8; ++i) {
+    for (std::size_t j = i + 1; j < 8; ++j) EXPECT_NE(c[i], c[j]);
+  }
+}
+
 }  // namespace
 }  // namespace glint
