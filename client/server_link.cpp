@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "common/build_identity.h"
+#include "common/printable.h"
 #include "proto/messages.h"
 
 namespace glint {
@@ -157,7 +158,7 @@ void ServerLink::onMessage(const wire::Message& m) {
 void ServerLink::onHello(const wire::Hello& hello) {
   const std::string build = hello.build() ? hello.build()->str() : "(none)";
   if (build != buildIdentity()) {
-    fail(LinkFailure::Kind::kRefused, "its pixels would differ from this client's (server build '" + build +
+    fail(LinkFailure::Kind::kRefused, "its pixels would differ from this client's (server build '" + printable(build) +
                                           "', client build '" + buildIdentity() +
                                           "'); run glint and glintd from the same build");
     return;
@@ -217,7 +218,7 @@ void ServerLink::becomeReady() {
 
 void ServerLink::onError(const wire::Error& error) {
   const std::string text = std::string(wire::EnumNameErrorCode(error.code())) + ": " +
-                           (error.message() ? error.message()->str() : "");
+                           (error.message() ? printable(error.message()->string_view()) : "");
   switch (error.code()) {
     case wire::ErrorCode::BadScene:
       return fail(LinkFailure::Kind::kSceneError, text);

@@ -1,5 +1,6 @@
 #include "common/json_reader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <vector>
@@ -92,7 +93,64 @@ std::string pathOfBadValue(std::string_view text) {
   return "(top level)";
 }
 
+// The index just past the string that opens at text[i] (a '"').
+std::size_t skipString(std::string_view text, std::size_t i) {
+  for (++i; i < text.size(); ++i) {
+    if (text[i] == '\\') ++i;
+    else if (text[i] == '"') return i + 1;
+  }
+  return text.size();
+}
+
+// The index just past the comment that opens at text[i] ('/'), or i + 1.
+std::size_t skipComment(std::string_view text, std::size_t i) {
+  if (text.substr(i, 2) == "//") {
+    const std::size_t end = text.find('\n', i);
+    return end == std::string_view::npos ? text.size() : end + 1;
+  }
+  if (text.substr(i, 2) == "/*") {
+    const std::size_t end = text.find("*/", i + 2);
+    return end == std::string_view::npos ? text.size() : end + 2;
+  }
+  return i + 1;
+}
+
 }  // namespace
+
+JsonShape measureJson(std::string_view text) {
+  JsonShape shape;
+  shape.values = 1;
+  int depth = 0;
+  for (std::size_t i = 0; i < text.size();) {
+    switch (text[i]) {
+      case '"':
+        i = skipString(text, i);
+        continue;
+      case '/':
+        i = skipComment(text, i);
+        continue;
+      case '[':
+      case '{':
+        shape.depth = std::max(shape.depth, ++depth);
+        ++shape.values;
+        break;
+      case ']':
+      case '}':
+        --depth;
+        break;
+      case ',':
+        ++shape.values;
+        break;
+      case ':':
+        ++shape.members;
+        break;
+      default:
+        break;
+    }
+    ++i;
+  }
+  return shape;
+}
 
 nlohmann::json parseJson(std::string_view text) {
   try {

@@ -13,6 +13,18 @@
 
 namespace glint {
 
+// The shape of JSON text, found by one pass over its bytes before it is
+// parsed (strings and comments skipped): how deep its arrays and objects
+// nest, and about how many values and object members it holds, which decide
+// the memory its parse takes. Malformed text gives some answer; the parse
+// then refuses it.
+struct JsonShape {
+  std::size_t values = 0;   // containers and scalars (separators + containers + 1: a bound from above)
+  std::size_t members = 0;  // an object's key-value pairs
+  int depth = 0;            // deepest nesting of arrays and objects
+};
+JsonShape measureJson(std::string_view text);
+
 // Parses JSON text. Errors are InputErrors: a syntax error gives its line
 // and column, a number out of range (1e999) the path of the value
 // ("objects[0].radius: number out of range").

@@ -14,6 +14,7 @@ struct LoadLimits {
   std::size_t maxVertices = 30'000'000;                   // all meshes together
   std::size_t maxTexturePixels = std::size_t{1} << 26;    // one texture (8192 x 8192)
   std::size_t maxImagePixels = FrameLimits::kMaxPixels;   // the rendered image
+  int maxJsonDepth = 64;                                  // arrays and objects nested in a scene file
   // What one scene holds once built: texels, meshes, BVH (SceneBudget counts it).
   std::size_t maxSceneBytes = std::size_t{8} << 30;
 };

@@ -74,6 +74,17 @@ void SceneBudget::chargeMesh(std::size_t vertices, std::size_t triangles, const 
   charge(vertices * kBytesPerVertex + triangles * (kBytesPerTriangle + kBvhBytesPerPrimitive), place);
 }
 
+std::size_t SceneBudget::chargeJson(std::size_t values, std::size_t members, const std::string& place) {
+  const std::size_t bytes = values * kJsonBytesPerValue + members * kJsonBytesPerMember;
+  charge(bytes, place);
+  return bytes;
+}
+
+void SceneBudget::refund(std::size_t bytes) {
+  used_ -= bytes;
+  if (shared_) shared_->give(bytes);
+}
+
 void SceneBudget::chargeSphere(const std::string& place) { charge(kBytesPerSphere + kBvhBytesPerPrimitive, place); }
 
 }  // namespace glint

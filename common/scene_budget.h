@@ -44,6 +44,11 @@ class SceneBudget {
   static const std::size_t kBytesPerSphere;
   static const std::size_t kBvhBytesPerPrimitive;
   static constexpr std::size_t kBytesPerTexel = 3;
+  // A parsed JSON document's bytes per value and per object member
+  // (nlohmann::json: 31 bytes per element of a long array, 175 per object of
+  // one member, measured with getrusage).
+  static constexpr std::size_t kJsonBytesPerValue = 32;
+  static constexpr std::size_t kJsonBytesPerMember = 128;
 
   // `limitName` says how a user changes limits.maxSceneBytes ("glintd
   // --max-scene-mb"); `shared`, if any, is drawn from too.
@@ -60,6 +65,10 @@ class SceneBudget {
   void chargeImage(int width, int height, const std::string& place);
   void chargeMesh(std::size_t vertices, std::size_t triangles, const std::string& place);
   void chargeSphere(const std::string& place);
+  // What parsing a document of this shape takes, held until refund() (the
+  // document lives while the scene is loaded from it); returns the bytes.
+  std::size_t chargeJson(std::size_t values, std::size_t members, const std::string& place);
+  void refund(std::size_t bytes);
 
  private:
   LoadLimits limits_;

@@ -517,9 +517,20 @@ Scene loadScene(std::string_view text, FileSource& files, SceneBudget& budget) {
     throw InputError("scene of " + std::to_string(text.size()) + " bytes is over the limit of " +
                      std::to_string(budget.limits().maxFileBytes));
   }
+  // The text's shape bounds the parse before it begins: a deep nest would
+  // take the parser's stack and a long array its memory.
+  const JsonShape shape = measureJson(text);
+  if (shape.depth > budget.limits().maxJsonDepth) {
+    throw InputError("scene nests arrays and objects " + std::to_string(shape.depth) + " deep; at most " +
+                     std::to_string(budget.limits().maxJsonDepth));
+  }
+  const std::size_t parsed = budget.chargeJson(
+      shape.values, shape.members, "the scene's JSON (" + std::to_string(shape.values) + " values)");
   const nlohmann::json doc = parseJson(text);
   try {
-    return SceneLoader(files, budget).load(doc);
+    Scene scene = SceneLoader(files, budget).load(doc);
+    budget.refund(parsed);
+    return scene;
   } catch (const nlohmann::json::exception& e) {
     throw InputError(std::string("unexpected JSON content: ") + e.what());
   }

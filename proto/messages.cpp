@@ -267,6 +267,9 @@ TileRect decodeTileRect(const wire::TileRequest& t, const FrameSettings& frame) 
   return rect;
 }
 
-const char* bodyName(wire::Body body) { return wire::EnumNameBody(body); }
+std::string bodyName(wire::Body body) {
+  const char* name = wire::EnumNameBody(body);
+  return *name ? name : "type " + std::to_string(static_cast<int>(body));
+}
 
 }  // namespace glint::proto

@@ -71,7 +71,8 @@ SceneManifest decodeManifest(const wire::SceneUpload& upload);
 TileRect decodeTileRect(const wire::TileRequest& tile, const FrameSettings& frame);
 RayStats decodeRays(const wire::RayCounts* rays);
 
-// A name for each message kind, for logs and errors.
-const char* bodyName(wire::Body body);
+// A name for each message kind, for logs and errors; "type N" for a kind
+// this build does not know.
+std::string bodyName(wire::Body body);
 
 }  // namespace glint::proto

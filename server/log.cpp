@@ -6,6 +6,8 @@
 #include <ctime>
 #include <mutex>
 
+#include "common/printable.h"
+
 namespace glint::server {
 namespace {
 
@@ -26,7 +28,7 @@ void logLine(const std::string& line) {
   char stamp[32];
   std::strftime(stamp, sizeof stamp, "%Y-%m-%dT%H:%M:%S", &tm);
   std::lock_guard lock(gMutex);
-  std::fprintf(stderr, "%s.%03dZ glintd: %s\n", stamp, static_cast<int>(ms), line.c_str());
+  std::fprintf(stderr, "%s.%03dZ glintd: %s\n", stamp, static_cast<int>(ms), printable(line).c_str());
 }
 
 }  // namespace glint::server

@@ -173,5 +173,29 @@ TEST(DistributedTileService, ServerOfAnotherBuildIsRefused) {
   }
 }
 
+// A server's Error text reaches the user cut to a few thousand bytes, its
+// control characters (a terminal's escape sequences, newlines) written out:
+// a 60 MB message once went to stderr whole, escapes and all.
+TEST(DistributedTileService, ServerErrorTextIsBoundedAndEscaped) {
+  const std::string message = "bad\x1b[2J\nforged line" + std::string(60'000'000, 'x');
+  Peer peer([message](asio::ip::tcp::socket& socket) {
+    readFrame(socket);  // Hello
+    send(socket, proto::encodeError(wire::ErrorCode::Internal, message));
+    while (!readFrame(socket).empty()) {
+    }
+  });
+  try {
+    DistributedTileService service(resolveServers({addressOf(peer)}), kBundle, quick());
+    FAIL() << "a server that answered Hello with an Error was taken";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("bad\\x1b[2J\\nforged line"), std::string::npos) << what.substr(0, 300);
+    EXPECT_EQ(what.find('\x1b'), std::string::npos);
+    EXPECT_EQ(what.find("\nforged"), std::string::npos);
+    EXPECT_LT(what.size(), 4000u);
+    EXPECT_NE(what.find("more bytes)"), std::string::npos);
+  }
+}
+
 }  // namespace
 }  // namespace glint

@@ -110,7 +110,9 @@ TEST(RegionQuery, AgreesWithSampledPointsOnRandomTriangles) {
       const glm::vec3 p = v0 + a * (v1 - v0) + b * (v2 - v0);
       inside = p.x > 0.0f && p.x < 1.0f && p.y > 0.0f && p.y < 1.0f && p.z > 0.0f && p.z < 1.0f;
     }
-    if (inside) EXPECT_TRUE(reported) << "triangle " << t;
+    if (inside) {
+      EXPECT_TRUE(reported) << "triangle " << t;
+    }
     MeshInput& to = reported ? found : clear;
     for (const glm::vec3& v : {v0, v1, v2}) {
       to.positions.push_back(v);

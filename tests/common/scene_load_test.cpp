@@ -5,6 +5,7 @@
 
 #include "common/error.h"
 #include "common/file_source.h"
+#include "common/json_reader.h"
 #include "tests/common/test_support.h"
 
 namespace glint {
@@ -326,6 +327,50 @@ TEST(SceneLoad, MissingSceneFileNamesThePath) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/scene.json"), std::string::npos);
   }
+}
+
+// The text's shape, counted over its bytes: brackets, separators and colons
+// inside strings (escaped quotes too) and comments do not count.
+TEST(SceneLoad, MeasureJsonSkipsStringsAndComments) {
+  const JsonShape shape = measureJson(R"({"a": [1, 2, {"b": "x,[:\"]{"}], // [ , :
+                                          /* { , } */ "c": 3})");
+  EXPECT_EQ(shape.depth, 3);
+  EXPECT_EQ(shape.members, 3u);
+  EXPECT_EQ(shape.values, 1u + 3 + 3);  // one, three containers, three separators
+}
+
+// A scene nested deeper than the limit is refused before it is parsed: a
+// million brackets (a parser's recursion, and 70 bytes a level) are named in
+// the message, not followed.
+TEST(SceneLoad, DeepNestingIsRefusedBeforeTheParse) {
+  const std::string deep = std::string(1'000'000, '[') + std::string(1'000'000, ']');
+  EXPECT_NE(loadError(deep).find("nests arrays and objects 1000000 deep; at most 64"), std::string::npos)
+      << loadError(deep);
+  json scene = minimalScene();
+  json nest = json::array();
+  for (int i = 0; i < 70; ++i) nest = json::array({nest});
+  scene["extra"] = nest;
+  EXPECT_NE(loadError(scene.dump()).find("deep; at most 64"), std::string::npos);
+}
+
+// A long array costs its parse about 32 bytes a value, charged to the
+// scene's budget before the parse: three million values do not fit 64 MiB,
+// and the message names the JSON and the limit; the same scene loads under
+// a budget it fits.
+TEST(SceneLoad, LongArraysAreChargedBeforeTheParse) {
+  json scene = minimalScene();
+  std::string text = scene.dump();
+  std::string ones = ", \"padding\": [";
+  for (int i = 0; i < 3'000'000; ++i) ones += "1,";
+  ones += "1]}";
+  text.replace(text.size() - 1, 1, ones);
+  LoadLimits limits;
+  limits.maxSceneBytes = std::size_t{64} << 20;
+  const std::string error = loadError(text, {}, limits);
+  EXPECT_NE(error.find("the scene's JSON (30000"), std::string::npos) << error;
+  EXPECT_NE(error.find("over the limit for one scene of 64"), std::string::npos) << error;
+  limits.maxSceneBytes = std::size_t{256} << 20;
+  EXPECT_NE(loadError(text, {}, limits).find("padding"), std::string::npos);  // parsed: the unknown key is named
 }
 
 }  // namespace

@@ -244,5 +244,11 @@ TEST(Messages, BundleOfTheBunnySceneCarriesItsMesh) {
   EXPECT_EQ(again.geometry.triangles().size(), loaded.scene.geometry.triangles().size());
 }
 
+// Every kind has a name in errors, one this build does not know its number.
+TEST(Messages, BodyNamesNameUnknownKindsByNumber) {
+  EXPECT_EQ(bodyName(wire::Body::Hello), "Hello");
+  EXPECT_EQ(bodyName(static_cast<wire::Body>(200)), "type 200");
+}
+
 }  // namespace
 }  // namespace glint::proto

@@ -145,6 +145,35 @@ TEST(HostileClient, SceneThatDecodesTooLargeIsRefusedNamingTheLimit) {
   EXPECT_EQ(renderRoom(glintd.address()).width, 48);
 }
 
+// Scene JSON that nests 20 million deep or holds a 15-million-value array
+// (40 and 30 MB, inside the message limit): each is measured and refused
+// before it is parsed, naming the nesting or the JSON's share of the
+// budget, within seconds and without growing glintd's peak by what a parse
+// would take (2.3-3.1 GB when they were parsed); a real client is served.
+TEST(HostileClient, DeepOrLongSceneJsonIsRefusedBeforeItsParse) {
+  GlintdProcess glintd({"--max-scene-mb", "256", "--cache-mb", "512", "--max-memory-mb", "1024"});
+  std::string longArray = "[";
+  for (int i = 0; i < 15'000'000; ++i) longArray += "1,";
+  longArray += "1]";
+  const std::pair<std::string, std::string> cases[] = {
+      {std::string(20'000'000, '[') + std::string(20'000'000, ']'), "nests arrays and objects 20000000 deep"},
+      {std::move(longArray), "the scene's JSON (15000002 values): the scene would hold 457.8 MiB"}};
+  const long before = glintd.peakResidentKb();
+  for (const auto& [text, expected] : cases) {
+    RawClient c(glintd.port());
+    ASSERT_TRUE(c.hello());
+    const auto start = std::chrono::steady_clock::now();
+    for (const auto& frame : proto::encodeFullUpload(proto::SceneBundle{text, {}})) c.write(frame);
+    const auto [code, error] = c.readError();
+    EXPECT_EQ(code, wire::ErrorCode::BadScene);
+    EXPECT_NE(error.find(expected), std::string::npos) << error.substr(0, 300);
+    EXPECT_LT(std::chrono::steady_clock::now() - start, 10s);
+  }
+  const long grownKb = glintd.peakResidentKb() - before;
+  EXPECT_LT(grownKb, 400 * 1024) << "refusing the JSON grew glintd's peak by " << grownKb << " KiB";
+  EXPECT_EQ(renderRoom(glintd.address()).width, 48);
+}
+
 TEST(HostileClient, MemoryOptionsThatCannotHoldTheirScenesAreRefused) {
   EXPECT_THROW(GlintdProcess({"--max-scene-mb", "128", "--cache-mb", "64"}), std::runtime_error);
   EXPECT_THROW(GlintdProcess({"--max-memory-mb", "1024", "--cache-mb", "1024", "--max-scene-mb", "512"}),

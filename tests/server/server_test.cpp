@@ -4,6 +4,7 @@
 #include <signal.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <chrono>
 #include <future>
 #include <random>
@@ -357,6 +358,19 @@ TEST_F(ServerTest, SigtermDuringAFrame) {
   EXPECT_EQ(WEXITSTATUS(status), 0);
   ASSERT_EQ(render.wait_for(10s), std::future_status::ready);
   EXPECT_NE(render.get().find("server 127.0.0.1:"), std::string::npos);
+}
+
+// What a client sent and glintd quotes in its log (a JSON key in a
+// BadScene error) stays on its line: a key holding a newline and a
+// timestamp once forged a log line of its own.
+TEST(ServerLog, ClientTextCannotForgeALine) {
+  setLogging(true);
+  testing::internal::CaptureStderr();
+  logLine("peer: error BadScene: materials.\"x\n2026-12-03T00:00:00.000Z glintd: stopped\": unknown key");
+  const std::string out = testing::internal::GetCapturedStderr();
+  setLogging(false);
+  EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
+  EXPECT_NE(out.find("x\\n2026-12-03T00:00:00.000Z glintd: stopped"), std::string::npos) << out;
 }
 
 }  // namespace
