@@ -179,6 +179,9 @@ template <typename Stream>
 bool BasicConnection<Stream>::admit() { return context_.registry.admit(id_); }
 
 template <typename Stream>
+void BasicConnection<Stream>::worked() { context_.registry.worked(id_); }
+
+template <typename Stream>
 void BasicConnection<Stream>::build(SceneJob job) {
   ++pending_;
   context_.scheduler.submit(id_, [self = this->shared_from_this(), job = std::move(job)] {

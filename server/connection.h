@@ -45,6 +45,7 @@ class BasicConnection : public std::enable_shared_from_this<BasicConnection<Stre
   void reply(std::vector<std::uint8_t> frame) override;
   void end(const std::string& why) override;
   bool admit() override;
+  void worked() override;
   void build(SceneJob job) override;
   void trace(TileWork work) override;
   void cancel(std::uint32_t frameId, std::span<const std::uint32_t> tileIds) override;

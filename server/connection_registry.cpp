@@ -1,5 +1,6 @@
 #include "server/connection_registry.h"
 
+#include <algorithm>
 
 namespace glint::server {
 
@@ -9,10 +10,28 @@ void ConnectionRegistry::addWaiting(std::uint64_t id, const std::shared_ptr<Conn
   waiting_[id] = connection;
 }
 
-bool ConnectionRegistry::admit(std::uint64_t id) {
+bool ConnectionRegistry::admit(std::uint64_t id, Clock::time_point now) {
   const auto it = waiting_.find(id);
-  if (it == waiting_.end() || clients_.size() >= maxClients_) return false;
-  clients_.insert(waiting_.extract(it));
+  if (it == waiting_.end()) return false;
+  if (clients_.size() >= maxClients_ && !evictIdlest(now)) return false;
+  clients_[id] = Client{it->second, now};
+  waiting_.erase(it);
+  return true;
+}
+
+void ConnectionRegistry::worked(std::uint64_t id, Clock::time_point now) {
+  const auto it = clients_.find(id);
+  if (it != clients_.end()) it->second.lastWork = now;
+}
+
+bool ConnectionRegistry::evictIdlest(Clock::time_point now) {
+  const auto idlest = std::min_element(clients_.begin(), clients_.end(), [](const auto& a, const auto& b) {
+    return a.second.lastWork < b.second.lastWork;
+  });
+  if (idlest == clients_.end() || now - idlest->second.lastWork < kIdleBeforeEviction) return false;
+  const std::shared_ptr<ConnectionHandle> connection = idlest->second.connection.lock();
+  clients_.erase(idlest);
+  if (connection) connection->close("dropped: idle while a new client wanted its place");
   return true;
 }
 
@@ -32,7 +51,7 @@ bool ConnectionRegistry::dropOldestWaiting(const std::string& why) {
 void ConnectionRegistry::closeAll(const std::string& why) {
   Pool all;
   all.swap(waiting_);
-  all.merge(clients_);
+  for (auto& [id, client] : clients_) all[id] = client.connection;
   clients_.clear();
   for (auto& [id, weak] : all) {
     if (const auto connection = weak.lock()) connection->close(why);

@@ -45,6 +45,11 @@ void Session::dispatch(const wire::Message& m) {
           true);
     return;
   }
+  const wire::Body kind = m.body_type();
+  if (kind == wire::Body::SceneUpload || kind == wire::Body::FileChunk || kind == wire::Body::FrameSetup ||
+      kind == wire::Body::TileRequest) {
+    host_.worked();
+  }
   // verifyMessage guarantees that the body named is there.
   switch (m.body_type()) {
     case wire::Body::Hello:
@@ -98,7 +103,8 @@ void Session::onHello(const wire::Hello& hello) {
   }
   if (!host_.admit()) {
     error(wire::ErrorCode::Busy,
-          "the server has its maximum of " + std::to_string(settings_.maxClients) + " clients; try later", true);
+          "the server has its maximum of " + std::to_string(settings_.maxClients) + " clients, none idle; try later",
+          true);
     return;
   }
   state_ = State::kServing;

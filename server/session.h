@@ -41,6 +41,9 @@ class SessionHost {
   virtual void end(const std::string& why) = 0;
   // A Hello asks for a client's place; false when the server is full.
   virtual bool admit() = 0;
+  // The client asked for work (an upload, a frame, a tile): it keeps its
+  // place (ConnectionRegistry).
+  virtual void worked() = 0;
   // Work for the pool; the build's result comes back to sceneBuilt().
   virtual void build(SceneJob job) = 0;
   virtual void trace(TileWork work) = 0;

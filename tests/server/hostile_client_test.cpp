@@ -107,6 +107,27 @@ TEST(HostileClient, SilentConnectionsDoNotLockOutClients) {
   EXPECT_TRUE(silent.front()->closed()) << "the oldest silent connection was not dropped";
 }
 
+// Every client place taken by connections that said Hello and then only
+// keep the connection alive with queries: a real client, a second later,
+// takes the place of one of them and its frame completes within 5 s (they
+// held every place for the 300 s idle timeout, and for ever when renewed).
+TEST(HostileClient, IdleClientsGiveTheirPlacesToAWorkingOne) {
+  GlintdProcess glintd({"--max-clients", "4"});
+  std::vector<std::unique_ptr<RawClient>> idle;
+  for (int i = 0; i < 4; ++i) {
+    idle.push_back(std::make_unique<RawClient>(glintd.port()));
+    ASSERT_TRUE(idle.back()->hello());
+  }
+  std::this_thread::sleep_for(1200ms);
+  for (auto& c : idle) c->write(proto::encodeSceneQuery(proto::SceneHash{}, {}));  // not work
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_EQ(renderRoom(glintd.address()).width, 48);
+  EXPECT_LT(std::chrono::steady_clock::now() - start, 5s);
+  int closed = 0;
+  for (auto& c : idle) closed += c->closed() ? 1 : 0;
+  EXPECT_EQ(closed, 1);
+}
+
 TEST(HostileClient, ClientsOverTheLimitGetBusyAtHello) {
   GlintdProcess glintd({"--max-clients", "1"});
   RawClient first(glintd.port());

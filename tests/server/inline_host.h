@@ -25,6 +25,7 @@ class InlineHost : public SessionHost {
   void reply(std::vector<std::uint8_t> frame) override { replies.push_back(std::move(frame)); }
   void end(const std::string& why) override { ended = why; }
   bool admit() override { return admits; }
+  void worked() override { ++workMessages; }
   void build(SceneJob job) override {
     ++builds;
     session_->sceneBuilt(buildScene(job, maxSceneBytes_, buildMemory_));
@@ -45,6 +46,7 @@ class InlineHost : public SessionHost {
   bool admits = true;
   int builds = 0;
   int tiles = 0;
+  int workMessages = 0;  // messages that asked for work
 
  private:
   Session* session_ = nullptr;

@@ -89,7 +89,10 @@ TEST_F(SessionTest, UploadBuildsTheSceneAndTilesAreTraced) {
   const proto::SceneHash hash = room.bundle.hash();
   send(proto::encodeSceneQuery(hash));
   EXPECT_EQ(replyType(1), wire::Body::SceneStatus);
+  EXPECT_EQ(host_.workMessages, 0);  // Hello and a query keep no place
+  const std::size_t uploadFrames = proto::encodeFullUpload(room.bundle, 4096).size();
   upload(room.bundle);
+  EXPECT_EQ(host_.workMessages, static_cast<int>(uploadFrames));
   EXPECT_EQ(host_.builds, 1);
   EXPECT_EQ(replyType(2), wire::Body::SceneReady);
   EXPECT_TRUE(cache_.find(hash));
@@ -103,6 +106,7 @@ TEST_F(SessionTest, UploadBuildsTheSceneAndTilesAreTraced) {
   EXPECT_EQ(host_.replies.size(), 3u);  // a good setup has no answer
   send(proto::encodeTileRequest(5, 0, {0, 0, 16, 16}, {}));
   EXPECT_EQ(host_.tiles, 1);
+  EXPECT_EQ(host_.workMessages, static_cast<int>(uploadFrames) + 2);
   EXPECT_EQ(replyType(3), wire::Body::TileResult);
   send(proto::encodeTileRequest(6, 0, {0, 0, 16, 16}, {}));
   EXPECT_EQ(errorCode(4), wire::ErrorCode::UnknownFrame);
