@@ -168,9 +168,7 @@ class SceneLoader {
         }
         case TextureType::kImage: {
           t.allowKeys({"type", "file", "filter"});
-          const JsonReader file = t["file"];
-          tex.image = std::make_shared<Image>(
-              decodeImage(files_.read(normalisePath(file.string()), file.path()), file.path(), budget_));
+          tex.image = image(t["file"]);
           if (auto f = t.find("filter")) {
             tex.filter = choice<ImageFilter>(*f);
           }
@@ -180,6 +178,15 @@ class SceneLoader {
       textureIndex_[name] = static_cast<int>(scene_.textures.size());
       scene_.textures.push_back(std::move(tex));
     }
+  }
+
+  // The image a texture's "file" names, decoded (and charged) once however
+  // many textures name it.
+  std::shared_ptr<const Image> image(const JsonReader& file) {
+    const std::string path = normalisePath(file.string());
+    std::shared_ptr<const Image>& held = images_[path];
+    if (!held) held = std::make_shared<Image>(decodeImage(files_.read(path, file.path()), file.path(), budget_));
+    return held;
   }
 
   void readMaterials(const JsonReader& r) {
@@ -499,6 +506,7 @@ class SceneLoader {
   const LoadLimits& limits_;
   Scene scene_;
   std::map<std::string, int> textureIndex_;
+  std::map<std::string, std::shared_ptr<const Image>> images_;  // by normalised path
   std::map<std::string, std::uint32_t> materialIndex_;
   std::map<std::pair<std::uint32_t, RaytraceRule>, std::uint32_t> raytraceCopies_;  // meshMaterial's copies
   std::size_t vertices_ = 0;

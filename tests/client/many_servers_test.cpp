@@ -182,11 +182,13 @@ TEST(ManyServers, ASceneErrorFailsTheRenderWithItsPlace) {
   GlintdProcess a(small), b(small);
   const proto::SceneBundle bundle{R"({"glint": 1, "image": {"width": 4, "height": 4},
       "camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0]},
-      "textures": {"a": {"type": "image", "file": "flat.png"}, "b": {"type": "image", "file": "flat.png"},
-                   "c": {"type": "image", "file": "flat.png"}},
+      "textures": {"a": {"type": "image", "file": "a.png"}, "b": {"type": "image", "file": "b.png"},
+                   "c": {"type": "image", "file": "c.png"}},
       "materials": {"m": {"texture": "a"}},
       "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})",
-                                  {{"flat.png", test::flatPng(2048, 2048)}}};  // 12 MiB of texels each
+                                  {{"a.png", test::flatPng(2048, 2048)},  // 12 MiB of texels each
+                                   {"b.png", test::flatPng(2048, 2048)},
+                                   {"c.png", test::flatPng(2048, 2048)}}};
   try {
     DistributedTileService service(resolveServers({a.address(), b.address()}), bundle);
     FAIL() << "a scene over the servers' limit was taken";

@@ -139,18 +139,21 @@ TEST(HostileClient, ClientsOverTheLimitGetBusyAtHello) {
   EXPECT_NE(text.find("maximum of 1 clients"), std::string::npos) << text;
 }
 
-// Decoded size is not upload size: one PNG named four times used to be
-// decoded four times, to floats, with no limit. Now each image's size is
-// counted from its header against --max-scene-mb before it is decoded.
+// Decoded size is not upload size: four small PNGs that decode to 12 MiB
+// each are refused at the third, each image's size counted from its header
+// against --max-scene-mb before it is decoded.
 TEST(HostileClient, SceneThatDecodesTooLargeIsRefusedNamingTheLimit) {
   GlintdProcess glintd({"--max-scene-mb", "32", "--cache-mb", "64", "--max-memory-mb", "256"});
   proto::SceneBundle bundle{R"({"glint": 1, "image": {"width": 4, "height": 4},
       "camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0]},
-      "textures": {"a": {"type": "image", "file": "flat.png"}, "b": {"type": "image", "file": "flat.png"},
-                   "c": {"type": "image", "file": "flat.png"}, "d": {"type": "image", "file": "flat.png"}},
+      "textures": {"a": {"type": "image", "file": "a.png"}, "b": {"type": "image", "file": "b.png"},
+                   "c": {"type": "image", "file": "c.png"}, "d": {"type": "image", "file": "d.png"}},
       "materials": {"m": {"texture": "a"}},
       "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})",
-                            {{"flat.png", glint::test::flatPng(2048, 2048)}}};  // 12 MiB of texels each
+                            {{"a.png", glint::test::flatPng(2048, 2048)},  // 12 MiB of texels each
+                             {"b.png", glint::test::flatPng(2048, 2048)},
+                             {"c.png", glint::test::flatPng(2048, 2048)},
+                             {"d.png", glint::test::flatPng(2048, 2048)}}};
   const long before = glintd.peakResidentKb();
   RawClient c(glintd.port());
   ASSERT_TRUE(c.hello());
@@ -193,6 +196,32 @@ TEST(HostileClient, DeepOrLongSceneJsonIsRefusedBeforeItsParse) {
   const long grownKb = glintd.peakResidentKb() - before;
   EXPECT_LT(grownKb, 400 * 1024) << "refusing the JSON grew glintd's peak by " << grownKb << " KiB";
   EXPECT_EQ(renderRoom(glintd.address()).width, 48);
+}
+
+// One image named by 64 textures is decoded and counted once: the scene
+// (12 MiB of texels) is built under --max-scene-mb 32 within seconds. It
+// was decoded 64 times (an 8192 x 8192 PNG so named held a pool thread for
+// 55 s at a 3.3 GB peak before the scene was refused).
+TEST(HostileClient, ImageNamedManyTimesIsDecodedOnce) {
+  GlintdProcess glintd({"--max-scene-mb", "32", "--cache-mb", "64", "--max-memory-mb", "256"});
+  std::string textures, sep;
+  for (int i = 0; i < 64; ++i) {
+    textures += sep + "\"t" + std::to_string(i) + "\": {\"type\": \"image\", \"file\": \"flat.png\"}";
+    sep = ", ";
+  }
+  const proto::SceneBundle bundle{R"({"glint": 1, "image": {"width": 4, "height": 4},
+      "camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0]}, "textures": {)" + textures + R"(},
+      "materials": {"m": {"texture": "t63"}},
+      "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})",
+                                  {{"flat.png", glint::test::flatPng(2048, 2048)}}};
+  RawClient c(glintd.port());
+  ASSERT_TRUE(c.hello());
+  const auto start = std::chrono::steady_clock::now();
+  for (const auto& frame : proto::encodeFullUpload(bundle)) c.write(frame);
+  const wire::Message* reply = c.read();
+  ASSERT_NE(reply, nullptr);
+  EXPECT_EQ(reply->body_type(), wire::Body::SceneReady);
+  EXPECT_LT(std::chrono::steady_clock::now() - start, 10s);
 }
 
 TEST(HostileClient, MemoryOptionsThatCannotHoldTheirScenesAreRefused) {
