@@ -83,7 +83,7 @@ void BasicConnection<Stream>::armTimer(std::chrono::milliseconds timeout, const 
 template <typename Stream>
 void BasicConnection<Stream>::onTimer(const char* what) {
   if (midMessage_) {
-    close("read timeout: a message was not finished");
+    close(greeted() ? "read timeout: a message was not finished" : "handshake timeout: no Hello");
   } else if (pending_ > 0) {
     armTimer(context_.options.idleTimeout, what);  // our own work is not idleness
   } else if (writing_) {
@@ -127,7 +127,9 @@ void BasicConnection<Stream>::readHeader() {
 template <typename Stream>
 void BasicConnection<Stream>::readBody(std::uint32_t length) {
   midMessage_ = true;
-  armTimer(context_.options.readTimeout, "read");
+  // Before Hello the handshake's deadline stands: a header does not buy a
+  // connection the read timeout.
+  if (greeted()) armTimer(context_.options.readTimeout, "read");
   body_.clear();
   readMore(length);
 }

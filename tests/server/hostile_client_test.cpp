@@ -128,6 +128,18 @@ TEST(HostileClient, IdleClientsGiveTheirPlacesToAWorkingOne) {
   EXPECT_EQ(closed, 1);
 }
 
+// A connection that sends a frame header and no more before Hello keeps the
+// handshake's deadline (1 s here): it was given the read timeout (30 s by
+// default) once its header arrived.
+TEST(HostileClient, AHeaderBeforeHelloKeepsTheHandshakeDeadline) {
+  GlintdProcess glintd({"--handshake-timeout", "1", "--read-timeout", "30"});
+  RawClient c(glintd.port());
+  const auto start = std::chrono::steady_clock::now();
+  c.write(std::vector<std::uint8_t>{0, 1, 0, 0});  // announces 256 bytes, little-endian
+  EXPECT_TRUE(c.closed());
+  EXPECT_LT(std::chrono::steady_clock::now() - start, 2500ms);
+}
+
 TEST(HostileClient, ClientsOverTheLimitGetBusyAtHello) {
   GlintdProcess glintd({"--max-clients", "1"});
   RawClient first(glintd.port());
