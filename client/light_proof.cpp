@@ -27,7 +27,8 @@ glm::vec4 planeThrough(const glm::vec3& point, glm::vec3 n, const glm::vec3& ins
 // Rounding of coordinates of this magnitude, with a wide margin.
 float slackFor(const std::vector<glm::vec3>& corners) {
   float largest = 0.0f;
-  for (const glm::vec3& c : corners) largest = std::max({largest, std::abs(c.x), std::abs(c.y), std::abs(c.z)});
+  for (const glm::vec3& c : corners)
+    largest = std::max({largest, std::abs(c.x), std::abs(c.y), std::abs(c.z)});
   return largest * 1e-5f;
 }
 
@@ -43,7 +44,8 @@ void finish(ConvexRegion& region) {
 std::optional<ConvexRegion> tetrahedron(const glm::vec3& light, const std::array<glm::vec3, 3>& v) {
   const glm::vec3 normal = glm::cross(v[1] - v[0], v[2] - v[0]);
   const float height = std::abs(glm::dot(glm::normalize(normal), light - v[0]));
-  const float size = glm::length(light - v[0]) + glm::length(v[1] - v[0]) + glm::length(v[2] - v[0]);
+  const float size =
+      glm::length(light - v[0]) + glm::length(v[1] - v[0]) + glm::length(v[2] - v[0]);
   if (!(height > size * 1e-3f)) return std::nullopt;
   ConvexRegion region;
   region.planes.push_back(planeThrough(v[0], normal, light));
@@ -69,8 +71,9 @@ std::optional<ConvexRegion> pyramid(const glm::vec3& light, const Sphere& sphere
   if (!(distance > radius * 1.01f)) return std::nullopt;
   const glm::vec3 axis = toCentre / distance;
   const float sine = radius / distance, cosine = std::sqrt(1.0f - sine * sine);
-  const glm::vec3 u = glm::normalize(std::abs(axis.x) < 0.9f ? glm::cross(axis, glm::vec3(1, 0, 0))
-                                                              : glm::cross(axis, glm::vec3(0, 1, 0)));
+  const glm::vec3 u =
+      glm::normalize(std::abs(axis.x) < 0.9f ? glm::cross(axis, glm::vec3(1, 0, 0))
+                                             : glm::cross(axis, glm::vec3(0, 1, 0)));
   const glm::vec3 w = glm::cross(axis, u);
   ConvexRegion region;
   region.planes.push_back({axis, glm::dot(axis, sphere.centre)});
@@ -93,7 +96,9 @@ struct PlaneRect {
   glm::vec3 origin, u, v;
   glm::vec2 min{INFINITY}, max{-INFINITY};
 
-  glm::vec2 at(const glm::vec3& p) const { return {glm::dot(p - origin, u), glm::dot(p - origin, v)}; }
+  glm::vec2 at(const glm::vec3& p) const {
+    return {glm::dot(p - origin, u), glm::dot(p - origin, v)};
+  }
   void expand(const glm::vec3& p) {
     min = glm::min(min, at(p));
     max = glm::max(max, at(p));
@@ -108,7 +113,9 @@ struct PlaneRect {
       if (along[axis] > -tiny) max[axis] = INFINITY;
     }
   }
-  glm::vec3 corner(int i) const { return origin + (i & 1 ? max.x : min.x) * u + (i & 2 ? max.y : min.y) * v; }
+  glm::vec3 corner(int i) const {
+    return origin + (i & 1 ? max.x : min.x) * u + (i & 2 ? max.y : min.y) * v;
+  }
 };
 
 // A primitive as a convex polytope: its corners and edges (a sphere's by
@@ -144,7 +151,8 @@ Caster casterOf(const Geometry& g, std::uint32_t prim) {
 // far the receiver extends from the foot) it misses the receiver, else it
 // opens the rectangle towards each of its corners' directions from the
 // light and adds the foot.
-void castShadow(const Caster& caster, const glm::vec3& light, const glm::vec4& plane, float reach, PlaneRect& shadow) {
+void castShadow(const Caster& caster, const glm::vec3& light, const glm::vec4& plane, float reach,
+                PlaneRect& shadow) {
   const glm::vec3 n(plane);
   const float lightHeight = glm::dot(n, light) - plane.w;
   const float cut = lightHeight * 0.9999f;
@@ -155,12 +163,15 @@ void castShadow(const Caster& caster, const glm::vec3& light, const glm::vec4& p
   };
   std::vector<glm::vec3> upper;  // the corners of the part above the cut
   for (const glm::vec3& p : caster.corners) {
-    if (height(p) < cut) project(p);
-    else upper.push_back(p);
+    if (height(p) < cut)
+      project(p);
+    else
+      upper.push_back(p);
   }
   if (upper.empty()) return;
   for (const auto& [i, j] : caster.edges) {
-    const glm::vec3 a = caster.corners[static_cast<std::size_t>(i)], b = caster.corners[static_cast<std::size_t>(j)];
+    const glm::vec3 a = caster.corners[static_cast<std::size_t>(i)],
+                    b = caster.corners[static_cast<std::size_t>(j)];
     const float ha = height(a), hb = height(b);
     if ((ha < cut) == (hb < cut)) continue;
     upper.push_back(a + (b - a) * ((cut - ha) / (hb - ha)));
@@ -171,7 +182,9 @@ void castShadow(const Caster& caster, const glm::vec3& light, const glm::vec4& p
   box.max = glm::vec2(-INFINITY);
   for (const glm::vec3& p : upper) box.expand(p);
   const glm::vec2 f = box.at(foot);
-  if (glm::length(glm::max(glm::max(box.min - f, f - box.max), glm::vec2(0.0f))) * 1e4f > reach * 1.01f) return;
+  if (glm::length(glm::max(glm::max(box.min - f, f - box.max), glm::vec2(0.0f))) * 1e4f >
+      reach * 1.01f)
+    return;
   shadow.expand(foot);
   for (const glm::vec3& p : upper) shadow.extendTowards(p - light);
 }
@@ -184,10 +197,12 @@ void castShadow(const Caster& caster, const glm::vec3& light, const glm::vec4& p
 ShadowSpot triangleSpot(const Geometry& g, std::uint32_t prim, const glm::vec3& light,
                         const std::vector<std::uint32_t>& inside, float slack, bool whole) {
   const Triangle& t = g.triangles()[prim];
-  const std::array<glm::vec3, 3> v{g.positions()[t.v[0]], g.positions()[t.v[1]], g.positions()[t.v[2]]};
+  const std::array<glm::vec3, 3> v{g.positions()[t.v[0]], g.positions()[t.v[1]],
+                                   g.positions()[t.v[2]]};
   ShadowSpot spot;
   spot.prim = prim;
-  const glm::vec4 plane = planeThrough(v[0], glm::cross(v[1] - v[0], v[2] - v[0]), v[0] - (light - v[0]));
+  const glm::vec4 plane =
+      planeThrough(v[0], glm::cross(v[1] - v[0], v[2] - v[0]), v[0] - (light - v[0]));
   PlaneRect own{v[0], glm::normalize(v[1] - v[0]), {}, {}, {}};
   own.v = glm::cross(glm::vec3(plane), own.u);
   for (const glm::vec3& p : v) own.expand(p);
@@ -196,7 +211,8 @@ ShadowSpot triangleSpot(const Geometry& g, std::uint32_t prim, const glm::vec3& 
     spot.plane = plane;  // normal towards the light
     shadow.min = glm::vec2(INFINITY);
     shadow.max = glm::vec2(-INFINITY);
-    const glm::vec2 foot = own.at(light - glm::vec3(plane) * (glm::dot(glm::vec3(plane), light) - plane.w));
+    const glm::vec2 foot =
+        own.at(light - glm::vec3(plane) * (glm::dot(glm::vec3(plane), light) - plane.w));
     float reach = 0.0f;
     for (int i = 0; i < 4; ++i) reach = std::max(reach, glm::length(own.at(own.corner(i)) - foot));
     for (std::uint32_t other : inside) castShadow(casterOf(g, other), light, plane, reach, shadow);
@@ -211,7 +227,8 @@ ShadowSpot triangleSpot(const Geometry& g, std::uint32_t prim, const glm::vec3& 
 
 // The spot of the light at `light` on primitive `prim`; none when the light
 // provably reaches all of it.
-std::optional<ShadowSpot> spotOf(const Geometry& g, const Bvh& bvh, std::uint32_t prim, const glm::vec3& light) {
+std::optional<ShadowSpot> spotOf(const Geometry& g, const Bvh& bvh, std::uint32_t prim,
+                                 const glm::vec3& light) {
   if (g.isSphere(prim)) {
     const Sphere& sphere = g.spheres()[prim - g.triangles().size()];
     const auto region = pyramid(light, sphere);
@@ -223,10 +240,13 @@ std::optional<ShadowSpot> spotOf(const Geometry& g, const Bvh& bvh, std::uint32_
     return spot;
   }
   const Triangle& t = g.triangles()[prim];
-  const auto region = tetrahedron(light, {g.positions()[t.v[0]], g.positions()[t.v[1]], g.positions()[t.v[2]]});
-  const auto inside = region ? primitivesInRegion(bvh, g, *region, prim) : std::vector<std::uint32_t>{};
+  const auto region =
+      tetrahedron(light, {g.positions()[t.v[0]], g.positions()[t.v[1]], g.positions()[t.v[2]]});
+  const auto inside =
+      region ? primitivesInRegion(bvh, g, *region, prim) : std::vector<std::uint32_t>{};
   if (region && inside.empty()) return std::nullopt;
-  const ShadowSpot spot = triangleSpot(g, prim, light, inside, region ? region->slack : 0.0f, !region);
+  const ShadowSpot spot =
+      triangleSpot(g, prim, light, inside, region ? region->slack : 0.0f, !region);
   if (spot.cornerCount == 0) return std::nullopt;
   return spot;
 }
@@ -239,7 +259,8 @@ LightProof LightProof::prove(const Scene& scene, const std::vector<bool>& casts)
   // Each primitive's proof stands alone: the primitives are cut into one
   // run per hardware thread, and the runs' spots joined in order.
   const std::uint32_t count = g.primitiveCount();
-  const std::uint32_t runs = std::clamp(std::thread::hardware_concurrency(), 1u, std::max(1u, count / 64));
+  const std::uint32_t runs =
+      std::clamp(std::thread::hardware_concurrency(), 1u, std::max(1u, count / 64));
   std::vector<std::vector<ShadowSpot>> found(runs);
   std::vector<std::thread> threads;
   for (std::uint32_t r = 0; r < runs; ++r) {

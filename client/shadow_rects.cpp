@@ -23,17 +23,24 @@ bool seenFromBehind(const ShadowSpot& spot, const glm::vec3& eye) {
 class CellGrid {
  public:
   CellGrid(int width, int height)
-      : width_(width), height_(height), columns_((width + kShadowRectTile - 1) / kShadowRectTile),
-        rows_((height + kShadowRectTile - 1) / kShadowRectTile), cells_(static_cast<std::size_t>(columns_ * rows_)) {}
+      : width_(width),
+        height_(height),
+        columns_((width + kShadowRectTile - 1) / kShadowRectTile),
+        rows_((height + kShadowRectTile - 1) / kShadowRectTile),
+        cells_(static_cast<std::size_t>(columns_ * rows_)) {}
 
   // Marks the cells a box in window coordinates touches.
   void mark(glm::vec2 min, glm::vec2 max) {
     const auto cell = [](float v, int count) {
-      return static_cast<int>(std::clamp(std::floor(v / kShadowRectTile), 0.0f, static_cast<float>(count - 1)));
+      return static_cast<int>(
+          std::clamp(std::floor(v / kShadowRectTile), 0.0f, static_cast<float>(count - 1)));
     };
-    if (max.x < 0.0f || max.y < 0.0f || min.x > static_cast<float>(width_) || min.y > static_cast<float>(height_)) return;
+    if (max.x < 0.0f || max.y < 0.0f || min.x > static_cast<float>(width_) ||
+        min.y > static_cast<float>(height_))
+      return;
     for (int y = cell(min.y, rows_); y <= cell(max.y, rows_); ++y) {
-      for (int x = cell(min.x, columns_); x <= cell(max.x, columns_); ++x) cells_[static_cast<std::size_t>(y * columns_ + x)] = 1;
+      for (int x = cell(min.x, columns_); x <= cell(max.x, columns_); ++x)
+        cells_[static_cast<std::size_t>(y * columns_ + x)] = 1;
     }
   }
 
@@ -43,14 +50,17 @@ class CellGrid {
       std::vector<ScissorRect> row;
       for (int x = 0; x < columns_; ++x) {
         const bool on = cells_[static_cast<std::size_t>(y * columns_ + x)] != 0;
-        if (row.empty() || row.back().shadows != on) row.push_back({x * kShadowRectTile, y * kShadowRectTile, 0, 0, on});
+        if (row.empty() || row.back().shadows != on)
+          row.push_back({x * kShadowRectTile, y * kShadowRectTile, 0, 0, on});
         row.back().width = std::min(width_, (x + 1) * kShadowRectTile) - row.back().x;
       }
       const int top = std::min(height_, (y + 1) * kShadowRectTile);
-      const bool same = open.size() == row.size() &&
-                        std::equal(row.begin(), row.end(), open.begin(), [](const ScissorRect& a, const ScissorRect& b) {
-                          return a.x == b.x && a.width == b.width && a.shadows == b.shadows;
-                        });
+      const bool same =
+          open.size() == row.size() && std::equal(row.begin(), row.end(), open.begin(),
+                                                  [](const ScissorRect& a, const ScissorRect& b) {
+                                                    return a.x == b.x && a.width == b.width &&
+                                                           a.shadows == b.shadows;
+                                                  });
       if (!same) {
         done.insert(done.end(), open.begin(), open.end());
         open = row;
@@ -68,7 +78,8 @@ class CellGrid {
 
 }  // namespace
 
-WindowBox windowBox(std::span<const glm::vec3> points, const glm::mat4& viewProjection, glm::vec2 size) {
+WindowBox windowBox(std::span<const glm::vec3> points, const glm::mat4& viewProjection,
+                    glm::vec2 size) {
   WindowBox box;
   for (const glm::vec3& p : points) {
     const glm::vec4 clip = viewProjection * glm::vec4(p, 1.0f);
@@ -88,12 +99,14 @@ ShadowLayout shadowLayout(const std::vector<ShadowSpot>& spots, const glm::mat4&
   for (const ShadowSpot& spot : spots) {
     if (seenFromBehind(spot, eye)) continue;
     layout.spotted.push_back(spot.prim);
-    const WindowBox box = windowBox(std::span(spot.corners).first(static_cast<std::size_t>(spot.cornerCount)),
-                                    viewProjection, size);
+    const WindowBox box =
+        windowBox(std::span(spot.corners).first(static_cast<std::size_t>(spot.cornerCount)),
+                  viewProjection, size);
     grid.mark(box.min - kMarginPixels, box.max + kMarginPixels);
   }
   std::sort(layout.spotted.begin(), layout.spotted.end());
-  layout.spotted.erase(std::unique(layout.spotted.begin(), layout.spotted.end()), layout.spotted.end());
+  layout.spotted.erase(std::unique(layout.spotted.begin(), layout.spotted.end()),
+                       layout.spotted.end());
   if (!layout.spotted.empty()) layout.rects = grid.rects();
   return layout;
 }

@@ -29,7 +29,8 @@ struct WindowBox {
 };
 // The window box of `points` seen through viewProjection in a frame of
 // `size` pixels; the whole frame (and beyond) when one lies behind the eye.
-WindowBox windowBox(std::span<const glm::vec3> points, const glm::mat4& viewProjection, glm::vec2 size);
+WindowBox windowBox(std::span<const glm::vec3> points, const glm::mat4& viewProjection,
+                    glm::vec2 size);
 
 // Where a batch reads the shadow maps this frame. A spot counts unless the
 // eye sees its plane from the side away from its light (no light reaches

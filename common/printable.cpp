@@ -26,7 +26,8 @@ std::string printable(std::string_view text, std::size_t limit) {
       out += c;
     }
   }
-  if (text.size() > kept.size()) out += "... (" + std::to_string(text.size() - kept.size()) + " more bytes)";
+  if (text.size() > kept.size())
+    out += "... (" + std::to_string(text.size() - kept.size()) + " more bytes)";
   return out;
 }
 

@@ -11,7 +11,8 @@ namespace {
 
 // The plane's signed distance to the box's corner that lies farthest inside.
 float nearestCornerDistance(const glm::vec4& plane, const Bounds3& box) {
-  const glm::vec3 corner(plane.x >= 0.0f ? box.min.x : box.max.x, plane.y >= 0.0f ? box.min.y : box.max.y,
+  const glm::vec3 corner(plane.x >= 0.0f ? box.min.x : box.max.x,
+                         plane.y >= 0.0f ? box.min.y : box.max.y,
                          plane.z >= 0.0f ? box.min.z : box.max.z);
   return glm::dot(glm::vec3(plane), corner) - plane.w;
 }
@@ -19,7 +20,8 @@ float nearestCornerDistance(const glm::vec4& plane, const Bounds3& box) {
 bool boxSeparated(const Bounds3& box, const ConvexRegion& region) {
   const float s = region.slack;
   for (int axis = 0; axis < 3; ++axis) {
-    if (box.min[axis] > region.box.max[axis] + s || box.max[axis] < region.box.min[axis] - s) return true;
+    if (box.min[axis] > region.box.max[axis] + s || box.max[axis] < region.box.min[axis] - s)
+      return true;
   }
   for (const glm::vec4& plane : region.planes) {
     if (nearestCornerDistance(plane, box) > s) return true;
@@ -41,10 +43,13 @@ bool outside(const glm::vec3& v, std::size_t plane, const ConvexRegion& region) 
   return std::abs(distance) <= region.slack && isShared(v, region);
 }
 
-bool triangleSeparated(const std::array<glm::vec3, 3>& v, const glm::vec3& normal, const ConvexRegion& region) {
+bool triangleSeparated(const std::array<glm::vec3, 3>& v, const glm::vec3& normal,
+                       const ConvexRegion& region) {
   const float s = region.slack;
   for (std::size_t plane = 0; plane < region.planes.size(); ++plane) {
-    if (outside(v[0], plane, region) && outside(v[1], plane, region) && outside(v[2], plane, region)) return true;
+    if (outside(v[0], plane, region) && outside(v[1], plane, region) &&
+        outside(v[2], plane, region))
+      return true;
   }
   // The triangle's plane separates when every corner lies strictly on one
   // side, but for shared corners lying in it: the region then meets the
@@ -62,7 +67,8 @@ bool triangleSeparated(const std::array<glm::vec3, 3>& v, const glm::vec3& norma
 
 bool sphereSeparated(const Sphere& sphere, const ConvexRegion& region) {
   for (const glm::vec4& plane : region.planes) {
-    if (glm::dot(glm::vec3(plane), sphere.centre) - plane.w > sphere.radius + region.slack) return true;
+    if (glm::dot(glm::vec3(plane), sphere.centre) - plane.w > sphere.radius + region.slack)
+      return true;
   }
   return false;
 }
@@ -78,8 +84,8 @@ bool primitiveSeparated(const Geometry& geometry, std::uint32_t prim, const Conv
 
 }  // namespace
 
-std::vector<std::uint32_t> primitivesInRegion(const Bvh& bvh, const Geometry& geometry, const ConvexRegion& region,
-                                              std::uint32_t skip) {
+std::vector<std::uint32_t> primitivesInRegion(const Bvh& bvh, const Geometry& geometry,
+                                              const ConvexRegion& region, std::uint32_t skip) {
   std::vector<std::uint32_t> found;
   const std::vector<BvhNode>& nodes = bvh.nodes();
   if (nodes.empty()) return found;

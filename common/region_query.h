@@ -36,7 +36,7 @@ struct ConvexRegion {
 // conservative answer, from separating planes only (the region's own planes,
 // a triangle's plane, a sphere's distance, a BVH box's faces). Empty proves
 // that none does; a primitive listed may merely lie near it.
-std::vector<std::uint32_t> primitivesInRegion(const Bvh& bvh, const Geometry& geometry, const ConvexRegion& region,
-                                              std::uint32_t skip);
+std::vector<std::uint32_t> primitivesInRegion(const Bvh& bvh, const Geometry& geometry,
+                                              const ConvexRegion& region, std::uint32_t skip);
 
 }  // namespace glint

@@ -4,8 +4,10 @@
 
 namespace glint::server {
 
-void ConnectionRegistry::addWaiting(std::uint64_t id, const std::shared_ptr<ConnectionHandle>& connection) {
-  while (waiting_.size() >= maxWaiting_ && dropOldestWaiting("dropped: too many connections waiting for Hello")) {
+void ConnectionRegistry::addWaiting(std::uint64_t id,
+                                    const std::shared_ptr<ConnectionHandle>& connection) {
+  while (waiting_.size() >= maxWaiting_ &&
+         dropOldestWaiting("dropped: too many connections waiting for Hello")) {
   }
   waiting_[id] = connection;
 }
@@ -25,9 +27,9 @@ void ConnectionRegistry::worked(std::uint64_t id, Clock::time_point now) {
 }
 
 bool ConnectionRegistry::evictIdlest(Clock::time_point now) {
-  const auto idlest = std::min_element(clients_.begin(), clients_.end(), [](const auto& a, const auto& b) {
-    return a.second.lastWork < b.second.lastWork;
-  });
+  const auto idlest = std::min_element(
+      clients_.begin(), clients_.end(),
+      [](const auto& a, const auto& b) { return a.second.lastWork < b.second.lastWork; });
   if (idlest == clients_.end() || now - idlest->second.lastWork < kIdleBeforeEviction) return false;
   const std::shared_ptr<ConnectionHandle> connection = idlest->second.connection.lock();
   clients_.erase(idlest);

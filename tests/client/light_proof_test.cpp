@@ -2,8 +2,8 @@
 
 #include <random>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 namespace glint::gl {
 namespace {
@@ -20,9 +20,9 @@ bool blocked(const Geometry& g, std::uint32_t self, const glm::vec3& p, const gl
 }
 
 struct Checked {
-  int proven = 0;      // (primitive, light) pairs with no spot
-  int spotted = 0;     // pairs with one
-  int outsideSpot = 0; // points sampled on a spotted triangle outside its spot
+  int proven = 0;       // (primitive, light) pairs with no spot
+  int spotted = 0;      // pairs with one
+  int outsideSpot = 0;  // points sampled on a spotted triangle outside its spot
 };
 
 const ShadowSpot* spotOf(const LightProof& proof, std::uint32_t prim, int light) {
@@ -57,7 +57,8 @@ Checked expectProofHolds(const Scene& scene, const LightProof& proof) {
       const ShadowSpot* spot = spotOf(proof, i, l);
       (spot ? c.spotted : c.proven)++;
       const Triangle& t = g.triangles()[i];
-      const glm::vec3 a = g.positions()[t.v[0]], b = g.positions()[t.v[1]], d = g.positions()[t.v[2]];
+      const glm::vec3 a = g.positions()[t.v[0]], b = g.positions()[t.v[1]],
+                      d = g.positions()[t.v[2]];
       for (int s = 0; s < 200; ++s) {
         float u = unit(rng), v = unit(rng);
         if (u + v > 1.0f) u = 1.0f - u, v = 1.0f - v;
@@ -65,7 +66,8 @@ Checked expectProofHolds(const Scene& scene, const LightProof& proof) {
         if (spot && inSpot(*spot, p)) continue;
         c.outsideSpot += spot ? 1 : 0;
         if (blocked(g, i, p, light)) {
-          ADD_FAILURE() << "triangle " << i << " is shadowed from light " << l << " outside its spot";
+          ADD_FAILURE() << "triangle " << i << " is shadowed from light " << l
+                        << " outside its spot";
           return c;
         }
       }
@@ -95,11 +97,13 @@ Checked expectProofHolds(const Scene& scene, const LightProof& proof) {
 MeshInput floorGrid(int n, float size) {
   MeshInput mesh;
   for (int z = 0; z <= n; ++z) {
-    for (int x = 0; x <= n; ++x) mesh.positions.emplace_back(size * x / n - size / 2, 0.0f, size * z / n - size / 2);
+    for (int x = 0; x <= n; ++x)
+      mesh.positions.emplace_back(size * x / n - size / 2, 0.0f, size * z / n - size / 2);
   }
   for (int z = 0; z < n; ++z) {
     for (int x = 0; x < n; ++x) {
-      const auto i = static_cast<std::uint32_t>(z * (n + 1) + x), w = static_cast<std::uint32_t>(n + 1);
+      const auto i = static_cast<std::uint32_t>(z * (n + 1) + x),
+                 w = static_cast<std::uint32_t>(n + 1);
       mesh.indices.insert(mesh.indices.end(), {i, i + 1, i + w, i + 1, i + w + 1, i + w});
     }
   }
@@ -113,7 +117,9 @@ Scene withLights(Geometry g, std::vector<glm::vec3> lights) {
   return scene;
 }
 
-std::vector<bool> allCast(const Scene& scene) { return std::vector<bool>(scene.lights.size(), true); }
+std::vector<bool> allCast(const Scene& scene) {
+  return std::vector<bool>(scene.lights.size(), true);
+}
 
 // A floor of 16 x 16 squares, neighbours sharing edges, with a ball above
 // it: the floor away from the ball's shadow is proved lit (its neighbours
@@ -126,8 +132,8 @@ TEST(LightProof, FloorAndBall) {
   const Scene scene = withLights(std::move(g), {{0.0f, 4.0f, 0.0f}});
   const LightProof proof = LightProof::prove(scene, allCast(scene));
   const Checked c = expectProofHolds(scene, proof);
-  EXPECT_GT(c.proven, 400);   // of the 512 triangles and the ball
-  EXPECT_GT(c.spotted, 10);   // the ball's shadow is about 1.3 across
+  EXPECT_GT(c.proven, 400);  // of the 512 triangles and the ball
+  EXPECT_GT(c.spotted, 10);  // the ball's shadow is about 1.3 across
   EXPECT_GT(c.outsideSpot, 100);
   EXPECT_EQ(spotOf(proof, 512, 0), nullptr);
   // The triangles right under the ball are in its shadow: each has a spot
@@ -135,7 +141,8 @@ TEST(LightProof, FloorAndBall) {
   for (std::uint32_t i = 0; i < scene.geometry.triangles().size(); ++i) {
     const Triangle& t = scene.geometry.triangles()[i];
     const glm::vec3 centre =
-        (scene.geometry.positions()[t.v[0]] + scene.geometry.positions()[t.v[1]] + scene.geometry.positions()[t.v[2]]) /
+        (scene.geometry.positions()[t.v[0]] + scene.geometry.positions()[t.v[1]] +
+         scene.geometry.positions()[t.v[2]]) /
         3.0f;
     if (glm::length(centre) > 0.4f) continue;
     const ShadowSpot* spot = spotOf(proof, i, 0);
@@ -160,7 +167,8 @@ TEST(LightProof, RandomSoupsAreLitOutsideTheirSpots) {
     }
     g.addMesh(std::move(mesh));
     for (int i = 0; i < 20; ++i) g.addSphere({{pos(rng), pos(rng), pos(rng)}, size(rng) * 0.5f, 0});
-    const Scene scene = withLights(std::move(g), {{0.0f, 0.0f, 0.0f}, {12.0f, 3.0f, -4.0f}, {-3.0f, 15.0f, 6.0f}});
+    const Scene scene =
+        withLights(std::move(g), {{0.0f, 0.0f, 0.0f}, {12.0f, 3.0f, -4.0f}, {-3.0f, 15.0f, 6.0f}});
     const Checked c = expectProofHolds(scene, LightProof::prove(scene, allCast(scene)));
     EXPECT_GT(c.proven, 100) << seed;
     EXPECT_GT(c.spotted, 10) << seed;
@@ -176,12 +184,14 @@ TEST(LightProof, DegenerateCasesSpotTheWholePrimitive) {
   g.addMesh(MeshInput{{{0, 0, 0}, {1, 0, 0}, {0, 0, 1}}, {}, {}, {0, 1, 2}, 0});
   g.addSphere({{5.0f, 5.0f, 5.0f}, 1.0f, 0});
   // In the triangle's plane; inside the sphere; casting none; above both.
-  const Scene scene = withLights(std::move(g), {{3, 0, 3}, {5.0f, 5.2f, 5.0f}, {0, 3, 0}, {0.3f, 2.0f, 0.3f}});
+  const Scene scene =
+      withLights(std::move(g), {{3, 0, 3}, {5.0f, 5.2f, 5.0f}, {0, 3, 0}, {0.3f, 2.0f, 0.3f}});
   const LightProof proof = LightProof::prove(scene, {true, true, false, true});
   const ShadowSpot* inPlane = spotOf(proof, 0, 0);
   ASSERT_NE(inPlane, nullptr);
   EXPECT_EQ(inPlane->plane, glm::vec4(0.0f));
-  for (const glm::vec3 p : {glm::vec3(0.01f, 0, 0.01f), glm::vec3(0.98f, 0, 0.01f), glm::vec3(0.01f, 0, 0.98f)}) {
+  for (const glm::vec3 p :
+       {glm::vec3(0.01f, 0, 0.01f), glm::vec3(0.98f, 0, 0.01f), glm::vec3(0.01f, 0, 0.98f)}) {
     EXPECT_TRUE(inSpot(*inPlane, p));
   }
   EXPECT_NE(spotOf(proof, 0, 1), nullptr);  // the sphere holding the light is in the way

@@ -1,8 +1,8 @@
 #include "client/shadow_rects.h"
 
+#include <gtest/gtest.h>
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>
-#include <gtest/gtest.h>
 
 namespace glint::gl {
 namespace {
@@ -19,7 +19,8 @@ glm::mat4 viewProjection() {
 ShadowSpot floorSpot(glm::vec3 centre, float half) {
   ShadowSpot s;
   for (int i = 0; i < 4; ++i) {
-    s.corners[static_cast<std::size_t>(i)] = centre + glm::vec3(i & 1 ? half : -half, 0.0f, i & 2 ? half : -half);
+    s.corners[static_cast<std::size_t>(i)] =
+        centre + glm::vec3(i & 1 ? half : -half, 0.0f, i & 2 ? half : -half);
   }
   s.cornerCount = 4;
   s.plane = {0.0f, 1.0f, 0.0f, 0.0f};
@@ -65,7 +66,8 @@ TEST(ShadowRects, SpotInViewIsCoveredExactlyOnce) {
     const auto x = static_cast<int>(b.min.x), y = static_cast<int>(b.min.y);
     return rects[static_cast<std::size_t>(owner[static_cast<std::size_t>(y * kWidth + x)])].shadows;
   };
-  for (int i = 0; i < 4; ++i) EXPECT_TRUE(shadowsAt(spot.corners[static_cast<std::size_t>(i)])) << i;
+  for (int i = 0; i < 4; ++i)
+    EXPECT_TRUE(shadowsAt(spot.corners[static_cast<std::size_t>(i)])) << i;
   EXPECT_TRUE(shadowsAt({0.5f, 0.0f, 0.0f}));
   EXPECT_FALSE(shadowsAt({-2.0f, 0.0f, 1.0f}));
 }

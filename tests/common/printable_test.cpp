@@ -16,7 +16,9 @@ TEST(Printable, PlainTextPassesUnchanged) {
 TEST(Printable, ControlCharactersAreEscaped) {
   EXPECT_EQ(printable("key\n2026-12-03T00:00:00.000Z glintd: stopped"),
             "key\\n2026-12-03T00:00:00.000Z glintd: stopped");
-  EXPECT_EQ(printable("\x1b[2J\x9b" "31m\r\t\x7f"), "\\x1b[2J\\x9b31m\\r\\t\\x7f");
+  EXPECT_EQ(printable("\x1b[2J\x9b"
+                      "31m\r\t\x7f"),
+            "\\x1b[2J\\x9b31m\\r\\t\\x7f");
   EXPECT_EQ(printable(std::string("a\0b", 3)), "a\\x00b");
   EXPECT_EQ(printable("a\\nb"), "a\\\\nb");  // a backslash the text holds is not an escape
 }

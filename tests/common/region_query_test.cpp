@@ -36,18 +36,22 @@ TEST(RegionQuery, TriangleInsideOrCrossingIsFound) {
   const ConvexRegion cube = unitCube();
   EXPECT_TRUE(holds(oneTriangle({0.2f, 0.2f, 0.5f}, {0.8f, 0.2f, 0.5f}, {0.5f, 0.8f, 0.5f}), cube));
   // Larger than the cube, cutting through it: no vertex inside.
-  EXPECT_TRUE(holds(oneTriangle({-5.0f, -5.0f, 0.5f}, {5.0f, -5.0f, 0.5f}, {0.0f, 5.0f, 0.5f}), cube));
+  EXPECT_TRUE(
+      holds(oneTriangle({-5.0f, -5.0f, 0.5f}, {5.0f, -5.0f, 0.5f}, {0.0f, 5.0f, 0.5f}), cube));
 }
 
 TEST(RegionQuery, SeparatedTrianglesAreNot) {
   const ConvexRegion cube = unitCube();
   // Beyond one face of the cube.
-  EXPECT_FALSE(holds(oneTriangle({2.0f, 0.0f, 0.0f}, {3.0f, 1.0f, 0.0f}, {2.5f, 0.0f, 1.0f}), cube));
+  EXPECT_FALSE(
+      holds(oneTriangle({2.0f, 0.0f, 0.0f}, {3.0f, 1.0f, 0.0f}, {2.5f, 0.0f, 1.0f}), cube));
   // Its box overlaps the cube's, but the triangle's plane (x + y = 2.5)
   // leaves every corner on one side.
-  EXPECT_FALSE(holds(oneTriangle({2.5f, 0.0f, -1.0f}, {0.0f, 2.5f, -1.0f}, {1.25f, 1.25f, 2.0f}), cube));
+  EXPECT_FALSE(
+      holds(oneTriangle({2.5f, 0.0f, -1.0f}, {0.0f, 2.5f, -1.0f}, {1.25f, 1.25f, 2.0f}), cube));
   // The skipped primitive is never reported.
-  EXPECT_FALSE(holds(oneTriangle({0.2f, 0.2f, 0.5f}, {0.8f, 0.2f, 0.5f}, {0.5f, 0.8f, 0.5f}), cube, 0));
+  EXPECT_FALSE(
+      holds(oneTriangle({0.2f, 0.2f, 0.5f}, {0.8f, 0.2f, 0.5f}, {0.5f, 0.8f, 0.5f}), cube, 0));
 }
 
 TEST(RegionQuery, SharedCornersTouchWithoutEntering) {
@@ -63,7 +67,8 @@ TEST(RegionQuery, SharedCornersTouchWithoutEntering) {
   // separate it, and it cannot (four corners lie in it): still found.
   EXPECT_TRUE(holds(touching, cube));
   // Lifted off the face plane except at the shared corner: separated by x = 1.
-  EXPECT_FALSE(holds(oneTriangle({1.0f, 1.0f, 1.0f}, {2.0f, 0.5f, 1.5f}, {2.0f, 0.2f, 0.5f}), cube));
+  EXPECT_FALSE(
+      holds(oneTriangle({1.0f, 1.0f, 1.0f}, {2.0f, 0.5f, 1.5f}, {2.0f, 0.2f, 0.5f}), cube));
 }
 
 // An open base (the plane a receiver lies in, here the cube's face x = 1):
@@ -75,7 +80,8 @@ TEST(RegionQuery, OpenBaseLetsCoplanarTrianglesTouch) {
   EXPECT_TRUE(holds(inFace, cube));
   cube.openBase = true;
   EXPECT_FALSE(holds(inFace, cube));
-  EXPECT_TRUE(holds(oneTriangle({0.99f, 0.2f, 0.2f}, {0.99f, 0.8f, 0.2f}, {0.99f, 0.5f, 0.8f}), cube));
+  EXPECT_TRUE(
+      holds(oneTriangle({0.99f, 0.2f, 0.2f}, {0.99f, 0.8f, 0.2f}, {0.99f, 0.5f, 0.8f}), cube));
   // Not the other planes: in the face y = 1 it still counts.
   EXPECT_TRUE(holds(oneTriangle({0.2f, 1.0f, 0.2f}, {0.8f, 1.0f, 0.2f}, {0.5f, 1.0f, 0.8f}), cube));
 }
@@ -101,7 +107,8 @@ TEST(RegionQuery, AgreesWithSampledPointsOnRandomTriangles) {
   const ConvexRegion cube = unitCube();
   MeshInput clear, found;
   for (int t = 0; t < 300; ++t) {
-    const glm::vec3 v0(pos(rng), pos(rng), pos(rng)), v1(pos(rng), pos(rng), pos(rng)), v2(pos(rng), pos(rng), pos(rng));
+    const glm::vec3 v0(pos(rng), pos(rng), pos(rng)), v1(pos(rng), pos(rng), pos(rng)),
+        v2(pos(rng), pos(rng), pos(rng));
     const bool reported = holds(oneTriangle(v0, v1, v2), cube);
     bool inside = false;
     for (int s = 0; s < 4000 && !inside; ++s) {
@@ -123,7 +130,8 @@ TEST(RegionQuery, AgreesWithSampledPointsOnRandomTriangles) {
   ASSERT_GT(found.indices.size(), 3u * 30);
   Geometry soup;
   soup.addMesh(clear);
-  soup.addMesh(MeshInput{{found.positions[0], found.positions[1], found.positions[2]}, {}, {}, {0, 1, 2}, 0});
+  soup.addMesh(MeshInput{
+      {found.positions[0], found.positions[1], found.positions[2]}, {}, {}, {0, 1, 2}, 0});
   const auto last = static_cast<std::uint32_t>(soup.triangles().size() - 1);
   EXPECT_FALSE(holds(soup, cube, last));
   EXPECT_TRUE(holds(soup, cube));
