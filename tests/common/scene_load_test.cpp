@@ -258,14 +258,22 @@ TEST(SceneLoad, SceneBudgetCountsImagesBeforeDecoding) {
 
 TEST(SceneLoad, SceneBudgetCountsEveryTextureMeshAndSphere) {
   MemorySource files;
-  files.add("one.bmp", test::bmp(1024, 1024, true));  // 3 MiB of texels
   json j = minimalScene();
-  for (const char* name : {"a", "b", "c", "d"}) j["textures"][name] = {{"type", "image"}, {"file", "one.bmp"}};
+  for (const std::string name : {"a", "b", "c", "d"}) {
+    files.add(name + ".bmp", test::bmp(1024, 1024, true));  // 3 MiB of texels each
+    j["textures"][name] = {{"type", "image"}, {"file", name + ".bmp"}};
+  }
   LoadLimits limits;
   limits.maxSceneBytes = std::size_t{10} << 20;  // three fit, the fourth does not
   EXPECT_NE(loadError(j.dump(), files, limits).find("textures.d.file: the scene would hold 12.0 MiB once built, 2.0 MiB over"),
             std::string::npos)
       << loadError(j.dump(), files, limits);
+  // One file named by all four textures is decoded, and counted, once.
+  for (const char* name : {"a", "b", "c", "d"}) j["textures"][name]["file"] = "a.bmp";
+  SceneBudget shared(limits);
+  const Scene one = loadScene(j.dump(), files, shared);
+  EXPECT_EQ(one.textures[0].image, one.textures[3].image);
+  EXPECT_LT(shared.used(), std::size_t{4} << 20);
 
   // Without textures the scene holds a sphere and a triangle, each with its BVH share.
   SceneBudget budget;
