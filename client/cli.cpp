@@ -123,7 +123,7 @@ CLI::Option* addEnumOption(CLI::App* app, const std::string& name, std::optional
       ->check(CLI::IsMember(enumWordList<Enum>()));
 }
 
-// --server (repeatable, comma-separated), --stall-timeout and TLS, for render
+// --server (repeatable, comma-separated), --stall-timeout, --scene-timeout and TLS, for render
 // and view.
 void addServerOptions(CLI::App* app, RemoteOptions& remote) {
   app->add_option("--server", remote.servers,
@@ -138,6 +138,12 @@ void addServerOptions(CLI::App* app, RemoteOptions& remote) {
       ->type_name("SECONDS")
       ->check(CLI::Range(0.05, 3600.0))
       ->default_val(2.0);
+  app->add_option("--scene-timeout", remote.sceneTimeoutS,
+                  "Seconds a server that lacks the scene may take to receive it (counted from the last byte "
+                  "sent) and build it before it counts as unreachable")
+      ->type_name("SECONDS")
+      ->check(CLI::Range(1.0, 86400.0))
+      ->default_val(120.0);
   app->add_option("--tls-ca", remote.tls.ca,
                   "Talk to the servers over TLS 1.3: the CA certificate (PEM) their certificates must chain to; each "
                   "must name the address dialled")

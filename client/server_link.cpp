@@ -10,6 +10,8 @@ namespace glint {
 namespace {
 
 constexpr std::size_t kReadChunkBytes = 64 * 1024;
+constexpr std::size_t kGatherBytes = 1 << 20;
+constexpr const char* kSceneWait = "scene upload and build; --scene-timeout";
 constexpr std::uint32_t kMaxThreadsBelieved = 4096;  // sizes the dispatcher's window, nothing more
 
 std::uint64_t key(std::uint32_t frameId, std::uint32_t tileId) { return std::uint64_t{frameId} << 32 | tileId; }
@@ -81,14 +83,19 @@ void ServerLink::write(std::vector<std::uint8_t> frame) {
   if (inFlight_ == 0) writeNext();
 }
 
-// One write in flight, gathering every message queued meanwhile.
+// One write in flight, gathering the messages queued meanwhile up to about
+// kGatherBytes, so that an upload's progress is seen a piece at a time.
 void ServerLink::writeNext() {
   if (writes_.empty() || !stream_->isOpen()) return;
-  inFlight_ = writes_.size();
   std::vector<asio::const_buffer> buffers;
-  for (const auto& frame : writes_) buffers.push_back(asio::buffer(frame));
+  std::size_t bytes = 0;
+  for (inFlight_ = 0; inFlight_ < writes_.size() && (inFlight_ == 0 || bytes < kGatherBytes); ++inFlight_) {
+    buffers.push_back(asio::buffer(writes_[inFlight_]));
+    bytes += writes_[inFlight_].size();
+  }
   stream_->write(buffers, [self = shared_from_this()](const asio::error_code& error, std::size_t n) {
     self->sent_ += n;
+    if (self->state_ == State::kUpload && n > 0) self->armTimer(self->timeouts_.scene, kSceneWait);  // still moving
     for (std::size_t i = 0; i < self->inFlight_; ++i) self->writes_.pop_front();
     self->inFlight_ = 0;
     if (self->state_ == State::kClosed) {
@@ -184,7 +191,7 @@ void ServerLink::onSceneStatus(const wire::SceneStatus& status) {
   if (!sendMissingFiles(status)) return;
   state_ = State::kUpload;
   uploaded_ = true;
-  armTimer(timeouts_.scene, "scene upload and build");
+  armTimer(timeouts_.scene, kSceneWait);
   write(std::move(upload));
 }
 

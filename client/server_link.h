@@ -39,7 +39,9 @@ class ServerLink;
 // How long a link waits for the server before it counts as unreachable.
 struct LinkTimeouts {
   std::chrono::milliseconds connect{5000};  // connect and Hello
-  std::chrono::milliseconds scene{300000};  // upload and the server's build
+  // The upload with no byte written for this long, or the server's build of
+  // the scene after it (--scene-timeout).
+  std::chrono::milliseconds scene{120000};
 };
 
 // What a link tells its owner, always on the thread running the I/O context.

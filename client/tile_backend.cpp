@@ -9,6 +9,7 @@ std::unique_ptr<DistributedTileService> connectServers(const RemoteOptions& remo
                                                        bool awaitServer) {
   DistributedSettings settings;
   settings.stallTimeout = std::chrono::milliseconds(static_cast<long>(remote.stallTimeoutS * 1000.0));
+  settings.timeouts.scene = std::chrono::milliseconds(static_cast<long>(remote.sceneTimeoutS * 1000.0));
   settings.awaitOne = awaitServer;
   settings.tls = remote.tls;
   return std::make_unique<DistributedTileService>(resolveServers(remote.servers), bundle, settings);

@@ -24,6 +24,7 @@ class DistributedTileService;
 struct RemoteOptions {
   std::vector<std::string> servers;  // --server values (HOST:PORT[,...]); none: in process
   double stallTimeoutS = 2.0;        // --stall-timeout
+  double sceneTimeoutS = 120.0;      // --scene-timeout
   proto::TlsFiles tls;               // --tls-ca, --tls-cert, --tls-key
 };
 

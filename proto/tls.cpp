@@ -52,6 +52,25 @@ void loadCa(asio::ssl::context& context, const TlsFiles& files, const TlsOptionN
   check(error, names.ca, files.ca, "not a PEM CA certificate");
 }
 
+// Why the peer's certificate failed verification, in the words of the
+// options that decide it.
+std::string untrustedPeer(long verifyResult, bool client) {
+  const std::string whose = client ? "the server's certificate" : "the client's certificate";
+  switch (verifyResult) {
+    case X509_V_ERR_CERT_HAS_EXPIRED:
+      return whose + " has expired (make a new one with deploy/glint-certs)";
+    case X509_V_ERR_CERT_NOT_YET_VALID:
+      return whose + " is not valid yet (it starts in the future: are both hosts' clocks right?)";
+    case X509_V_ERR_INVALID_PURPOSE:
+      return whose + (client ? " is not a server's (extendedKeyUsage serverAuth; deploy/glint-certs DIR server ...)"
+                             : " is not a client's (extendedKeyUsage clientAuth; deploy/glint-certs DIR client ...)");
+    default:
+      return whose +
+             (client ? " is not trusted by --tls-ca or not for this address (" : " is not signed by --tls-client-ca (") +
+             X509_verify_cert_error_string(verifyResult) + ")";
+  }
+}
+
 }  // namespace
 
 asio::ssl::context serverTlsContext(const TlsFiles& files) {
@@ -89,12 +108,14 @@ std::string describeTlsFailure(const asio::error_code& error, long verifyResult,
       return client ? "the server is not speaking TLS 1.3 (is it glintd without --tls-cert?) (" + detail + ")"
                     : "the client is not speaking TLS 1.3 (a glint without --tls-ca?) (" + detail + ")";
     case SSL_R_CERTIFICATE_VERIFY_FAILED:
-      if (client) {
-        return std::string("the server's certificate is not trusted by --tls-ca or not for this address (") +
-               X509_verify_cert_error_string(verifyResult) + ")";
-      }
-      return std::string("the client's certificate is not signed by --tls-client-ca (") +
-             X509_verify_cert_error_string(verifyResult) + ")";
+      return untrustedPeer(verifyResult, client);
+    case SSL_R_SSLV3_ALERT_CERTIFICATE_EXPIRED:
+      return client ? "the server refused our certificate: it has expired (make a new one with deploy/glint-certs)"
+                    : "the client refused our certificate: it has expired";
+    case SSL_R_SSLV3_ALERT_UNSUPPORTED_CERTIFICATE:
+      return client ? "the server refused our certificate: it is not a client's (extendedKeyUsage clientAuth; "
+                      "deploy/glint-certs DIR client NAME)"
+                    : "the client refused our certificate: it is not a server's (extendedKeyUsage serverAuth)";
     case SSL_R_PEER_DID_NOT_RETURN_A_CERTIFICATE:
       return "the client presented no certificate (glint needs --tls-cert and --tls-key)";
     case SSL_R_TLSV13_ALERT_CERTIFICATE_REQUIRED:

@@ -197,5 +197,31 @@ TEST(DistributedTileService, ServerErrorTextIsBoundedAndEscaped) {
   }
 }
 
+// A server that lacks the scene, takes the upload and never says it holds
+// it is given up after --scene-timeout (counted from the upload's last
+// piece), named, not after a fixed five minutes.
+TEST(DistributedTileService, ServerThatNeverConfirmsTheSceneTimesOut) {
+  Peer peer([](asio::ip::tcp::socket& socket) {
+    readFrame(socket);  // Hello
+    send(socket, proto::encodeHello(1 << 20, 1, "fake"));
+    readFrame(socket);  // SceneQuery
+    send(socket, proto::encodeSceneStatus(kBundle.hash(), false));
+    while (!readFrame(socket).empty()) {
+    }
+  });
+  DistributedSettings settings = quick();
+  settings.timeouts.scene = std::chrono::seconds(1);
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    DistributedTileService service(resolveServers({addressOf(peer)}), kBundle, settings);
+    FAIL() << "a server that never confirmed the scene was taken";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no answer within 1 s (scene upload and build; --scene-timeout)"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+}
+
 }  // namespace
 }  // namespace glint

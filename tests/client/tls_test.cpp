@@ -7,16 +7,18 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 
 #include <gtest/gtest.h>
 
 #include "client/distributed_tile_service.h"
 #include "common/error.h"
 #include "common/frame.h"
-#include "tests/proto/message_stream.h"
+#include "server/background_server.h"
 #include "server/log.h"
 #include "server/server.h"
 #include "tests/common/test_support.h"
+#include "tests/proto/message_stream.h"
 #include "tests/server/glintd_process.h"
 
 namespace glint {
@@ -43,13 +45,38 @@ class Tls : public ::testing::Test {
     make(path("other") + " ca");
     make(path("other") + " client mallory");
     make(path("other") + " server impostor 127.0.0.1");
+    signDated("farm", "stale", "clientAuth", "", "20200101000000Z", "20210101000000Z");
+    signDated("farm", "early", "clientAuth", "", "20400101000000Z", "20410101000000Z");
+    signDated("farm", "lapsed", "serverAuth", "IP:127.0.0.1", "20200101000000Z", "20210101000000Z");
+  }
+  // A certificate of CA `ca` valid from `start` to `end` (openssl ca, which
+  // can date one in the past or the future; deploy/glint-certs cannot).
+  static void signDated(const std::string& ca, const std::string& name, const std::string& usage,
+                        const std::string& san, const std::string& start, const std::string& end) {
+    const std::string d = path(ca);
+    std::ofstream(d + "/dated.cnf") << "[ca]\ndefault_ca=d\n[d]\ndatabase=" << d << "/index\nnew_certs_dir=" << d
+                                    << "\nserial=" << d << "/serial\ndefault_md=sha256\npolicy=p\n[p]\n"
+                                    << "commonName=supplied\n";
+    std::ofstream(d + "/dated.ext") << "extendedKeyUsage=" << usage << "\n"
+                                    << (san.empty() ? "" : "subjectAltName=" + san + "\n");
+    std::ofstream(d + "/index", std::ios::app).flush();
+    if (!fs::exists(d + "/serial")) std::ofstream(d + "/serial") << "1000\n";
+    const std::string command =
+        "openssl req -new -newkey ec -pkeyopt ec_paramgen_curve:P-256 -nodes -subj /CN=" + name + " -keyout " + d +
+        "/" + name + ".key -out " + d + "/" + name + ".csr 2> /dev/null && openssl ca -batch -config " + d +
+        "/dated.cnf -cert " + d + "/ca.pem -keyfile " + d + "/ca.key -startdate " + start + " -enddate " + end +
+        " -extfile " + d + "/dated.ext -in " + d + "/" + name + ".csr -out " + d + "/" + name + ".pem > /dev/null 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
   }
   static void TearDownTestSuite() { fs::remove_all(dir_); }
   static std::string path(const std::string& name) { return (dir_ / name).string(); }
 
   static std::vector<std::string> serverArgs(const std::string& ca, const std::string& name) {
-    return {"--threads", "1", "--handshake-timeout", "0.5", "--tls-cert", path(ca + "/" + name + ".pem"),
-            "--tls-key", path(ca + "/" + name + ".key"), "--tls-client-ca", path("farm/ca.pem")};
+    return {"--threads",           "1",
+            "--handshake-timeout", "0.5",
+            "--tls-cert",          path(ca + "/" + name + ".pem"),
+            "--tls-key",           path(ca + "/" + name + ".key"),
+            "--tls-client-ca",     path("farm/ca.pem")};
   }
   // A client of CA `ca` (its certificate `name`; "" none) trusting `trust`.
   static DistributedSettings client(const std::string& trust, const std::string& ca, const std::string& name) {
@@ -178,11 +205,45 @@ TEST_F(Tls, PlainTcpBeyondLoopbackNeedsInsecure) {
     server::Server mismatched(o);
     FAIL() << "took a key that is not the certificate's";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("--tls-key " + path("farm/alice.key") + ": not a PEM private key, or not "
+    EXPECT_NE(std::string(e.what()).find("--tls-key " + path("farm/alice.key") +
+                                         ": not a PEM private key, or not "
                                          "the key of --tls-cert"),
               std::string::npos)
         << e.what();
   }
+}
+
+// A certificate out of its dates, or made for the other end, is refused with
+// that reason on both sides (not as "not signed by --tls-client-ca").
+TEST_F(Tls, CertificatesOutOfDateOrForTheOtherEndAreNamedSo) {
+  server::ServerOptions o;
+  o.listen = "127.0.0.1:0";
+  o.handleSignals = false;
+  o.threads = 1;
+  o.tls = {path("farm/ca.pem"), path("farm/glintd.pem"), path("farm/glintd.key")};
+  server::setLogging(true);
+  testing::internal::CaptureStderr();
+  std::vector<std::string> clientSide;
+  {
+    server::BackgroundServer glintd(o);
+    for (const char* name : {"stale", "early", "glintd"})
+      clientSide.push_back(refusal(glintd.address(), client("farm", "farm", name)));
+  }
+  const std::string log = testing::internal::GetCapturedStderr();
+  server::setLogging(false);
+  EXPECT_NE(clientSide[0].find("the server refused our certificate: it has expired"), std::string::npos)
+      << clientSide[0];
+  EXPECT_NE(clientSide[1].find("the server refused our certificate"), std::string::npos) << clientSide[1];
+  EXPECT_NE(clientSide[2].find("the server refused our certificate: it is not a client's"), std::string::npos)
+      << clientSide[2];
+  for (const char* says : {"the client's certificate has expired", "the client's certificate is not valid yet",
+                           "the client's certificate is not a client's (extendedKeyUsage clientAuth"}) {
+    EXPECT_NE(log.find(says), std::string::npos) << says << " not in:\n" << log;
+  }
+  // And a server whose certificate has expired, seen from the client.
+  GlintdProcess lapsed(serverArgs("farm", "lapsed"));
+  const std::string why = refusal(lapsed.address(), client("farm", "farm", "alice"));
+  EXPECT_NE(why.find("the server's certificate has expired"), std::string::npos) << why;
 }
 
 }  // namespace
