@@ -8,7 +8,7 @@ DEPS := cmake g++ make pkg-config libglm-dev nlohmann-json3-dev libtinyobjloader
         libflatbuffers-dev flatbuffers-compiler libssl-dev libasio-dev libosmesa6-dev \
         libglfw3-dev libgl1-mesa-dri xvfb xauth openssl iproute2 \
         libopenexr-dev libassimp-dev assimp-testmodels
-# The benchmark also compares against POV-Ray 3.7 and Embree 3 (issue 14's peer).
+# The benchmark also compares against POV-Ray 3.7 and Embree 3.
 BENCH_DEPS := povray libembree-dev
 # `make accuracy` plots with gnuplot.
 ACCURACY_DEPS := gnuplot-nox

@@ -27,6 +27,11 @@ struct DistributedTileService::Frame {
   std::vector<std::size_t> sent;  // the dispatcher's tile -> the job's index
   std::vector<double> costs;
   TileDispatcher dispatcher;
+  // Results held until the frame is whole, by the dispatcher's tile, with
+  // the server each came from: a server caught lying drops its own.
+  std::vector<std::optional<TileOutput>> outputs;
+  std::vector<std::size_t> from;
+  std::size_t traced = 0;
   std::vector<std::uint64_t> bytesIn;   // per server, at the frame's start
   std::vector<std::uint64_t> bytesOut;
   std::size_t reportBase = 0;  // report_'s index of jobs[0]
@@ -138,9 +143,16 @@ void DistributedTileService::linkFailed(ServerLink& link, const LinkFailure& fai
   if (failure.kind == LinkFailure::Kind::kSceneError && !sceneError_) {
     sceneError_ = "server " + s.address.name + ": " + failure.what;
   }
-  if (frame_ && frame_->dispatcher.joined(link.index()) && !frame_->dispatcher.lost(link.index())) {
+  if (!frame_ || !frame_->dispatcher.joined(link.index()) || frame_->dispatcher.lost(link.index())) return;
+  if (failure.kind != LinkFailure::Kind::kBadBytes) {
     frame_->dispatcher.lose(link.index());
+    return;
   }
+  for (const std::size_t tile : frame_->dispatcher.distrust(link.index())) {
+    if (frame_->outputs[tile]) --frame_->traced;
+    frame_->outputs[tile].reset();
+  }
+  traced(frame_->traced);
 }
 
 void DistributedTileService::joinFrame(std::size_t index) {
@@ -155,15 +167,25 @@ void DistributedTileService::linkResult(ServerLink& link, std::uint32_t frameId,
   const TileDispatcher::Delivery d = frame_->dispatcher.deliver(index, tileId, nowMs(), out.computeMs);
   if (!d.first) return;
   for (const std::size_t other : d.cancelOn) servers_[other].link->cancel(frameId, std::span(&tileId, 1));
-  const std::size_t job = frame_->sent[tileId];
-  ServerReport& r = servers_[index].report;
-  ++r.tiles;
-  r.maskedPixels += out.rgb.size() / 3;
-  r.rays += out.rays;
-  r.busyMs += out.computeMs;
-  report_.deliveredBy[frame_->reportBase + job] = static_cast<int>(index);
-  measured_[tileKey(frame_->jobs[job])] = {frame_->costs[tileId], out.computeMs};
-  frame_->done(job, std::move(out));
+  frame_->outputs[tileId] = std::move(out);
+  frame_->from[tileId] = index;
+  traced(++frame_->traced);
+}
+
+// The frame is whole: each result to the caller, and to the report.
+void DistributedTileService::deliverFrame(Frame& frame) {
+  for (std::size_t tile = 0; tile < frame.sent.size(); ++tile) {
+    TileOutput& out = *frame.outputs[tile];
+    const std::size_t job = frame.sent[tile];
+    ServerReport& r = servers_[frame.from[tile]].report;
+    ++r.tiles;
+    r.maskedPixels += out.rgb.size() / 3;
+    r.rays += out.rays;
+    r.busyMs += out.computeMs;
+    report_.deliveredBy[frame.reportBase + job] = static_cast<int>(frame.from[tile]);
+    measured_[tileKey(frame.jobs[job])] = {frame.costs[tile], out.computeMs};
+    frame.done(job, std::move(out));
+  }
 }
 
 // Traced samples per tile; where the previous frame measured the same tile,
@@ -200,7 +222,9 @@ void DistributedTileService::render(const FrameSettings& settings, std::span<con
   std::vector<double> costs = tileCosts(jobs, sent);
   DispatchSettings dispatch;
   dispatch.stallTimeoutMs = static_cast<double>(settings_.stallTimeout.count());
-  Frame frame{++frameId_, settings, jobs, done, std::move(sent), costs, TileDispatcher(costs, paces_, dispatch), {}, {}};
+  const std::size_t tiles = sent.size();
+  Frame frame{++frameId_, settings, jobs, done, std::move(sent), costs, TileDispatcher(costs, paces_, dispatch),
+              std::vector<std::optional<TileOutput>>(tiles), std::vector<std::size_t>(tiles), 0, {}, {}};
   startReport(frame);
   frame_ = &frame;
   try {
@@ -218,6 +242,7 @@ void DistributedTileService::render(const FrameSettings& settings, std::span<con
     throw;
   }
   frame.dispatcher.finish();
+  deliverFrame(frame);
   finishReport(frame);
   frame_ = nullptr;
 }

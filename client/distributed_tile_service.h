@@ -31,7 +31,9 @@ struct DistributedSettings {
 // The tile interface over one or many glintd: each server gets the scene by
 // hash (all at once), and each frame's tiles flow to the servers that are
 // ready, as the TileDispatcher decides. A server lost during a frame has its
-// tiles reissued to the others, so the frame comes out byte-identical; it is
+// tiles reissued to the others, so the frame comes out byte-identical (one
+// lost for breaking the protocol, its delivered tiles as well: results are
+// held until the frame is whole, and done() called then); it is
 // tried again on later frames, with backoff. All sockets run on one Asio
 // io_context, driven by the thread that calls render(), which is also the
 // thread that calls `done`.
@@ -84,6 +86,7 @@ class DistributedTileService : public TileService, private LinkListener {
   bool anyConnecting() const;
   void throwIfHopeless() const;
   std::vector<double> tileCosts(std::span<const TileJob> jobs, const std::vector<std::size_t>& sent) const;
+  void deliverFrame(Frame& frame);
   void startReport(Frame& frame);
   void finishReport(const Frame& frame);
   double nowMs() const;

@@ -144,6 +144,7 @@ TileDispatcher::Delivery TileDispatcher::deliver(std::size_t server, std::size_t
   Tile& t = tiles_[tile];
   if (t.done) return d;
   t.done = true;
+  t.by = server;
   ++delivered_;
   d.first = true;
   d.cancelOn = t.holders;
@@ -160,6 +161,21 @@ std::vector<std::size_t> TileDispatcher::lose(std::size_t server) {
     removeOutstanding(server, tile);
     Tile& t = tiles_[tile];
     if (t.done || !t.holders.empty()) continue;
+    t.reissued = true;
+    queue_.insert(tile);
+    requeued.push_back(tile);
+    ++reissued_;
+  }
+  return requeued;
+}
+
+std::vector<std::size_t> TileDispatcher::distrust(std::size_t server) {
+  std::vector<std::size_t> requeued = lose(server);
+  for (std::size_t tile = 0; tile < tiles_.size(); ++tile) {
+    Tile& t = tiles_[tile];
+    if (!t.done || t.by != server) continue;
+    t.done = false;
+    --delivered_;
     t.reissued = true;
     queue_.insert(tile);
     requeued.push_back(tile);

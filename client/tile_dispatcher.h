@@ -36,7 +36,8 @@ struct DispatchSettings {
 // - With no unassigned tile left, a server with idle threads takes a copy of
 //   the oldest outstanding tile of the server that will finish last; the
 //   first result wins and the other copy is to be cancelled.
-// - A lost server's tiles that no other server holds go back to the queue.
+// - A lost server's tiles that no other server holds go back to the queue;
+//   a distrusted one's delivered tiles too.
 class TileDispatcher {
  public:
   struct Assignment {
@@ -59,6 +60,10 @@ class TileDispatcher {
   // The server is gone for this frame; its tiles held by no one else are
   // queued again. Returns them.
   std::vector<std::size_t> lose(std::size_t server);
+  // The server broke the protocol: besides losing it, the tiles whose
+  // results it delivered this frame are queued again, as not to be trusted.
+  // Returns those.
+  std::vector<std::size_t> distrust(std::size_t server);
   // Servers with tiles outstanding that delivered nothing for the stall timeout.
   std::vector<std::size_t> stalled(double now) const;
 
@@ -90,6 +95,7 @@ class TileDispatcher {
   };
   struct Tile {
     std::vector<std::size_t> holders;  // servers holding a copy
+    std::size_t by = 0;                // the server whose result counts, once done
     bool done = false;
     bool reissued = false;
   };

@@ -13,4 +13,12 @@ class InputError : public std::runtime_error {
   explicit InputError(const std::string& message) : std::runtime_error(message) {}
 };
 
+// Input that may be fine but cannot be taken now: what it needs is held by
+// others for the moment (glintd's memory for the scenes being built). The
+// same input may succeed later.
+class BusyError : public InputError {
+ public:
+  using InputError::InputError;
+};
+
 }  // namespace glint

@@ -21,8 +21,14 @@ FrameResult renderFrame(TileService& service, const FrameSettings& frame, const 
   for (const TileRect& rect : tileGrid(window, std::max(1, options.tileSize))) {
     jobs.push_back({rect, {}});
   }
-  int done = 0;
   service.beginFrame();
+  struct Progress {  // told as tiles are traced, for as long as this frame renders
+    TileService& service;
+    ~Progress() { service.onTraced({}); }
+  } progress{service};
+  if (options.progress) {
+    service.onTraced([&](std::size_t n) { options.progress(static_cast<int>(n), static_cast<int>(jobs.size())); });
+  }
   service.render(frame, jobs, [&](std::size_t i, TileOutput&& out) {
     const TileRect& rect = jobs[i].rect;
     if (out.rgb.size() != rect.pixelCount() * 3) {
@@ -36,7 +42,6 @@ FrameResult renderFrame(TileService& service, const FrameSettings& frame, const 
                   static_cast<std::size_t>(rect.width) * 3);
     }
     result.stats += out.rays;
-    if (options.progress) options.progress(++done, static_cast<int>(jobs.size()));
   });
   return result;
 }
@@ -49,7 +54,7 @@ FrameResult renderFrame(const Renderer& renderer, ThreadPool& pool, const FrameO
     RendererService(const Renderer& r, ThreadPool& p) : renderer(r), pool(p) {}
     void render(const FrameSettings&, std::span<const TileJob> jobs,
                 const std::function<void(std::size_t, TileOutput&&)>& done) override {
-      renderTiles(renderer, pool, jobs, done);
+      renderOnPool(renderer, pool, jobs, done);
     }
     int parallelism() const override { return pool.size(); }
   } service(renderer, pool);

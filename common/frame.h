@@ -24,8 +24,9 @@ struct FrameOptions {
   // The pixels rendered (--crop); none: the whole frame. The image is the
   // window's size.
   std::optional<TileRect> window;
-  // Called after each finished tile with (tiles done, tiles in all), from a
-  // worker thread, never concurrently.
+  // Called as tiles are traced with (tiles traced, tiles in all), never
+  // concurrently (TileService::onTraced: the count falls when a lying
+  // server's tiles are to be traced again).
   std::function<void(int, int)> progress;
 };
 

@@ -59,7 +59,7 @@ void SceneBudget::charge(std::size_t bytes, const std::string& place) {
                      mib(limits_.maxSceneBytes));
   }
   if (shared_ && !shared_->take(bytes)) {
-    throw InputError(place + ": the scene's " + mib(total) + " do not fit beside the scenes being built now (" +
+    throw BusyError(place + ": the scene's " + mib(total) + " do not fit beside the scenes being built now (" +
                      mib(shared_->used()) + " of " + mib(shared_->capacity()) + ", " + shared_->name() +
                      "); try again later");
   }
@@ -76,6 +76,12 @@ void SceneBudget::chargeMesh(std::size_t vertices, std::size_t triangles, const 
 
 std::size_t SceneBudget::chargeJson(std::size_t values, std::size_t members, const std::string& place) {
   const std::size_t bytes = values * kJsonBytesPerValue + members * kJsonBytesPerMember;
+  const std::size_t share = limits_.maxSceneBytes / kJsonShare;
+  if (bytes > share) {
+    throw InputError(place + ": parsing it would take " + mib(bytes) + ", over the " + mib(share) +
+                     " (a quarter of " + limitName_ + ") that a scene's JSON may take; put large meshes in "
+                     "files (.ply, .obj, .gltf)");
+  }
   charge(bytes, place);
   return bytes;
 }

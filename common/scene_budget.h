@@ -49,6 +49,10 @@ class SceneBudget {
   // one member, measured with getrusage).
   static constexpr std::size_t kJsonBytesPerValue = 32;
   static constexpr std::size_t kJsonBytesPerMember = 128;
+  // The share of the scene's limit its JSON document may take (1 / this):
+  // the document describes; geometry in bulk belongs in mesh files, read
+  // without a document. Keeps a parse's peak well below the scene's limit.
+  static constexpr std::size_t kJsonShare = 4;
 
   // `limitName` says how a user changes limits.maxSceneBytes ("glintd
   // --max-scene-mb"); `shared`, if any, is drawn from too.

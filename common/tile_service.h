@@ -29,6 +29,8 @@ struct TileOutput {
   double computeMs = 0.0;  // time spent tracing the tile, wherever it ran
 };
 
+class Renderer;
+
 // Fills tiles of frames of one scene. The in-process service, the remote
 // service (a glintd over the network) and the GL client all meet here.
 class TileService {
@@ -43,20 +45,31 @@ class TileService {
   // InputError when the frame cannot be rendered.
   virtual void render(const FrameSettings& frame, std::span<const TileJob> jobs,
                       const std::function<void(std::size_t, TileOutput&&)>& done) = 0;
+  // Progress: `traced(n)` is told, never concurrently, that n of the current
+  // render()'s jobs are traced, as they are. done() may come later: a
+  // distributed service holds outputs until its frame is whole, so that the
+  // tiles of a server caught lying meanwhile are traced again (n then falls).
+  // {} clears it.
+  void onTraced(std::function<void(std::size_t)> traced) { traced_ = std::move(traced); }
   // Tiles traced at once (threads of the pool or of the server).
   virtual int parallelism() const = 0;
   // A frame's tiles may come in several render() calls (the hybrid frame
   // traces its sets apart): what a service reports and learns of a frame
   // covers every call from one beginFrame() to the next.
   virtual void beginFrame() {}
+
+ protected:
+  void traced(std::size_t count) const {
+    if (traced_) traced_(count);
+  }
+  // Renders the jobs with one renderer on the pool, telling onTraced as
+  // each is done.
+  void renderOnPool(const Renderer& renderer, ThreadPool& pool, std::span<const TileJob> jobs,
+                    const std::function<void(std::size_t, TileOutput&&)>& done) const;
+
+ private:
+  std::function<void(std::size_t)> traced_;
 };
-
-class Renderer;
-
-// Renders jobs with one renderer on the pool (what LocalTileService does
-// for each frame).
-void renderTiles(const Renderer& renderer, ThreadPool& pool, std::span<const TileJob> jobs,
-                 const std::function<void(std::size_t, TileOutput&&)>& done);
 
 // Tiles rendered on this machine's thread pool.
 class LocalTileService : public TileService {

@@ -186,9 +186,8 @@ void BasicConnection<Stream>::worked() { context_.registry.worked(id_); }
 template <typename Stream>
 void BasicConnection<Stream>::build(SceneJob job) {
   ++pending_;
-  context_.scheduler.submit(id_, [self = this->shared_from_this(), job = std::move(job)] {
-    BuiltScene built = buildScene(job, self->context_.options.maxSceneBytes, self->context_.buildMemory);
-    asio::post(self->context_.io, [self, built = std::move(built)] {
+  context_.builds.build(std::move(job), [self = this->shared_from_this()](const BuiltScene& built) {
+    asio::post(self->context_.io, [self, built] {
       --self->pending_;
       if (!self->closed_) self->session_.sceneBuilt(built);
     });

@@ -4,6 +4,18 @@
 #include "common/timing.h"
 
 namespace glint::server {
+namespace {
+
+// Cuts `text` to kMaxErrorBytes, not inside a UTF-8 sequence.
+void cut(std::string& text) {
+  if (text.size() <= kMaxErrorBytes) return;
+  std::size_t n = kMaxErrorBytes;
+  while (n > 0 && (static_cast<unsigned char>(text[n]) & 0xc0) == 0x80) --n;
+  text.resize(n);
+  text += " ... (cut)";
+}
+
+}  // namespace
 
 BuiltScene buildScene(const SceneJob& job, std::size_t maxSceneBytes, MemoryGauge& buildMemory) {
   const auto start = Clock::now();
@@ -15,11 +27,16 @@ BuiltScene buildScene(const SceneJob& job, std::size_t maxSceneBytes, MemoryGaug
     limits.maxSceneBytes = maxSceneBytes;
     SceneBudget budget(limits, "glintd --max-scene-mb", &buildMemory);
     built.prepared = std::make_shared<const PreparedScene>(proto::loadBundle(*job.bundle, budget), BvhSettings{});
+  } catch (const BusyError& e) {
+    built.error = e.what();
+    built.transient = true;
   } catch (const InputError& e) {
     built.error = e.what();
-  } catch (const std::exception& e) {
+  } catch (const std::exception& e) {  // out of memory, for one
     built.error = std::string("cannot load the scene: ") + e.what();
+    built.transient = true;
   }
+  cut(built.error);
   built.ms = msSince(start);
   return built;
 }

@@ -19,9 +19,14 @@ struct SceneJob {
 struct BuiltScene {
   proto::SceneHash hash{};
   std::shared_ptr<const PreparedScene> prepared;  // null on error
-  std::string error;                              // names the JSON path or the limit
+  std::string error;                              // names the JSON path or the limit; at most kMaxErrorBytes
+  bool transient = false;  // refused for memory held by other builds then: the same scene may build later
   double ms = 0.0;
 };
+
+// A refusal's text is cut to this many bytes (a JSON key it quotes may be
+// megabytes long).
+constexpr std::size_t kMaxErrorBytes = 4096;
 
 // Loads a bundle from memory and builds its BVH: checks that the bytes match
 // the hash, and counts what the scene will hold against maxSceneBytes and the

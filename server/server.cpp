@@ -54,7 +54,8 @@ Server::Server(const ServerOptions& options)
       registry_(static_cast<std::size_t>(options.maxClients), static_cast<std::size_t>(options.maxWaiting)),
       buildMemory_(options.maxMemoryBytes - options.cacheBytes - options.maxSceneBytes,
                    "glintd --max-memory-mb less --cache-mb and the files kept (--max-scene-mb)"),
-      context_{io_, scheduler_, cache_, files_, registry_, buildMemory_, options_},
+      builds_(options.maxSceneBytes, buildMemory_),
+      context_{io_, scheduler_, cache_, files_, registry_, buildMemory_, builds_, options_},
       acceptor_(io_),
       acceptRetry_(io_),
       signals_(io_) {

@@ -8,6 +8,7 @@
 
 #include "common/scene_budget.h"
 #include "server/connection_registry.h"
+#include "server/scene_builds.h"
 #include "server/scene_cache.h"
 #include "server/server_options.h"
 #include "server/tile_scheduler.h"
@@ -24,12 +25,13 @@ struct ServerContext {
   // Scenes being built and files still arriving: --max-memory-mb less
   // --cache-mb and the file store (--max-scene-mb).
   MemoryGauge& buildMemory;
+  SceneBuilds& builds;
   const ServerOptions& options;
 };
 
 // glintd: accepts clients, holds the scene cache and the tile scheduler.
-// All socket I/O runs on the thread that calls run(); tracing and scene
-// builds run on the scheduler's pool.
+// All socket I/O runs on the thread that calls run(); tracing runs on the
+// scheduler's pool, scene builds on a thread of their own (SceneBuilds).
 class Server {
  public:
   // Checks the options and binds the listening socket; throws InputError
@@ -60,6 +62,7 @@ class Server {
   TileScheduler scheduler_;
   ConnectionRegistry registry_;
   MemoryGauge buildMemory_;
+  SceneBuilds builds_;
   ServerContext context_;
   std::optional<asio::ssl::context> tls_;  // with --tls-cert: every connection is TLS
   asio::ip::tcp::acceptor acceptor_;

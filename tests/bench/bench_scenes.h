@@ -14,7 +14,7 @@ namespace glint::bench {
 Geometry terrain(int gridWidth, int gridDepth);
 
 // A closed sphere of radius about 1 around the origin, n x n quads
-// (2 n^2 triangles), its radius rippled by 5 %: issue 14's "displaced
+// (2 n^2 triangles), its radius rippled by 5 %: the "displaced
 // sphere" (n = 700: 980,000 triangles).
 MeshInput rippledSphere(int n);
 

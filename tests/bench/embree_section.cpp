@@ -236,7 +236,7 @@ void embreeSection(const std::string& scenes, bool quick, int runs) {
   const Camera terrainView({{0.0f, 25.0f, 60.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 50.0f}, width, height);
   const PeerCase terrainCase{"terrain (" + std::to_string(terrainGeometry.primitiveCount()) + " triangles)",
                              terrainGeometry, terrainView, width, height, true};
-  // Issue 14's closed mesh, seen from inside: every mirror bounce hits it.
+  // The closed mesh, seen from inside: every mirror bounce hits it.
   Geometry sphereGeometry;
   sphereGeometry.addMesh(rippledSphere(quick ? 100 : 700));
   const Camera insideView({{0.0f, 0.3f, 0.4f}, {0.0f, 0.0f, -1.0f}, {0.0f, 1.0f, 0.0f}, 60.0f}, width, height);

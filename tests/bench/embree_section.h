@@ -4,8 +4,8 @@
 
 namespace glint::bench {
 
-// Glint's BVH beside Embree 3 (issue 14's peer) on the same rays, in four
-// scenes: a terrain of 1,000,000 triangles and issue 14's closed mesh (a
+// Glint's BVH beside Embree 3 on the same rays, in four
+// scenes: a terrain of 1,000,000 triangles and a closed mesh (a
 // rippled sphere of 980,000, seen from inside), both in a 1024 x 768 view,
 // and the bunny and the thesis's room from the folder `scenes` (their own
 // views and image sizes). Three ray sets each: primary rays; the mirror

@@ -6,7 +6,7 @@ namespace glint::bench {
 
 // Clients rendering through one real glintd process for a while: frames,
 // errors, latency, and what the server process holds before, at its peak and
-// after (issue 9's load check). Prints a Markdown table.
+// after. Prints a Markdown table.
 void loadSection(const std::string& scenes, bool quick);
 
 }  // namespace glint::bench

@@ -2,7 +2,7 @@
 
 namespace glint::bench {
 
-// Reading a large OBJ (issue 14: a 1M-triangle OBJ in under 0.4 s): a
+// Reading a large OBJ (target: a 1M-triangle OBJ in under 0.4 s): a
 // displaced sphere of 980,000 triangles written to a temporary folder, read
 // from disk by Glint's loader (the scene's path: tinyobjloader's parse, then
 // the vertices grouped), by tinyobjloader's parse alone, and by Assimp

@@ -109,6 +109,46 @@ TEST(ManyServers, AServerKilledMidFrameIsReplacedByTheOthers) {
   EXPECT_EQ(service.lastFrame().servers[0].tiles, 0u);
 }
 
+// A server that answers its first tiles with pixels of its own making and
+// is then caught sending one of them twice is lost for breaking the
+// protocol, and the tiles it had delivered are traced again by the others:
+// the frame is the in-process one (its white tiles used to stay in it).
+TEST(ManyServers, TilesOfAServerCaughtLyingAreTracedAgainElsewhere) {
+  const Room room;
+  GlintdProcess honest({"--threads", "1"});
+  proto::test::Peer liar([&room](asio::ip::tcp::socket& socket) {
+    const auto send = [&socket](const std::vector<std::uint8_t>& frame) {
+      asio::error_code ignored;
+      asio::write(socket, asio::buffer(frame), ignored);
+    };
+    proto::test::readFrame(socket);  // Hello
+    send(proto::encodeHello(1 << 20, 1, "liar"));
+    proto::test::readFrame(socket);  // SceneQuery
+    send(proto::encodeSceneStatus(room.loaded.bundle.hash(), true));
+    std::vector<std::uint8_t> first;
+    int answered = 0;
+    for (auto bytes = proto::test::readFrame(socket); !bytes.empty(); bytes = proto::test::readFrame(socket)) {
+      const auto* request = flatbuffers::GetRoot<wire::Message>(bytes.data())->body_as_TileRequest();
+      if (!request || answered == 3) continue;
+      const std::vector<std::uint8_t> white(std::size_t{request->width()} * request->height() * 3, 255);
+      const auto lie = proto::encodeTileResult(request->frame_id(), request->tile_id(), white, {}, 0);
+      if (first.empty()) first = lie;
+      send(lie);
+      if (++answered == 3) send(first);
+    }
+  });
+  const std::string liarAddress =
+      liar.endpoint().address().to_string() + ":" + std::to_string(liar.endpoint().port());
+  DistributedTileService service(resolveServers({liarAddress, honest.address()}), room.loaded.bundle);
+  service.awaitServers(std::chrono::seconds(10));
+  EXPECT_EQ(renderFrame(service, room.frame, smallTiles()).image.rgb, inProcess(room).rgb);
+  const DistributionReport& report = service.lastFrame();
+  EXPECT_EQ(report.servers[0].state, ServerState::kLost);
+  EXPECT_NE(report.servers[0].why.find("came twice"), std::string::npos) << report.servers[0].why;
+  EXPECT_EQ(report.servers[0].tiles, 0u);
+  EXPECT_GE(report.reissuedTiles, 3u);
+}
+
 // A stopped server holds its tiles without a word; once the stall timeout
 // passes (the frame is long enough: 4800 tiles) they go to the others. Woken
 // again, it is taken back on a frame after its backoff (1 s).

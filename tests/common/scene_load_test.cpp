@@ -240,7 +240,7 @@ TEST(SceneLoad, LimitsRejectHugeMeshesAndImagesBeforeAllocating) {
 }
 
 // What a scene will hold is counted from each image's header before decoding
-// (issue 9: four names of one 8192x8192 PNG took glintd to 4.3 GB): a header
+// (four names of one 8192x8192 PNG once took glintd to 4.3 GB): a header
 // alone over the budget fails on the budget, not on the missing pixels.
 TEST(SceneLoad, SceneBudgetCountsImagesBeforeDecoding) {
   LoadLimits limits;

@@ -16,6 +16,7 @@
 #include "proto/messages.h"
 #include "proto/scene_bundle.h"
 #include "tests/fuzz/fuzz_files.h"
+#include "tests/fuzz/server_link_script.h"
 #include "tests/proto/hostile_frames.h"
 
 namespace {
@@ -87,7 +88,7 @@ void framingSeeds(const proto::SceneBundle& bundle, const FrameSettings& frame) 
   write("framing", "goodbye", proto::encodeGoodbye());
   write("framing", "cancel", proto::encodeCancel(3, std::vector<std::uint32_t>{4, 5}));
   write("framing", "cancel-frame", proto::encodeCancel(3, {}));
-  // Regressions (issue 9): a body type without its body, for every type.
+  // Regressions: a body type without its body, for every type.
   for (const wire::Body type : proto::test::allBodyTypes()) {
     write("framing", std::string("bodyless-") + wire::EnumNameBody(type), proto::test::bodylessFrame(type));
   }
@@ -99,10 +100,27 @@ void sessionSeeds(const proto::SceneBundle& room, const FrameSettings& frame) {
   textured.files = {{"models/cube.obj", fuzz::kCubeObj}, {"models/cube.mtl", fuzz::kCubeMtl},
                     {"models/tex.bmp", fuzz::tinyBmp()}};
   write("session", "textured", session(textured, frame));
-  // Regressions (issue 9): bodyless messages before and after Hello.
+  // Regressions: bodyless messages before and after Hello.
   write("session", "bodyless-before-hello", proto::test::bodylessFrame(wire::Body::FrameSetup));
   write("session", "bodyless-after-hello",
         join({proto::encodeHello(1 << 20, 0, "seed"), proto::test::bodylessFrame(wire::Body::TileRequest)}));
+}
+
+// A server's side of a whole conversation with glint (fuzz_server_link):
+// the first byte sets the read size.
+void serverLinkSeeds() {
+  const proto::SceneHash hash = fuzz::linkBundle().hash();
+  const std::vector<TileJob> jobs = fuzz::linkJobs();
+  std::vector<Bytes> results;
+  for (std::uint32_t tile = 0; tile < jobs.size(); ++tile) {
+    results.push_back(proto::encodeTileResult(fuzz::kLinkFrame, tile, Bytes(3 * tracedPixels(jobs[tile]), 9), {}, 5));
+  }
+  const Bytes hello = proto::encodeHello(1 << 20, 2, "seed");
+  write("server_link", "held", join({Bytes{0x10}, hello, proto::encodeSceneStatus(hash, true), results[0], results[1]}));
+  const std::uint32_t missing[] = {0};
+  write("server_link", "uploaded",
+        join({Bytes{0}, hello, proto::encodeSceneStatus(hash, false, missing), proto::encodeSceneReady(hash, 1.0f),
+              results[1], results[0]}));
 }
 
 void sceneSeeds() {
@@ -147,6 +165,7 @@ int main(int argc, char** argv) {
     const proto::LoadedBundle room = proto::loadSceneBundle(gRoot / "scenes/room.json");
     framingSeeds(room.bundle, room.scene.frame);
     sessionSeeds(room.bundle, room.scene.frame);
+    serverLinkSeeds();
     sceneSeeds();
     objAndImageSeeds();
   } catch (const std::exception& e) {

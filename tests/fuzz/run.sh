@@ -8,8 +8,8 @@ set -uo pipefail
 build=${1:?usage: run.sh BUILD SECONDS}
 seconds=${2:?usage: run.sh BUILD SECONDS}
 src="$(cd "$(dirname "$0")" && pwd)"
-targets=(framing session scene_json obj image mesh_blob)  # as tests/fuzz/CMakeLists.txt
-declare -A max_len=([framing]=65536 [session]=262144 [scene_json]=65536 [obj]=65536 [image]=65536 [mesh_blob]=65536)
+targets=(framing session scene_json obj image mesh_blob server_link)  # as tests/fuzz/CMakeLists.txt
+declare -A max_len=([framing]=65536 [session]=262144 [scene_json]=65536 [obj]=65536 [image]=65536 [mesh_blob]=65536 [server_link]=65536)
 
 run_one() {
   local t=$1

@@ -55,7 +55,7 @@ TEST(Framing, NotGlintAtAll) {
 }
 
 // A union type without its table verifies as FlatBuffers; glintd used to
-// dereference the missing body (issue 9). The frame is rejected here, so no
+// dereference the missing body. The frame is rejected here, so no
 // receiver ever sees it.
 TEST(Framing, BodyTypeWithoutBodyIsRejected) {
   for (const wire::Body type : test::allBodyTypes()) {

@@ -1,5 +1,5 @@
-// A real glintd process against what an attacker on the network can send
-// (issue 9): after each attack the process is still up, a normal client is
+// A real glintd process against what an attacker on the network, or a
+// client it accepted, can send: after each attack the process is still up, a normal client is
 // still served, and the server's memory stays within a stated bound.
 #include <signal.h>
 #include <sys/wait.h>
@@ -193,7 +193,7 @@ TEST(HostileClient, DeepOrLongSceneJsonIsRefusedBeforeItsParse) {
   longArray += "1]";
   const std::pair<std::string, std::string> cases[] = {
       {std::string(20'000'000, '[') + std::string(20'000'000, ']'), "nests arrays and objects 20000000 deep"},
-      {std::move(longArray), "the scene's JSON (15000002 values): the scene would hold 457.8 MiB"}};
+      {std::move(longArray), "the scene's JSON (15000002 values): parsing it would take 457.8 MiB"}};
   const long before = glintd.peakResidentKb();
   for (const auto& [text, expected] : cases) {
     RawClient c(glintd.port());
@@ -208,6 +208,42 @@ TEST(HostileClient, DeepOrLongSceneJsonIsRefusedBeforeItsParse) {
   const long grownKb = glintd.peakResidentKb() - before;
   EXPECT_LT(grownKb, 400 * 1024) << "refusing the JSON grew glintd's peak by " << grownKb << " KiB";
   EXPECT_EQ(renderRoom(glintd.address()).width, 48);
+}
+
+// JSON of `values` numbers in one array ("[1,1,...]").
+std::string longArray(int values) {
+  std::string text = "[";
+  for (int i = 1; i < values; ++i) text += "1,";
+  return text + "1]";
+}
+
+// Under the default limits, the costliest JSON a client can send: 30
+// million values (60 MB, inside the message limit) are refused unparsed
+// (they would take 915 MiB), and 16 million (488 MiB, just inside a
+// quarter of --max-scene-mb) are parsed, then refused as no scene; glintd's
+// peak grows by under 1 GB, each reply comes within 10 s, and a client
+// whose scene is held renders meanwhile.
+TEST(HostileClient, TheCostliestSceneJsonStaysUnderAGigabyte) {
+  GlintdProcess glintd({"--threads", "1"});
+  EXPECT_EQ(renderRoom(glintd.address()).width, 48);
+  const long before = glintd.peakResidentKb();
+  const std::pair<int, std::string> cases[] = {
+      {30'000'000, "parsing it would take 915.5 MiB, over the 512.0 MiB (a quarter of glintd --max-scene-mb)"},
+      {16'000'000, "scene: must be a JSON object"}};
+  for (const auto& [values, expected] : cases) {
+    RawClient c(glintd.port());
+    ASSERT_TRUE(c.hello());
+    const auto start = std::chrono::steady_clock::now();
+    for (const auto& frame : proto::encodeFullUpload(proto::SceneBundle{longArray(values), {}})) c.write(frame);
+    const FrameImage meanwhile = renderRoom(glintd.address());
+    const auto [code, error] = c.readError();
+    EXPECT_EQ(code, wire::ErrorCode::BadScene);
+    EXPECT_NE(error.find(expected), std::string::npos) << error.substr(0, 300);
+    EXPECT_LT(std::chrono::steady_clock::now() - start, 10s);
+    EXPECT_EQ(meanwhile.width, 48);
+  }
+  const long grownKb = glintd.peakResidentKb() - before;
+  EXPECT_LT(grownKb, 1000 * 1024) << "the costliest JSON grew glintd's peak by " << grownKb << " KiB";
 }
 
 // One image named by 64 textures is decoded and counted once: the scene

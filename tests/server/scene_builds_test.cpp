@@ -1,0 +1,101 @@
+// glintd's scene builds: one build for every client that uploads the same
+// scene while it is queued or running; a scene refused for what it is
+// refused again from memory; a refusal for memory others held is not
+// remembered; the builds run off the tracing pool (hostile_client_test
+// shows tiles going on meanwhile).
+#include "server/scene_builds.h"
+
+#include <future>
+
+#include <gtest/gtest.h>
+
+#include "proto/scene_bundle.h"
+#include "tests/common/test_support.h"
+
+namespace glint::server {
+namespace {
+
+SceneJob job(const proto::SceneBundle& bundle) {
+  return {bundle.hash(), std::make_shared<const proto::SceneBundle>(bundle)};
+}
+
+const proto::SceneBundle& room() {
+  static const proto::LoadedBundle loaded = proto::loadSceneBundle(glint::test::sourcePath("scenes/room.json"));
+  return loaded.bundle;
+}
+
+// Waits for a result that another thread sets.
+struct Outcome {
+  std::promise<BuiltScene> promise;
+  std::future<BuiltScene> future = promise.get_future();
+  SceneBuilds::Done done() {
+    return [this](const BuiltScene& built) { promise.set_value(built); };
+  }
+};
+
+TEST(SceneBuilds, UploadsOfOneSceneWhileItIsQueuedAreBuiltOnce) {
+  MemoryGauge gauge(std::size_t{1} << 30, "the test gauge");
+  SceneBuilds builds(std::size_t{1} << 30, gauge);
+  // The first build's answer holds the builder until both copies of the
+  // second scene are asked for.
+  std::promise<void> release;
+  std::shared_future<void> released = release.get_future().share();
+  Outcome first, a, b;
+  builds.build(job(proto::SceneBundle{"{}", {}}), [&first, released](const BuiltScene& built) {
+    released.wait();
+    first.promise.set_value(built);
+  });
+  builds.build(job(room()), a.done());
+  builds.build(job(room()), b.done());
+  release.set_value();
+  const BuiltScene fromA = a.future.get();
+  const BuiltScene fromB = b.future.get();
+  ASSERT_NE(fromA.prepared, nullptr) << fromA.error;
+  EXPECT_EQ(fromA.prepared, fromB.prepared);  // one build, told to both
+  EXPECT_EQ(builds.built(), 2u);
+  EXPECT_FALSE(first.future.get().error.empty());
+}
+
+TEST(SceneBuilds, ASceneRefusedForWhatItIsIsRefusedAgainWithoutABuild) {
+  MemoryGauge gauge(std::size_t{1} << 30, "the test gauge");
+  SceneBuilds builds(std::size_t{1} << 30, gauge);
+  const proto::SceneBundle bad{R"({"glint": 1, "objects": [{"type": "sphere", "radius": -1}]})", {}};
+  Outcome once, again;
+  builds.build(job(bad), once.done());
+  const BuiltScene refused = once.future.get();
+  ASSERT_EQ(refused.prepared, nullptr);
+  EXPECT_FALSE(refused.transient);
+  builds.build(job(bad), again.done());
+  EXPECT_EQ(again.future.get().error, refused.error);
+  EXPECT_EQ(builds.built(), 1u);
+}
+
+TEST(SceneBuilds, ASceneRefusedForMemoryOthersHeldIsBuiltAgainWhenItComesBack) {
+  MemoryGauge gauge(std::size_t{1} << 30, "the test gauge");
+  SceneBuilds builds(std::size_t{1} << 30, gauge);
+  ASSERT_TRUE(gauge.take(gauge.capacity()));  // other builds hold it all
+  Outcome once, again;
+  builds.build(job(room()), once.done());
+  const BuiltScene refused = once.future.get();
+  EXPECT_TRUE(refused.transient);
+  EXPECT_NE(refused.error.find("try again later"), std::string::npos) << refused.error;
+  gauge.give(gauge.capacity());
+  builds.build(job(room()), again.done());
+  EXPECT_NE(again.future.get().prepared, nullptr);
+  EXPECT_EQ(builds.built(), 2u);
+}
+
+TEST(SceneBuilds, ARefusalQuotingAHugeKeyIsCut) {
+  MemoryGauge gauge(std::size_t{1} << 30, "the test gauge");
+  SceneBuilds builds(std::size_t{1} << 30, gauge);
+  const proto::SceneBundle bad{"{\"glint\": 1, \"" + std::string(1 << 20, 'k') + "\": 0}", {}};
+  Outcome once;
+  builds.build(job(bad), once.done());
+  const BuiltScene refused = once.future.get();
+  ASSERT_EQ(refused.prepared, nullptr);
+  EXPECT_LE(refused.error.size(), kMaxErrorBytes + 16);
+  EXPECT_NE(refused.error.find("... (cut)"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace glint::server
