@@ -1,10 +1,12 @@
-// A real glintd process against what an attacker on the network, or a
-// client it accepted, can send: after each attack the process is still up, a normal client is
-// still served, and the server's memory stays within a stated bound.
+// A real glintd process against what an attacker on the network, or a client
+// it accepted, can send: after each attack the process is still up, a normal
+// client is still served, and the server's memory stays within a stated
+// bound.
 #include <signal.h>
 #include <sys/wait.h>
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -229,9 +231,9 @@ TEST(HostileClient, TheCostliestSceneJsonStaysUnderAGigabyte) {
   const long before = glintd.peakResidentKb();
   const std::pair<int, std::string> cases[] = {
       {30'000'000, "parsing it would take 915.5 MiB, over the 512.0 MiB (a quarter of glintd --max-scene-mb)"},
-      {16'000'000, "scene: must be a JSON object"}};
+      {16'000'000, "(top level): must be an object, not an array"}};
   for (const auto& [values, expected] : cases) {
-    RawClient c(glintd.port());
+    RawClient c(glintd.port(), 20s);
     ASSERT_TRUE(c.hello());
     const auto start = std::chrono::steady_clock::now();
     for (const auto& frame : proto::encodeFullUpload(proto::SceneBundle{longArray(values), {}})) c.write(frame);
@@ -239,8 +241,11 @@ TEST(HostileClient, TheCostliestSceneJsonStaysUnderAGigabyte) {
     const auto [code, error] = c.readError();
     EXPECT_EQ(code, wire::ErrorCode::BadScene);
     EXPECT_NE(error.find(expected), std::string::npos) << error.substr(0, 300);
-    EXPECT_LT(std::chrono::steady_clock::now() - start, 10s);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_LT(seconds, 10.0);
     EXPECT_EQ(meanwhile.width, 48);
+    std::printf("%d values: answered in %.1f s, glintd's peak grown by %ld MiB so far\n", values, seconds,
+                (glintd.peakResidentKb() - before) / 1024);
   }
   const long grownKb = glintd.peakResidentKb() - before;
   EXPECT_LT(grownKb, 1000 * 1024) << "the costliest JSON grew glintd's peak by " << grownKb << " KiB";

@@ -14,7 +14,9 @@ namespace glint::server::test {
 // A raw connection for sending bytes that a real client never would.
 class RawClient {
  public:
-  explicit RawClient(std::uint16_t port) : stream_({asio::ip::make_address("127.0.0.1"), port}, std::chrono::seconds(3)) {}
+  // `wait`: how long a read waits for the server.
+  explicit RawClient(std::uint16_t port, std::chrono::seconds wait = std::chrono::seconds(3))
+      : stream_({asio::ip::make_address("127.0.0.1"), port}, wait) {}
   void write(const std::vector<std::uint8_t>& bytes) {
     try {
       stream_.send(bytes);
@@ -24,7 +26,7 @@ class RawClient {
   }
   void write(const std::string& text) { write(std::vector<std::uint8_t>(text.begin(), text.end())); }
   // The next message, or nullptr once the server closed the connection or
-  // three seconds passed.
+  // the wait passed.
   const wire::Message* read() {
     try {
       return &stream_.receive();
@@ -39,7 +41,7 @@ class RawClient {
     if (!e) return {wire::ErrorCode::Internal, m ? "(not an error)" : "(no message)"};
     return {e->code(), e->message() ? e->message()->str() : ""};
   }
-  // True when the server closes the connection within three seconds.
+  // True when the server closes the connection within the wait.
   bool closed() {
     try {
       while (true) stream_.receive();
