@@ -12,7 +12,7 @@
 namespace glint {
 
 MeshModel importMeshFile(FileSource& files, const std::string& path, const std::string& place, SceneBudget& budget,
-                         bool withMaterials) {
+                         bool withMaterials, ImageCache* images) {
   std::string extension = std::filesystem::path(path).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
   const std::optional<MeshFormat> format = enumFromWord<MeshFormat>(extension);
@@ -20,7 +20,7 @@ MeshModel importMeshFile(FileSource& files, const std::string& path, const std::
     throw InputError(place + ": '" + path + "': mesh files are " + enumWordsJoined<MeshFormat>() +
                      " (Wavefront OBJ, PLY, glTF 2.0)");
   }
-  if (*format == MeshFormat::kObj) return loadObj(files, path, place, budget, withMaterials);
+  if (*format == MeshFormat::kObj) return loadObj(files, path, place, budget, withMaterials, images);
   MeshModel model;
   if (!files.importsMeshes()) {
     model = decodeMeshBlob(files.read(path, place), place, budget);

@@ -4,6 +4,7 @@
 
 #include "common/enum_words.h"
 #include "common/file_source.h"
+#include "common/image_cache.h"
 #include "common/mesh_model.h"
 #include "common/scene_budget.h"
 
@@ -23,8 +24,8 @@ struct EnumWords<MeshFormat> {
 // (common/assimp_import.h) where the source reads the disk, and the imported
 // mesh is kept as a blob (common/mesh_blob.h) for the scene's bundle; a
 // source in memory (a server) reads that blob instead. Errors start with
-// `place`.
+// `place`. An OBJ's textures come through `images` where given.
 MeshModel importMeshFile(FileSource& files, const std::string& path, const std::string& place, SceneBudget& budget,
-                         bool withMaterials);
+                         bool withMaterials, ImageCache* images = nullptr);
 
 }  // namespace glint

@@ -1,5 +1,6 @@
 #include "common/obj_load.h"
 
+#include <algorithm>
 #include <array>
 #include <map>
 #include <unordered_map>
@@ -7,7 +8,6 @@
 
 #include "common/array_hash.h"
 #include "common/error.h"
-#include "common/image_io.h"
 #include "common/obj_faces.h"
 
 namespace glint {
@@ -91,7 +91,7 @@ ObjTriangles parseObj(FileSource& files, const std::string& path, const std::str
 // MTL file) decoded as the material's texture; a missing texture is a
 // warning, and the material keeps its Kd colour.
 void readMaterials(const std::vector<tinyobj::material_t>& materials, FileSource& files, const std::string& mtlPath,
-                   const std::string& place, SceneBudget& budget, MeshModel& model) {
+                   const std::string& place, ImageCache& images, MeshModel& model) {
   for (const tinyobj::material_t& m : materials) {
     Material mat = toMaterial(m);
     const std::string texPath = m.diffuse_texname.empty() ? "" : siblingPath(mtlPath, m.diffuse_texname);
@@ -102,7 +102,7 @@ void readMaterials(const std::vector<tinyobj::material_t>& materials, FileSource
       const std::string texPlace = place + " (map_Kd of material " + m.name + ")";
       Texture tex;
       tex.type = TextureType::kImage;
-      tex.image = std::make_shared<Image>(decodeImage(files.read(texPath, texPlace), texPlace, budget));
+      tex.image = images.get(texPath, texPlace);
       mat.texture = static_cast<int>(model.textures.size());
       mat.color = glm::vec3(1.0f);
       model.textures.push_back(std::move(tex));
@@ -195,12 +195,15 @@ class FaceGrouper {
 }  // namespace
 
 MeshModel loadObj(FileSource& files, const std::string& path, const std::string& place, SceneBudget& budget,
-                 bool withMaterials) {
+                 bool withMaterials, ImageCache* images) {
   const LoadLimits& limits = budget.limits();
   MeshModel model;
   std::string mtlPath;
   const ObjTriangles obj = parseObj(files, path, place, limits, withMaterials, model.warnings, mtlPath);
-  if (!mtlPath.empty()) readMaterials(obj.materials, files, mtlPath, place, budget, model);
+  if (!mtlPath.empty()) {
+    ImageCache own(files, budget);
+    readMaterials(obj.materials, files, mtlPath, place, images ? *images : own, model);
+  }
   // Faces without a material (or all faces, without MTL) use a default one.
   const int defaultMaterial = static_cast<int>(model.materials.size());
   FaceGrouper grouper(obj.attrib);

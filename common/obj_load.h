@@ -3,6 +3,7 @@
 #include <string>
 
 #include "common/file_source.h"
+#include "common/image_cache.h"
 #include "common/mesh_model.h"
 #include "common/scene_budget.h"
 
@@ -13,7 +14,9 @@ namespace glint {
 // mesh with material 0. A missing MTL file or texture is a warning (the
 // default material, the Kd colour); a file that yields no triangle (empty,
 // UTF-16, points or lines only) is an error. Errors start with `place`.
+// Textures come through `images` (a scene's load shares one), or through a
+// cache of this file's own.
 MeshModel loadObj(FileSource& files, const std::string& path, const std::string& place, SceneBudget& budget,
-                  bool withMaterials);
+                  bool withMaterials, ImageCache* images = nullptr);
 
 }  // namespace glint

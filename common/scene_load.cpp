@@ -48,7 +48,8 @@ Enum choice(const JsonReader& r) {
 
 class SceneLoader {
  public:
-  SceneLoader(FileSource& files, SceneBudget& budget) : files_(files), budget_(budget), limits_(budget.limits()) {}
+  SceneLoader(FileSource& files, SceneBudget& budget)
+      : files_(files), budget_(budget), limits_(budget.limits()), images_(files, budget) {}
 
   Scene load(const nlohmann::json& doc) {
     const JsonReader root(doc, "");
@@ -181,12 +182,9 @@ class SceneLoader {
   }
 
   // The image a texture's "file" names, decoded (and charged) once however
-  // many textures name it.
+  // many textures, or mesh files' materials, name it.
   std::shared_ptr<const Image> image(const JsonReader& file) {
-    const std::string path = normalisePath(file.string());
-    std::shared_ptr<const Image>& held = images_[path];
-    if (!held) held = std::make_shared<Image>(decodeImage(files_.read(path, file.path()), file.path(), budget_));
-    return held;
+    return images_.get(normalisePath(file.string()), file.path());
   }
 
   void readMaterials(const JsonReader& r) {
@@ -385,7 +383,7 @@ class SceneLoader {
       if (o.has(key)) o[key].fail("belongs to an inline mesh; a mesh from a file takes its own");
     }
     const bool own = !o.has("material");
-    MeshModel obj = importMeshFile(files_, normalisePath(f.string()), f.path(), budget_, own);
+    MeshModel obj = importMeshFile(files_, normalisePath(f.string()), f.path(), budget_, own, &images_);
     for (std::string& w : obj.warnings) warn(std::move(w));
     const std::vector<std::uint32_t> mapped = own ? ownMaterials(o, obj) : std::vector<std::uint32_t>{};
     const std::uint32_t named = own ? 0 : material(o);
@@ -506,7 +504,7 @@ class SceneLoader {
   const LoadLimits& limits_;
   Scene scene_;
   std::map<std::string, int> textureIndex_;
-  std::map<std::string, std::shared_ptr<const Image>> images_;  // by normalised path
+  ImageCache images_;
   std::map<std::string, std::uint32_t> materialIndex_;
   std::map<std::pair<std::uint32_t, RaytraceRule>, std::uint32_t> raytraceCopies_;  // meshMaterial's copies
   std::size_t vertices_ = 0;

@@ -282,6 +282,32 @@ TEST(SceneLoad, SceneBudgetCountsEveryTextureMeshAndSphere) {
                                SceneBudget::kBytesPerTriangle + 2 * SceneBudget::kBvhBytesPerPrimitive);
 }
 
+// Many materials of an asset share one atlas: an OBJ's 64 materials naming
+// one map_Kd, the OBJ named by two objects and the atlas by a scene texture
+// as well, decode and count the image once (3 MiB of texels under a 10 MiB
+// limit; it was decoded for every material, 192 MiB).
+TEST(SceneLoad, AnImageSharedByMaterialsOfMeshFilesIsDecodedOnce) {
+  MemorySource files;
+  std::string mtl, obj = "mtllib atlas.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\n";
+  for (int i = 0; i < 64; ++i) {
+    mtl += "newmtl m" + std::to_string(i) + "\nKd 1 1 1\nmap_Kd atlas.bmp\n";
+    obj += "usemtl m" + std::to_string(i) + "\nf 1/1 2/1 3/1\n";
+  }
+  files.add("models/atlas.mtl", mtl);
+  files.add("models/atlas.obj", obj);
+  files.add("models/atlas.bmp", test::bmp(1024, 1024, true));
+  json j = minimalScene();
+  j["textures"] = {{"t", {{"type", "image"}, {"file", "models/atlas.bmp"}}}};
+  j["objects"] = {{{"type", "mesh"}, {"file", "models/atlas.obj"}}, {{"type", "mesh"}, {"file", "models/atlas.obj"}}};
+  LoadLimits limits;
+  limits.maxSceneBytes = std::size_t{10} << 20;
+  SceneBudget budget(limits);
+  const Scene scene = loadScene(j.dump(), files, budget);
+  ASSERT_EQ(scene.textures.size(), 129u);  // the scene's, and 64 for each use of the OBJ
+  for (const Texture& t : scene.textures) EXPECT_EQ(t.image, scene.textures[0].image);
+  EXPECT_LT(budget.used(), std::size_t{4} << 20);
+}
+
 // A budget drawn from a shared gauge gives its bytes back when it goes, and a
 // load that does not fit beside the others fails naming the gauge.
 TEST(SceneLoad, SharedGaugeIsDrawnAndGivenBack) {

@@ -1,13 +1,17 @@
 // libFuzzer target: everything glint does with one server's bytes short of
-// the socket. A ServerLink runs over a stream whose reads are the input (the
-// first byte sets how many bytes each read gives, 1 to 65,281); once the link
-// is ready it sets up a frame and asks for two tiles, so that results reach
-// the checks of their frame, tile and size.
+// the socket. A ServerLink runs over a stream whose reads are the input; once
+// the link is ready it sets up a frame and asks for two tiles, so that
+// results reach the checks of their frame, tile and size. The first byte:
+// with bit 0 set the input speaks for the server from its first byte, Hello
+// included; clear, a Hello of this build comes first (a seed cannot carry the
+// fuzz build's identity, which the link demands). Its other bits set how many
+// bytes a read gives (1 to 65,025).
 #include <algorithm>
 #include <cstring>
 #include <span>
 
 #include "client/server_link.h"
+#include "proto/messages.h"
 #include "tests/fuzz/server_link_script.h"
 
 namespace {
@@ -28,7 +32,7 @@ class InputStream : public LinkStream {
   }
   void readSome(asio::mutable_buffer buffer, Done done) override {
     const std::size_t n = std::min({buffer.size(), piece_, input_.size()});
-    std::memcpy(buffer.data(), input_.data(), n);
+    if (n > 0) std::memcpy(buffer.data(), input_.data(), n);
     input_ = input_.subspan(n);
     const asio::error_code error = n == 0 ? asio::error::eof : asio::error_code{};
     asio::post(io_, [done, error, n] { done(error, n); });
@@ -63,9 +67,12 @@ class Client : public LinkListener {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
   static const proto::BundleDigest digest = proto::digest(fuzz::linkBundle());
+  std::vector<std::uint8_t> input;
+  if ((data[0] & 1) == 0) input = proto::encodeHello(1 << 20, 2, "fuzz");
+  input.insert(input.end(), data + 1, data + size);
+  const std::size_t piece = 1 + static_cast<std::size_t>(data[0] >> 1) * 512;
   asio::io_context io;
-  const std::size_t piece = 1 + std::size_t{data[0]} * 256;
-  auto link = std::make_shared<ServerLink>(io, std::make_unique<InputStream>(io, std::span(data + 1, size - 1), piece),
+  auto link = std::make_shared<ServerLink>(io, std::make_unique<InputStream>(io, input, piece),
                                            0, "fuzz", asio::ip::tcp::endpoint{}, fuzz::linkBundle(), digest,
                                            LinkTimeouts{});
   Client client;

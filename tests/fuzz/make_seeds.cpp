@@ -107,7 +107,9 @@ void sessionSeeds(const proto::SceneBundle& room, const FrameSettings& frame) {
 }
 
 // A server's side of a whole conversation with glint (fuzz_server_link):
-// the first byte sets the read size.
+// after the first byte (fuzz_server_link.cpp says what it sets), what
+// follows the server's Hello, which the target writes itself; and one seed
+// with a Hello of its own (this build's: another build's is refused).
 void serverLinkSeeds() {
   const proto::SceneHash hash = fuzz::linkBundle().hash();
   const std::vector<TileJob> jobs = fuzz::linkJobs();
@@ -115,12 +117,13 @@ void serverLinkSeeds() {
   for (std::uint32_t tile = 0; tile < jobs.size(); ++tile) {
     results.push_back(proto::encodeTileResult(fuzz::kLinkFrame, tile, Bytes(3 * tracedPixels(jobs[tile]), 9), {}, 5));
   }
-  const Bytes hello = proto::encodeHello(1 << 20, 2, "seed");
-  write("server_link", "held", join({Bytes{0x10}, hello, proto::encodeSceneStatus(hash, true), results[0], results[1]}));
+  write("server_link", "held", join({Bytes{0x20}, proto::encodeSceneStatus(hash, true), results[0], results[1]}));
   const std::uint32_t missing[] = {0};
   write("server_link", "uploaded",
-        join({Bytes{0}, hello, proto::encodeSceneStatus(hash, false, missing), proto::encodeSceneReady(hash, 1.0f),
+        join({Bytes{0}, proto::encodeSceneStatus(hash, false, missing), proto::encodeSceneReady(hash, 1.0f),
               results[1], results[0]}));
+  write("server_link", "own-hello",
+        join({Bytes{0x41}, proto::encodeHello(1 << 20, 2, "seed"), proto::encodeSceneStatus(hash, true), results[0]}));
 }
 
 void sceneSeeds() {
