@@ -36,6 +36,7 @@ BasicConnection<Stream>::BasicConnection(Stream stream, ServerContext& context, 
       timer_(context.io),
       context_(context),
       id_(id),
+      outbox_(context.scheduler.threads()),
       session_(*this, {context.cache, context.files, context.buildMemory}, sessionSettings(context),
                peerName(socket_.lowest_layer(), id)) {
   asio::error_code ignored;
@@ -197,17 +198,16 @@ void BasicConnection<Stream>::build(SceneJob job) {
 template <typename Stream>
 void BasicConnection<Stream>::trace(TileWork work) {
   ++pending_;
-  {
-    std::lock_guard lock(outboxMutex_);
-    ++untraced_;
-  }
+  outbox_.expect();
   const std::uint64_t tag = tileTag(work.frameId, work.tileId);
   context_.scheduler.submit(
-      id_, [self = this->shared_from_this(), work = std::move(work)] { self->deliver(traceTile(work)); }, tag);
+      id_,
+      [self = this->shared_from_this(), work = std::move(work)] {
+        if (self->outbox_.put(traceTile(work))) asio::post(self->context_.io, [self] { self->takeOutbox(); });
+      },
+      tag);
 }
 
-// The dropped tiles will never reach the outbox: when they were all it waited
-// for, what it holds is written now.
 template <typename Stream>
 void BasicConnection<Stream>::cancel(std::uint32_t frameId, std::span<const std::uint32_t> tileIds) {
   const std::unordered_set<std::uint32_t> tiles(tileIds.begin(), tileIds.end());
@@ -216,48 +216,12 @@ void BasicConnection<Stream>::cancel(std::uint32_t frameId, std::span<const std:
   });
   if (dropped == 0) return;
   pending_ -= static_cast<int>(dropped);
-  bool take = false;
-  {
-    std::lock_guard lock(outboxMutex_);
-    untraced_ -= static_cast<int>(dropped);
-    take = !wakePosted_ && untraced_ < context_.scheduler.threads() && !outbox_.empty();
-  }
-  if (take) takeOutbox();
-}
-
-// Called on pool threads. Results wait in the outbox until it holds
-// kFlushBytes or none of the client's tiles is left waiting for a thread
-// (fewer untraced than threads: the client's window has run dry, and it needs
-// the results to send more before the threads idle); then one wake-up of
-// the I/O thread takes them all into one gathered write. Each wake-up
-// preempts a tracing thread where client and server share the cores; the
-// writes saved and the flush size chosen are measured in docs/protocol.md
-// and docs/performance.md.
-template <typename Stream>
-void BasicConnection<Stream>::deliver(std::vector<std::uint8_t> result) {
-  constexpr std::size_t kFlushBytes = 128 * 1024;
-  bool wake = false;
-  {
-    std::lock_guard lock(outboxMutex_);
-    outboxBytes_ += result.size();
-    outbox_.push_back(std::move(result));
-    --untraced_;
-    wake = !wakePosted_ && (untraced_ < context_.scheduler.threads() || outboxBytes_ >= kFlushBytes);
-    wakePosted_ = wakePosted_ || wake;
-  }
-  if (!wake) return;
-  asio::post(context_.io, [self = this->shared_from_this()] { self->takeOutbox(); });
+  if (outbox_.forget(dropped)) takeOutbox();
 }
 
 template <typename Stream>
 void BasicConnection<Stream>::takeOutbox() {
-  std::vector<std::vector<std::uint8_t>> results;
-  {
-    std::lock_guard lock(outboxMutex_);
-    results.swap(outbox_);
-    outboxBytes_ = 0;
-    wakePosted_ = false;
-  }
+  std::vector<std::vector<std::uint8_t>> results = outbox_.take();
   pending_ -= static_cast<int>(results.size());
   for (auto& r : results) reply(std::move(r));
 }

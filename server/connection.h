@@ -5,7 +5,6 @@
 #include <cstdint>
 #include <deque>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <vector>
 
@@ -14,14 +13,16 @@
 
 #include "proto/framing.h"
 #include "server/connection_registry.h"
+#include "server/outbox.h"
 #include "server/server.h"
 #include "server/session.h"
 
 namespace glint::server {
 
 // One client's stream: reads frames, hands verified messages to its
-// Session, runs the session's builds and tiles on the scheduler and writes
-// what comes back, one write in flight. Lives on the I/O thread; work on the
+// Session, sends the session's builds to SceneBuilds and its tiles to the
+// scheduler (results come back through the Outbox) and writes what comes
+// back, one write in flight. Lives on the I/O thread; work on the
 // pool reaches it only through asio::post. Nothing a client sends can stop
 // the server or other clients: a connection that cannot go on is closed.
 // Stream is the byte stream (a TCP socket; a TLS stream over one is another
@@ -57,7 +58,6 @@ class BasicConnection : public std::enable_shared_from_this<BasicConnection<Stre
   void onBody();
   void armTimer(std::chrono::milliseconds timeout, const char* what);
   void onTimer(const char* what);
-  void deliver(std::vector<std::uint8_t> result);  // from a pool thread
   void takeOutbox();  // on the I/O thread
   void writeNext();
   bool greeted() const { return session_.state() != Session::State::kAwaitingHello; }
@@ -66,6 +66,7 @@ class BasicConnection : public std::enable_shared_from_this<BasicConnection<Stre
   asio::steady_timer timer_;
   ServerContext& context_;
   std::uint64_t id_;
+  Outbox outbox_;  // finished tiles from the pool
   Session session_;
   std::array<std::uint8_t, proto::kHeaderBytes> header_{};
   std::vector<std::uint8_t> body_;
@@ -79,11 +80,6 @@ class BasicConnection : public std::enable_shared_from_this<BasicConnection<Stre
   bool midMessage_ = false;  // a header arrived, its body has not yet
   std::chrono::steady_clock::time_point lastWrite_;
   int pending_ = 0;  // tiles and scene builds queued or running for this client
-  std::mutex outboxMutex_;  // guards the four below
-  std::vector<std::vector<std::uint8_t>> outbox_;  // finished tiles, not yet queued for writing
-  std::size_t outboxBytes_ = 0;
-  int untraced_ = 0;         // tiles submitted whose results are not in the outbox yet
-  bool wakePosted_ = false;  // the I/O thread is already asked to take the outbox
 };
 
 // glintd's connections: plain TCP (loopback, or --insecure), or TLS over TCP.
