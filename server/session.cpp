@@ -129,6 +129,13 @@ void Session::onSceneQuery(const wire::SceneQuery& query) {
 // The scene put together from files this server holds; its hash is checked
 // when it is built.
 void Session::onSceneUpload(const wire::SceneUpload& upload) {
+  if (building_) {
+    error(wire::ErrorCode::UnknownMessage,
+          "scene_upload: this connection's last scene is still being built; one at a time (wait for its SceneReady "
+          "or Error)",
+          false);
+    return;
+  }
   const proto::SceneHash hash = proto::decodeHash(upload.hash(), "scene_upload.hash");
   proto::SceneManifest manifest = proto::decodeManifest(upload);
   auto bundle = std::make_shared<proto::SceneBundle>();
@@ -144,6 +151,7 @@ void Session::onSceneUpload(const wire::SceneUpload& upload) {
     }
     bundle->files[path] = *bytes;
   }
+  building_ = true;
   host_.build({hash, std::move(bundle)});
 }
 
@@ -194,6 +202,7 @@ void Session::dropPartial(const proto::SceneHash& hash) {
 }
 
 void Session::sceneBuilt(const BuiltScene& built) {
+  building_ = false;
   if (state_ == State::kEnded) return;
   if (!built.prepared) {
     logLine(peer_ + ": scene " + shortHash(built.hash) + " rejected");

@@ -113,6 +113,7 @@ class Session {
   Settings settings_;
   std::string peer_;
   State state_ = State::kAwaitingHello;
+  bool building_ = false;  // a SceneUpload of this client is being built: one at a time
   std::map<std::uint32_t, std::shared_ptr<const SessionFrame>> frames_;  // by frame id
   std::map<proto::SceneHash, PartialFile> partial_;  // given back to stores_.uploads when dropped
 };

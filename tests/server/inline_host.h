@@ -28,7 +28,16 @@ class InlineHost : public SessionHost {
   void worked() override { ++workMessages; }
   void build(SceneJob job) override {
     ++builds;
-    session_->sceneBuilt(buildScene(job, maxSceneBytes_, buildMemory_));
+    if (deferBuilds) {
+      deferred_.push_back(std::move(job));
+    } else {
+      session_->sceneBuilt(buildScene(job, maxSceneBytes_, buildMemory_));
+    }
+  }
+  // With deferBuilds, builds wait for this (as on glintd's build thread).
+  void finishBuilds() {
+    std::vector<SceneJob> jobs = std::move(deferred_);
+    for (const SceneJob& job : jobs) session_->sceneBuilt(buildScene(job, maxSceneBytes_, buildMemory_));
   }
   void trace(TileWork work) override {
     ++tiles;
@@ -44,12 +53,14 @@ class InlineHost : public SessionHost {
   std::vector<std::pair<std::uint32_t, std::vector<std::uint32_t>>> cancelled;  // frame, tiles
   std::string ended;                               // why the session ended, if it did
   bool admits = true;
+  bool deferBuilds = false;
   int builds = 0;
   int tiles = 0;
   int workMessages = 0;  // messages that asked for work
 
  private:
   Session* session_ = nullptr;
+  std::vector<SceneJob> deferred_;
   std::size_t maxSceneBytes_;
   std::size_t maxTraceWork_;
   MemoryGauge buildMemory_;

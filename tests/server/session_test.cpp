@@ -128,6 +128,27 @@ TEST_F(SessionTest, BadSceneIsAnErrorAndTheSessionGoesOn) {
   EXPECT_EQ(cache_.size(), 0u);
 }
 
+// A client builds one scene at a time: a second upload while the first is
+// being built is refused (a client could otherwise queue builds ahead of
+// every other client's), and once the first is done the next is taken.
+TEST_F(SessionTest, ASecondUploadWhileTheFirstIsBuildingIsRefused) {
+  hello();
+  host_.deferBuilds = true;
+  const proto::LoadedBundle room = proto::loadSceneBundle(glint::test::sourcePath("scenes/room.json"));
+  const proto::SceneBundle other{room.bundle.text + " ", room.bundle.files};
+  upload(room.bundle);
+  const std::size_t before = host_.replies.size();
+  upload(other);
+  ASSERT_EQ(host_.replies.size(), before + 1);
+  EXPECT_EQ(errorCode(before), wire::ErrorCode::UnknownMessage);
+  EXPECT_EQ(host_.builds, 1);
+  host_.finishBuilds();
+  EXPECT_EQ(replyType(before + 1), wire::Body::SceneReady);
+  upload(other);
+  EXPECT_EQ(host_.builds, 2);
+  EXPECT_EQ(session_.state(), Session::State::kServing);
+}
+
 // Files travel in pieces, by their hash: the bunny's mesh (220 KB, in 4 KiB
 // pieces) is sent once; a changed scene that names it again is told that
 // nothing is missing, and builds from the file the server kept.
