@@ -87,6 +87,34 @@ long GlintdProcess::statusKb(const char* field) const {
   return kb;
 }
 
+// /proc/net/tcp: "sl local_address rem_address st tx_queue:rx_queue ...",
+// addresses and queues in hex.
+long GlintdProcess::unreadBytes() const {
+  std::ifstream in("/proc/net/tcp");
+  std::string line;
+  std::getline(in, line);  // the heading
+  long unread = 0;
+  while (std::getline(in, line)) {
+    char local[64], remote[64], queues[64];
+    unsigned state = 0;
+    if (std::sscanf(line.c_str(), "%*s %63s %63s %x %63s", local, remote, &state, queues) != 4) continue;
+    const char* port = std::strchr(local, ':');
+    if (!port || std::strtoul(port + 1, nullptr, 16) != port_) continue;
+    const char* rx = std::strchr(queues, ':');
+    if (rx) unread += static_cast<long>(std::strtoul(rx + 1, nullptr, 16));
+  }
+  return unread;
+}
+
+bool GlintdProcess::awaitAllRead(int seconds) const {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(seconds);
+  while (unreadBytes() > 0) {
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return true;
+}
+
 int GlintdProcess::openDescriptors() const {
   int n = 0;
   std::error_code ec;

@@ -30,6 +30,12 @@ class GlintdProcess {
   long peakResidentKb() const { return statusKb("VmHWM:"); }
   // Open file descriptors (/proc/PID/fd).
   int openDescriptors() const;
+  // Bytes that arrived on its connections and that it has not read yet
+  // (the receive queues of /proc/net/tcp whose local port is its own).
+  long unreadBytes() const;
+  // Waits up to `seconds` until it has read all that arrived (on loopback,
+  // what a client wrote has arrived when its write returns); false if not.
+  bool awaitAllRead(int seconds = 10) const;
   // Sends `signal` and waits up to 10 s for the exit; the wait status
   // (WIFEXITED ...), or -1 when it had to be killed.
   int stop(int signal);

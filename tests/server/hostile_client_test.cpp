@@ -77,17 +77,23 @@ TEST(HostileClient, AnnouncedLengthsCostOnlyTheBytesThatArrive) {
     EXPECT_EQ(code, wire::ErrorCode::TooLarge);
     EXPECT_NE(text.find("over the limit of 4096 before Hello"), std::string::npos) << text;
   }
-  // Clients that said Hello announce 48 MiB each and send 1 KiB of it.
+  // Clients that said Hello announce 48 MiB each and send 1 KiB of it; the
+  // peak is read once glintd has read every byte sent.
   const long before = glintd.peakResidentKb();
   std::vector<std::unique_ptr<RawClient>> clients;
   for (int i = 0; i < 16; ++i) {
     clients.push_back(std::make_unique<RawClient>(glintd.port()));
     ASSERT_TRUE(clients.back()->hello());
+  }
+  ::kill(glintd.pid(), SIGSTOP);  // the bytes wait in its receive queues, seen there
+  for (auto& client : clients) {
     std::vector<std::uint8_t> partial = announce48MiB;
     partial.resize(4 + 1024, 0x55);
-    clients.back()->write(partial);
+    client->write(partial);
   }
-  std::this_thread::sleep_for(300ms);
+  EXPECT_EQ(glintd.unreadBytes(), 16 * (4 + 1024));
+  ::kill(glintd.pid(), SIGCONT);
+  ASSERT_TRUE(glintd.awaitAllRead()) << glintd.unreadBytes() << " bytes still unread";
   ASSERT_TRUE(glintd.running());
   const long grownKb = glintd.peakResidentKb() - before;
   EXPECT_LT(grownKb, 16 * 1024) << "16 announced messages of 48 MiB (1 KiB sent) grew glintd's peak by " << grownKb
