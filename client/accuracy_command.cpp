@@ -31,6 +31,7 @@ struct Sweep {
   const PreparedScene& prepared;
   ThreadPool& pool;
   int frames;
+  int tileSize;         // --tile-size
   TileService* remote;  // --server: the rows' tiles go there
   std::unique_ptr<gl::OffscreenContext> context;  // made for the first hybrid row
   std::unique_ptr<gl::RasterScene> raster;
@@ -62,7 +63,7 @@ LinearImage traceRow(Sweep& sweep, const FrameSettings& frame, AccuracyRow& row)
     row.rays = {};
     const auto start = Clock::now();
     if (sweep.remote) {
-      FrameResult r = renderFrame(*sweep.remote, frame, {});
+      FrameResult r = renderFrame(*sweep.remote, frame, {.tileSize = sweep.tileSize, .window = {}, .progress = {}});
       row.rays = r.stats;
       image = fromBytes(r.image);
     } else {
@@ -85,7 +86,7 @@ LinearImage hybridRow(Sweep& sweep, const FrameSettings& frame, const MaskSettin
   std::vector<double> times;
   HybridResult result;
   for (int f = 0; f < sweep.frames + 1; ++f) {  // the first compiles the shaders
-    renderHybrid(sweep.context->api(), *sweep.raster, service, frame, mask, 64, result);
+    renderHybrid(sweep.context->api(), *sweep.raster, service, frame, mask, sweep.tileSize, result);
     if (f > 0) times.push_back(result.times.totalMs);
   }
   row.timeMs = median(times);
@@ -147,8 +148,7 @@ void runAccuracy(const AccuracyOptions& o) {
   proto::LoadedBundle loaded = proto::loadSceneBundle(o.scene);
   printSceneWarnings(o.scene, loaded.scene);
   Scene& scene = loaded.scene;
-  if (o.width) scene.frame.width = *o.width;
-  if (o.height) scene.frame.height = *o.height;
+  applyFrameOverrides(o.frame, scene);
   const std::vector<Series> series = sweepOf(o, scene);
   const fs::path dir(o.outDir);
   std::error_code ec;
@@ -159,7 +159,7 @@ void runAccuracy(const AccuracyOptions& o) {
   ThreadPool pool(resolveThreadCount(o.threads));
   std::unique_ptr<DistributedTileService> remote;
   if (!o.remote.servers.empty()) remote = connectServers(o.remote, loaded.bundle);
-  Sweep sweep{prepared, pool, o.frames, remote.get(), nullptr, nullptr};
+  Sweep sweep{prepared, pool, o.frames, o.frame.tileSize, remote.get(), nullptr, nullptr};
   LinearImage reference;
   const AccuracyReference ref = renderReference(sweep, scene.frame, o.referenceSamples, dir, reference);
 

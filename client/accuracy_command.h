@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "client/frame_overrides.h"
 #include "client/tile_backend.h"
 
 namespace glint {
@@ -15,8 +16,7 @@ struct AccuracyOptions {
   std::vector<std::string> vary;  // "KEY=V1,V2,..." each; none: the default sweep
   int referenceSamples = 256;
   int frames = 3;  // frames per row; the median time is reported
-  std::optional<int> width;
-  std::optional<int> height;
+  FrameOverrides frame;  // the base every row varies one setting of
   int threads = 0;
   // --server ...: the rows are traced by glintd (their images are the 8-bit
   // frames, so errors below 1/255 are not seen); the reference in process.

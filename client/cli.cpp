@@ -98,7 +98,7 @@ auto asUsageError(const Parse& parse) {
 }
 
 // --eye, --look-at, --up, --fov: the scene's camera, overridden.
-void addCameraOptions(CLI::App* app, RenderOptions& o) {
+void addCameraOptions(CLI::App* app, FrameOverrides& o) {
   const auto vec = [app](const char* name, std::optional<glm::vec3>& target, const char* help) {
     app->add_option_function<std::string>(
            name,
@@ -153,59 +153,63 @@ void addServerOptions(CLI::App* app, RemoteOptions& remote) {
   app->add_option("--tls-key", remote.tls.key, "The private key of --tls-cert (PEM)")->envname("GLINT_TLS_KEY");
 }
 
-void addShadowMapOption(CLI::App* command, std::optional<int>& size) {
-  command->add_option("--shadow-map", size,
-                      "Shadow map size in texels a cube face edge (default: the scene's, 1024): surfaces OpenGL "
-                      "draws get shadows, traced where the map cannot decide; 0: no shadows on them (the thesis)")
+// The frame's and mask's options, the same for every command that renders:
+// each overrides the scene file's value.
+void addFrameOptions(CLI::App* app, FrameOverrides& o) {
+  addEnumOption(app, "--mask", o.mask,
+                "Which pixels are ray traced (default: the scene's): auto, objects whose materials need it, "
+                "drawn by OpenGL otherwise; all, the full ray trace; none, OpenGL only");
+  app->add_option("--mask-threshold", o.maskThreshold,
+                  "Under --mask auto: materials with reflectivity above this are ray traced")
+      ->check(CLI::Range(0.0f, 1.0f));
+  app->add_option("--shadow-map", o.shadowMap,
+                  "Shadow map size in texels a cube face edge (default: the scene's, 1024): surfaces OpenGL "
+                  "draws get shadows, traced where the map cannot decide; 0: no shadows on them (the thesis)")
       ->check(CLI::Range(0, MaskSettings::kMaxShadowMap));
+  app->add_option("--tile-size", o.tileSize, "Tile edge in pixels (work unit of a thread or a server request)")
+      ->check(CLI::Range(1, 4096))
+      ->default_val(64);
+  app->add_option("--samples", o.samples, "Samples per pixel (regular: 1, 2, 4, 9, 16 ...)")
+      ->check(CLI::Range(1, FrameLimits::kMaxSamples));
+  addEnumOption(app, "--pattern", o.pattern,
+                "Sample pattern (default: the scene's); adaptive: one sample per pixel, all where it differs from a "
+                "neighbour");
+  app->add_option("--adaptive-threshold", o.adaptiveThreshold,
+                  "Under --pattern adaptive: a channel difference above this (linear, default 1/64) refines");
+  addEnumOption(app, "--filter", o.filter, "Pixel filter (default: the scene's)");
+  app->add_option("--seed", o.seed, "Seed of the jitter (same seed, same image)")
+      ->check(CLI::Range(0u, FrameLimits::kMaxSeed));
+  app->add_option("--max-depth", o.maxDepth, "Maximum ray depth (primary ray = 1)")
+      ->check(CLI::Range(1, FrameLimits::kMaxDepth));
+  app->add_option("--min-weight", o.minWeight, "Rays whose path weight falls below this are not traced")
+      ->check(CLI::Range(0.0f, 1.0f));
+  app->add_option_function<std::string>(
+         "--size", [&o](const std::string& text) { asUsageError([&] { parseSize(text, o.width, o.height); }); },
+         "Image size WIDTHxHEIGHT (the camera's fov_y is kept; default: the scene's)")
+      ->type_name("WxH");
+  addCameraOptions(app, o);
+  addEnumOption(app, "--encoding", o.encoding,
+                "8-bit values (PNG): linear (the thesis's frame buffer) or srgb (the sRGB transfer function); "
+                "default: the scene's image.encoding, else linear");
+  app->add_option("--exposure", o.exposure, "Scale the colour by 2^EV before encoding (default: the scene's, 0)")
+      ->type_name("EV")
+      ->check(CLI::Range(-FrameLimits::kMaxExposure, FrameLimits::kMaxExposure));
 }
 
 // Declares `glint render`'s options; returns what runs once they are parsed.
 std::function<void()> declareRender(CLI::App* render) {
   auto options = std::make_shared<RenderOptions>();
-  auto size = std::make_shared<std::string>();
   RenderOptions& o = *options;
   render->add_option("scene", o.scene, "Scene file (.json)")->required()->check(CLI::ExistingFile);
   render->add_option("-o,--output", o.output,
                      "Image to write, its format by extension: .png (8-bit), .exr (half float, linear), .pfm (float, "
                      "linear); written only when the render succeeds")
       ->required();
-  addEnumOption(render, "--mask", o.mask,
-                "Which pixels are ray traced (default: the scene's): auto, objects whose materials need it, "
-                "drawn by OpenGL otherwise; all, the full ray trace; none, OpenGL only");
-  render->add_option("--mask-threshold", o.maskThreshold,
-                     "Under --mask auto: materials with reflectivity above this are ray traced")
-      ->check(CLI::Range(0.0f, 1.0f));
+  addFrameOptions(render, o.frame);
   render->add_option("--mask-out", o.maskOut, "Also write the mask as a PNG (white: ray traced)");
-  addShadowMapOption(render, o.shadowMap);
   render->add_option("--threads", o.threads, "Render threads; 0 = one per hardware thread")
       ->check(CLI::Range(0, 1024))
       ->default_val(0);
-  render->add_option("--tile-size", o.tileSize, "Tile edge in pixels (work unit of a thread)")
-      ->check(CLI::Range(1, 4096))
-      ->default_val(64);
-  render->add_option("--samples", o.samples, "Samples per pixel (regular: 1, 2, 4, 9, 16 ...)")
-      ->check(CLI::Range(1, FrameLimits::kMaxSamples));
-  addEnumOption(render, "--pattern", o.pattern,
-                "Sample pattern (default: the scene's); adaptive: one sample per pixel, all where it differs from a "
-                "neighbour");
-  render->add_option("--adaptive-threshold", o.adaptiveThreshold,
-                     "Under --pattern adaptive: a channel difference above this (linear, default 1/64) refines");
-  addEnumOption(render, "--filter", o.filter, "Pixel filter (default: the scene's)");
-  render->add_option("--seed", o.seed, "Seed of the jitter (same seed, same image)")
-      ->check(CLI::Range(0u, FrameLimits::kMaxSeed));
-  render->add_option("--max-depth", o.maxDepth, "Maximum ray depth (primary ray = 1)")
-      ->check(CLI::Range(1, FrameLimits::kMaxDepth));
-  render->add_option("--min-weight", o.minWeight, "Rays whose path weight falls below this are not traced")
-      ->check(CLI::Range(0.0f, 1.0f));
-  render->add_option("--size", *size, "Image size WIDTHxHEIGHT (the camera's fov_y is kept)");
-  addCameraOptions(render, o);
-  addEnumOption(render, "--encoding", o.encoding,
-                "8-bit values (PNG): linear (the thesis's frame buffer) or srgb (the sRGB transfer function); "
-                "default: the scene's image.encoding, else linear");
-  render->add_option("--exposure", o.exposure, "Scale the colour by 2^EV before encoding (default: the scene's, 0)")
-      ->type_name("EV")
-      ->check(CLI::Range(-FrameLimits::kMaxExposure, FrameLimits::kMaxExposure));
   render->add_option_function<std::string>(
             "--crop",
             [&o](const std::string& text) { o.crop = asUsageError([&] { return parseCrop(text); }); },
@@ -224,31 +228,21 @@ std::function<void()> declareRender(CLI::App* render) {
       ->check(CLI::Range(1, 100000))
       ->default_val(1);
   render->add_flag("-q,--quiet", o.quiet, "No summary line on stderr");
-  return [options, size] {
-    if (!size->empty()) parseSize(*size, options->width, options->height);
-    runRender(*options);
-  };
+  return [options] { runRender(*options); };
 }
 
 // Declares `glint view`'s options; returns what runs once they are parsed.
 std::function<void()> declareView(CLI::App* view) {
   auto options = std::make_shared<ViewOptions>();
-  auto size = std::make_shared<std::string>();
   ViewOptions& o = *options;
   view->add_option("scene", o.scene, "Scene file (.json)")->required()->check(CLI::ExistingFile);
   addServerOptions(view, o.remote);
-  addEnumOption(view, "--mask", o.mask, "Initial mask rule (default: the scene's)");
-  addShadowMapOption(view, o.shadowMap);
+  addFrameOptions(view, o.frame);
   view->add_option("--threads", o.threads, "Tracing threads; 0 = one per hardware thread")->check(CLI::Range(0, 1024));
   addEnumOption(view, "--bvh", o.bvh, "BVH builder in process (default: sah; qsplit is the thesis's)");
-  view->add_option("--tile-size", o.tileSize, "Tile edge in pixels")->check(CLI::Range(1, 4096));
-  view->add_option("--size", *size, "Window size WIDTHxHEIGHT (default: the scene's image size)");
   view->add_option("--frames", o.frames, "Close after N frames (for scripts)")->check(CLI::Range(1, 1000000));
   view->add_option("--screenshot", o.screenshot, "Write the last frame as PNG when the window closes");
-  return [options, size] {
-    if (!size->empty()) parseSize(*size, options->width, options->height);
-    runView(*options);
-  };
+  return [options] { runView(*options); };
 }
 
 constexpr const char* kAccuracyHelp =
@@ -260,7 +254,6 @@ constexpr const char* kAccuracyHelp =
 // Declares `glint accuracy`'s options; returns what runs once they are parsed.
 std::function<void()> declareAccuracy(CLI::App* accuracy) {
   auto options = std::make_shared<AccuracyOptions>();
-  auto size = std::make_shared<std::string>();
   AccuracyOptions& o = *options;
   accuracy->add_option("scene", o.scene, "Scene file (.json)")->required()->check(CLI::ExistingFile);
   accuracy->add_option("-o,--output", o.outDir, "Folder for the report, the CSV and the images")->required();
@@ -274,15 +267,12 @@ std::function<void()> declareAccuracy(CLI::App* accuracy) {
   accuracy->add_option("--frames", o.frames, "Frames per setting; the median time is reported")
       ->check(CLI::Range(1, 1000))
       ->default_val(3);
-  accuracy->add_option("--size", *size, "Image size WIDTHxHEIGHT (default: the scene's)");
+  addFrameOptions(accuracy, o.frame);
   accuracy->add_option("--threads", o.threads, "Render threads; 0 = one per hardware thread")
       ->check(CLI::Range(0, 1024))
       ->default_val(0);
   addServerOptions(accuracy, o.remote);
-  return [options, size] {
-    if (!size->empty()) parseSize(*size, options->width, options->height);
-    runAccuracy(*options);
-  };
+  return [options] { runAccuracy(*options); };
 }
 
 // glint's commands: a name, its help, and the function that declares its

@@ -143,7 +143,7 @@ OutputFormat checkOutputs(const RenderOptions& o) {
   checkOutput("--provenance-out", o.provenanceOut, true, true);
   checkOutput("--stats", o.statsPath, false, false);
   const OutputFormat format = outputFormat("-o", o.output);
-  if (holdsFloats(format) && o.encoding == Encoding::kSrgb) {
+  if (holdsFloats(format) && o.frame.encoding == Encoding::kSrgb) {
     throw InputError("--encoding srgb: applies to 8-bit output; " + o.output +
                      " holds linear values (give a .png, or drop --encoding)");
   }
@@ -163,35 +163,8 @@ void checkCrop(const TileRect& crop, const FrameSettings& frame) {
 }  // namespace
 
 void applyOverrides(const RenderOptions& o, Scene& scene) {
-  if (o.eye) scene.frame.camera.eye = *o.eye;
-  if (o.lookAt) scene.frame.camera.lookAt = *o.lookAt;
-  if (o.up) scene.frame.camera.up = *o.up;
-  if (o.fovY) scene.frame.camera.fovY = *o.fovY;
-  if (o.width) scene.frame.width = *o.width;
-  if (o.height) scene.frame.height = *o.height;
-  if (o.pattern) scene.frame.sampling.pattern = *o.pattern;
-  if (o.adaptiveThreshold) scene.frame.sampling.adaptiveThreshold = *o.adaptiveThreshold;
-  if (o.samples) scene.frame.sampling.samples = *o.samples;
-  if (o.filter) scene.frame.sampling.filter = *o.filter;
-  if (o.seed) scene.frame.sampling.seed = *o.seed;
-  if (o.maxDepth) scene.frame.tracing.maxDepth = *o.maxDepth;
-  if (o.minWeight) scene.frame.tracing.minWeight = *o.minWeight;
-  if (o.encoding) scene.frame.output.encoding = *o.encoding;
-  if (o.exposure) scene.frame.output.exposure = *o.exposure;
-  const std::string samples = "--samples " + std::to_string(scene.frame.sampling.samples);
-  checkFrame(scene.frame, LoadLimits{}.maxImagePixels,
-             {.size = "--size",
-              .camera = "camera.",
-              .samples = samples.c_str(),
-              .seed = "--seed",
-              .maxDepth = "--max-depth",
-              .minWeight = "--min-weight",
-              .adaptiveThreshold = "--adaptive-threshold",
-              .exposure = "--exposure"});
+  applyFrameOverrides(o.frame, scene);
   if (o.crop) checkCrop(*o.crop, scene.frame);
-  if (o.mask) scene.mask.rule = *o.mask;
-  if (o.maskThreshold) scene.mask.minReflectivity = *o.maskThreshold;
-  if (o.shadowMap) scene.mask.shadowMap = *o.shadowMap;
 }
 
 namespace {
@@ -234,10 +207,11 @@ std::optional<LinearImage> renderFrames(const RenderRun& run, TileBackend& backe
   std::optional<StatsWriter> stats;
   if (!options.statsPath.empty()) stats.emplace(options.statsPath);
   std::optional<LinearImage> image;
-  const FrameOptions frameOptions{.tileSize = options.tileSize, .window = options.crop, .progress = {}};
+  const FrameOptions frameOptions{.tileSize = options.frame.tileSize, .window = options.crop, .progress = {}};
   for (int f = 0; f < options.frames; ++f) {
     if (hybridPath) {
-      renderHybrid(context->api(), *raster, backend.service(), frame, scene.mask, options.tileSize, r, options.crop);
+      renderHybrid(context->api(), *raster, backend.service(), frame, scene.mask, options.frame.tileSize, r,
+                   options.crop);
     } else if (linear) {
       image = renderFullTraceLinear(backend, frame, frameOptions, r);
     } else {

@@ -4,8 +4,7 @@
 #include <string>
 #include <vector>
 
-#include <glm/vec3.hpp>
-
+#include "client/frame_overrides.h"
 #include "client/tile_backend.h"
 #include "common/bvh.h"
 #include "common/scene.h"
@@ -17,27 +16,9 @@ namespace glint {
 struct RenderOptions {
   std::string scene;
   std::string output;
-  std::optional<MaskRule> mask;
-  std::optional<float> maskThreshold;  // overrides the scene's min_reflectivity
-  std::string maskOut;                 // PNG of the mask, "" none
-  std::optional<int> shadowMap;        // overrides the scene's mask.shadow_map
+  FrameOverrides frame;        // the frame's and mask's options, as every command has them
+  std::string maskOut;         // PNG of the mask, "" none
   int threads = 0;             // 0: every hardware thread
-  int tileSize = 64;
-  std::optional<int> samples;
-  std::optional<SamplePattern> pattern;
-  std::optional<float> adaptiveThreshold;
-  std::optional<FilterType> filter;
-  std::optional<int> maxDepth;
-  std::optional<float> minWeight;
-  std::optional<glm::vec3> eye;     // --eye, --look-at, --up: the camera's, overriding the scene's
-  std::optional<glm::vec3> lookAt;
-  std::optional<glm::vec3> up;
-  std::optional<float> fovY;        // --fov, degrees
-  std::optional<int> width;
-  std::optional<int> height;
-  std::optional<std::uint32_t> seed;
-  std::optional<Encoding> encoding;  // --encoding, 8-bit outputs
-  std::optional<float> exposure;     // --exposure EV
   std::optional<TileRect> crop;      // --crop: only this window of the frame
   std::optional<BvhBuilder> bvh;  // in process only; unset: SAH
   RemoteOptions remote;       // --server ... (none renders in process), --stall-timeout, --tls-*

@@ -202,10 +202,7 @@ Shown showFrame(GLFWwindow* window, const gl::Api& api, gl::RasterScene& raster,
 void runView(const ViewOptions& options) {
   proto::LoadedBundle loaded = proto::loadSceneBundle(options.scene);
   printSceneWarnings(options.scene, loaded.scene);
-  if (options.width) loaded.scene.frame.width = *options.width;
-  if (options.height) loaded.scene.frame.height = *options.height;
-  if (options.mask) loaded.scene.mask.rule = *options.mask;
-  if (options.shadowMap) loaded.scene.mask.shadowMap = *options.shadowMap;
+  applyFrameOverrides(options.frame, loaded.scene);
 
   if (!glfwInit()) {
     throw InputError("glint view needs a display: cannot initialise GLFW (is DISPLAY set? glint render works headless)");
@@ -246,7 +243,8 @@ void runView(const ViewOptions& options) {
     if (moved || refine || options.frames > 0 || (retryAt > 0.0 && glfwGetTime() >= retryAt)) {
       controls.changed = false;
       const bool preview = progressive && moved;
-      const Shown shown = showFrame(window, api, raster, backend, controls, options.tileSize, preview, last, reported);
+      const Shown shown = showFrame(window, api, raster, backend, controls, options.frame.tileSize, preview, last,
+                                     reported);
       refine = preview;
       retryAt = shown == Shown::kMissingTiles ? glfwGetTime() + kRetrySeconds : 0.0;
       if (options.frames > 0 && ++frames >= options.frames) break;

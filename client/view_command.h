@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "client/frame_overrides.h"
 #include "client/tile_backend.h"
 #include "common/bvh.h"
 #include "common/scene.h"
@@ -14,13 +15,9 @@ namespace glint {
 struct ViewOptions {
   std::string scene;
   RemoteOptions remote;        // --server ... (none traces in process), --stall-timeout, --tls-*
-  std::optional<MaskRule> mask;  // unset: the scene's
-  std::optional<int> shadowMap;  // unset: the scene's
+  FrameOverrides frame;  // the frame's and mask's options, as every command has them (the size: the window's)
   int threads = 0;
   std::optional<BvhBuilder> bvh;  // in process only; unset: SAH
-  int tileSize = 64;
-  std::optional<int> width;
-  std::optional<int> height;
   int frames = 0;              // > 0: close after this many frames (scripts, tests)
   std::string screenshot;      // PNG of the last frame, "" none
 };

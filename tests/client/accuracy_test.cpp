@@ -111,8 +111,8 @@ TEST(Accuracy, ErrorFallsWithSamplesOnASmallScene) {
   o.vary = {"samples=16,64", "pattern=jittered"};
   o.referenceSamples = 512;
   o.frames = 1;
-  o.width = 64;
-  o.height = 48;
+  o.frame.width = 64;
+  o.frame.height = 48;
   runAccuracy(o);
   const std::vector<CsvRow> rows = readCsv(dir / "accuracy.csv");
   ASSERT_EQ(rows.size(), 3u);
@@ -154,8 +154,8 @@ TEST(Accuracy, BadInputIsRefusedBeforeRendering) {
   AccuracyOptions o;
   o.scene = scene.string();
   o.outDir = dir.string();
-  o.width = 32;
-  o.height = 24;
+  o.frame.width = 32;
+  o.frame.height = 24;
   o.vary = {"samples=4,3"};
   const std::string threeRegular = accuracyError(o);
   EXPECT_NE(threeRegular.find("--vary samples=3"), std::string::npos) << threeRegular;

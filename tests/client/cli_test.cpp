@@ -240,6 +240,26 @@ TEST_F(Cli, UsageErrorsExitWithTwo) {
   EXPECT_NE(version.output.find("glint 0.1.0 (pixels-"), std::string::npos) << version.output;
 }
 
+// Every command that renders takes the same frame options (declared once),
+// and a malformed one is a usage error in each (--size 640 exited 1 where
+// it was parsed after the command line).
+TEST_F(Cli, EveryRenderingCommandTakesTheSameFrameOptions) {
+  for (const char* command : {"render", "view", "accuracy"}) {
+    const Result help = glint(std::string(command) + " --help");
+    EXPECT_EQ(help.status, 0) << command;
+    for (const char* option : {"--mask ", "--mask-threshold", "--shadow-map", "--tile-size", "--samples", "--pattern",
+                               "--adaptive-threshold", "--filter", "--seed", "--max-depth", "--min-weight", "--size",
+                               "--eye", "--look-at", "--up", "--fov", "--encoding", "--exposure"}) {
+      EXPECT_NE(help.output.find(option), std::string::npos) << command << " lacks " << option;
+    }
+    const std::string output = std::string(command) == "view" ? "" : " -o " + path("x");
+    const Result size = glint(std::string(command) + " " + scene("room.json") + output + " --size 640");
+    EXPECT_EQ(size.status, 2) << command << ": " << size.output;
+    EXPECT_NE(size.output.find("--size 640: expected WIDTHxHEIGHT"), std::string::npos) << size.output;
+  }
+  EXPECT_TRUE(fs::is_empty(dir_));
+}
+
 // A scene with comments renders as the same scene without them; --eye,
 // --look-at, --up and --fov render as a scene file with that camera.
 TEST_F(Cli, CommentsAndCameraOverrides) {

@@ -247,7 +247,7 @@ TEST(ManyServers, EveryServerUnreachableWritesNothing) {
   RenderOptions options;
   options.scene = test::sourcePath("scenes/room.json");
   options.output = out;
-  options.mask = MaskRule::kAll;
+  options.frame.mask = MaskRule::kAll;
   options.remote.servers = {"127.0.0.1:1,127.0.0.1:2", "127.0.0.1:1"};
   options.quiet = true;
   try {

@@ -1,0 +1,41 @@
+#include "client/frame_overrides.h"
+
+#include <string>
+
+#include "common/load_limits.h"
+
+namespace glint {
+
+void applyFrameOverrides(const FrameOverrides& o, Scene& scene) {
+  FrameSettings& f = scene.frame;
+  if (o.eye) f.camera.eye = *o.eye;
+  if (o.lookAt) f.camera.lookAt = *o.lookAt;
+  if (o.up) f.camera.up = *o.up;
+  if (o.fovY) f.camera.fovY = *o.fovY;
+  if (o.width) f.width = *o.width;
+  if (o.height) f.height = *o.height;
+  if (o.pattern) f.sampling.pattern = *o.pattern;
+  if (o.adaptiveThreshold) f.sampling.adaptiveThreshold = *o.adaptiveThreshold;
+  if (o.samples) f.sampling.samples = *o.samples;
+  if (o.filter) f.sampling.filter = *o.filter;
+  if (o.seed) f.sampling.seed = *o.seed;
+  if (o.maxDepth) f.tracing.maxDepth = *o.maxDepth;
+  if (o.minWeight) f.tracing.minWeight = *o.minWeight;
+  if (o.encoding) f.output.encoding = *o.encoding;
+  if (o.exposure) f.output.exposure = *o.exposure;
+  const std::string samples = "--samples " + std::to_string(f.sampling.samples);
+  checkFrame(f, LoadLimits{}.maxImagePixels,
+             {.size = "--size",
+              .camera = "camera.",
+              .samples = samples.c_str(),
+              .seed = "--seed",
+              .maxDepth = "--max-depth",
+              .minWeight = "--min-weight",
+              .adaptiveThreshold = "--adaptive-threshold",
+              .exposure = "--exposure"});
+  if (o.mask) scene.mask.rule = *o.mask;
+  if (o.maskThreshold) scene.mask.minReflectivity = *o.maskThreshold;
+  if (o.shadowMap) scene.mask.shadowMap = *o.shadowMap;
+}
+
+}  // namespace glint

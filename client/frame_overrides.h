@@ -1,0 +1,40 @@
+#pragma once
+
+#include <optional>
+
+#include <glm/vec3.hpp>
+
+#include "common/scene.h"
+
+namespace glint {
+
+// The options that change what a scene's frame and mask are, the same for
+// every command that renders (render, view, accuracy), declared once
+// (client/cli.cpp, addFrameOptions); unset ones keep the scene file's value.
+struct FrameOverrides {
+  std::optional<MaskRule> mask;
+  std::optional<float> maskThreshold;  // the scene's min_reflectivity
+  std::optional<int> shadowMap;        // the scene's mask.shadow_map
+  int tileSize = 64;                   // the work unit of a thread or a server request
+  std::optional<int> samples;
+  std::optional<SamplePattern> pattern;
+  std::optional<float> adaptiveThreshold;
+  std::optional<FilterType> filter;
+  std::optional<std::uint32_t> seed;
+  std::optional<int> maxDepth;
+  std::optional<float> minWeight;
+  std::optional<glm::vec3> eye;  // --eye, --look-at, --up: the camera's
+  std::optional<glm::vec3> lookAt;
+  std::optional<glm::vec3> up;
+  std::optional<float> fovY;  // --fov, degrees
+  std::optional<int> width;   // --size
+  std::optional<int> height;
+  std::optional<Encoding> encoding;  // 8-bit outputs
+  std::optional<float> exposure;     // EV
+};
+
+// The scene with the overrides applied, its frame checked (an error names
+// the option).
+void applyFrameOverrides(const FrameOverrides& overrides, Scene& scene);
+
+}  // namespace glint
