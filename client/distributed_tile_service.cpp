@@ -13,10 +13,6 @@ constexpr std::chrono::seconds kFirstRetry{1};         // a lost server is tried
 constexpr std::chrono::seconds kLongestRetry{30};
 constexpr std::chrono::seconds kGoodbyeGrace{1};       // for the Goodbyes to be written at the end
 
-std::array<int, 5> tileKey(const TileJob& job) {
-  return {job.rect.x, job.rect.y, job.rect.width, job.rect.height, static_cast<int>(tracedPixels(job))};
-}
-
 }  // namespace
 
 struct DistributedTileService::Frame {
@@ -183,29 +179,9 @@ void DistributedTileService::deliverFrame(Frame& frame) {
     r.rays += out.rays;
     r.busyMs += out.computeMs;
     report_.deliveredBy[frame.reportBase + job] = static_cast<int>(frame.from[tile]);
-    measured_[tileKey(frame.jobs[job])] = {frame.costs[tile], out.computeMs};
+    costs_.record(frame.jobs[job], frame.costs[tile], out.computeMs);
     frame.done(job, std::move(out));
   }
-}
-
-// Traced samples per tile; where the previous frame measured the same tile,
-// its tracing time instead, scaled into the same unit.
-std::vector<double> DistributedTileService::tileCosts(std::span<const TileJob> jobs,
-                                                      const std::vector<std::size_t>& sent) const {
-  double estimated = 0.0;
-  double measured = 0.0;
-  for (const auto& [key, m] : lastMeasured_) {
-    estimated += m.first;
-    measured += m.second;
-  }
-  const double scale = measured > 0.0 ? estimated / measured : 0.0;
-  std::vector<double> costs;
-  for (const std::size_t j : sent) {
-    const auto it = lastMeasured_.find(tileKey(jobs[j]));
-    costs.push_back(it != lastMeasured_.end() && scale > 0.0 ? it->second.second * scale
-                                                          : static_cast<double>(tracedPixels(jobs[j])));
-  }
-  return costs;
 }
 
 void DistributedTileService::render(const FrameSettings& settings, std::span<const TileJob> jobs,
@@ -219,14 +195,19 @@ void DistributedTileService::render(const FrameSettings& settings, std::span<con
       done(j, TileOutput{});
     }
   }
-  std::vector<double> costs = tileCosts(jobs, sent);
+  std::vector<double> costs = costs_.costs(jobs, sent);
   DispatchSettings dispatch;
   dispatch.stallTimeoutMs = static_cast<double>(settings_.stallTimeout.count());
   const std::size_t tiles = sent.size();
-  Frame frame{++frameId_, settings, jobs, done, std::move(sent), costs, TileDispatcher(costs, paces_, dispatch),
-              std::vector<std::optional<TileOutput>>(tiles), std::vector<std::size_t>(tiles), 0, {}, {}};
+  frame_.reset(new Frame{++frameId_, settings, jobs, done, std::move(sent), costs,
+                         TileDispatcher(costs, paces_, dispatch), std::vector<std::optional<TileOutput>>(tiles),
+                         std::vector<std::size_t>(tiles), 0, {}, {}});
+  struct EndOfFrame {  // however render() ends
+    std::unique_ptr<Frame>& frame;
+    ~EndOfFrame() { frame.reset(); }
+  } end{frame_};
+  Frame& frame = *frame_;
   startReport(frame);
-  frame_ = &frame;
   try {
     for (std::size_t i = 0; i < servers_.size(); ++i) {
       if (servers_[i].link->ready()) joinFrame(i);
@@ -238,13 +219,11 @@ void DistributedTileService::render(const FrameSettings& settings, std::span<con
     }
   } catch (...) {
     for (Server& s : servers_) s.link->cancel(frame.id, {});
-    frame_ = nullptr;
     throw;
   }
   frame.dispatcher.finish();
   deliverFrame(frame);
   finishReport(frame);
-  frame_ = nullptr;
 }
 
 void DistributedTileService::step() {
@@ -265,8 +244,7 @@ void DistributedTileService::step() {
 void DistributedTileService::beginFrame() {
   report_ = {};
   for (Server& s : servers_) s.report = {s.address.name, s.report.state, s.report.why, 0, 0, {}, 0.0, 0.0, 0, 0};
-  lastMeasured_ = std::move(measured_);
-  measured_.clear();
+  costs_.nextFrame();
 }
 
 void DistributedTileService::startReport(Frame& frame) {

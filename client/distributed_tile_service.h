@@ -12,6 +12,7 @@
 #include "client/distribution_report.h"
 #include "client/server_link.h"
 #include "client/server_list.h"
+#include "client/tile_cost_model.h"
 #include "client/tile_dispatcher.h"
 #include "common/tile_service.h"
 #include "proto/scene_bundle.h"
@@ -85,7 +86,6 @@ class DistributedTileService : public TileService, private LinkListener {
   void step();
   bool anyConnecting() const;
   void throwIfHopeless() const;
-  std::vector<double> tileCosts(std::span<const TileJob> jobs, const std::vector<std::size_t>& sent) const;
   void deliverFrame(Frame& frame);
   void startReport(Frame& frame);
   void finishReport(const Frame& frame);
@@ -100,14 +100,9 @@ class DistributedTileService : public TileService, private LinkListener {
   std::optional<asio::ssl::context> tls_;
   std::chrono::steady_clock::time_point epoch_ = std::chrono::steady_clock::now();
   std::uint32_t frameId_ = 0;
-  Frame* frame_ = nullptr;
+  std::unique_ptr<Frame> frame_;  // from render()'s start to its end; none between frames
   std::optional<std::string> sceneError_;
-  // The estimate and measured tracing time per tile (x, y, w, h, masked
-  // pixels) of the last frame, which refine this frame's costs, and of this
-  // frame so far.
-  using TileTimes = std::map<std::array<int, 5>, std::pair<double, double>>;
-  TileTimes lastMeasured_;
-  TileTimes measured_;
+  TileCostModel costs_;
   DistributionReport report_;  // the frame since beginFrame(), every render() in it
 };
 
