@@ -109,6 +109,14 @@ TEST(ManyServers, AServerKilledMidFrameIsReplacedByTheOthers) {
   EXPECT_EQ(service.lastFrame().servers[0].tiles, 0u);
 }
 
+// A fake server's greeting: Hello back, and the room's scene held.
+void greetHoldingTheRoom(asio::ip::tcp::socket& socket, const char* software) {
+  proto::test::readFrame(socket);  // Hello
+  proto::test::writeFrame(socket, proto::encodeHello(1 << 20, 1, software));
+  proto::test::readFrame(socket);  // SceneQuery
+  proto::test::writeFrame(socket, proto::encodeSceneStatus(Room().loaded.bundle.hash(), true));
+}
+
 // A server that answers its first tiles with pixels of its own making and
 // is then caught sending one of them twice is lost for breaking the
 // protocol, and the tiles it had delivered are traced again by the others:
@@ -117,14 +125,8 @@ TEST(ManyServers, TilesOfAServerCaughtLyingAreTracedAgainElsewhere) {
   const Room room;
   GlintdProcess honest({"--threads", "1"});
   proto::test::Peer liar([&room](asio::ip::tcp::socket& socket) {
-    const auto send = [&socket](const std::vector<std::uint8_t>& frame) {
-      asio::error_code ignored;
-      asio::write(socket, asio::buffer(frame), ignored);
-    };
-    proto::test::readFrame(socket);  // Hello
-    send(proto::encodeHello(1 << 20, 1, "liar"));
-    proto::test::readFrame(socket);  // SceneQuery
-    send(proto::encodeSceneStatus(room.loaded.bundle.hash(), true));
+    const auto send = [&socket](const std::vector<std::uint8_t>& frame) { proto::test::writeFrame(socket, frame); };
+    greetHoldingTheRoom(socket, "liar");
     std::vector<std::uint8_t> first;
     int answered = 0;
     for (auto bytes = proto::test::readFrame(socket); !bytes.empty(); bytes = proto::test::readFrame(socket)) {
@@ -180,15 +182,8 @@ TEST(ManyServers, AStoppedServerStallsAndItsTilesGoElsewhere) {
 // request with bytes that are no Glint message.
 proto::test::Peer garbageServer() {
   return proto::test::Peer([](asio::ip::tcp::socket& socket) {
-    const auto send = [&socket](const std::vector<std::uint8_t>& bytes) {
-      asio::error_code ignored;
-      asio::write(socket, asio::buffer(bytes), ignored);
-    };
-    proto::test::readFrame(socket);  // Hello
-    send(proto::encodeHello(1 << 20, 1, "garbage"));
-    proto::test::readFrame(socket);  // SceneQuery
-    const Room room;
-    send(proto::encodeSceneStatus(room.loaded.bundle.hash(), true));
+    const auto send = [&socket](const std::vector<std::uint8_t>& bytes) { proto::test::writeFrame(socket, bytes); };
+    greetHoldingTheRoom(socket, "garbage");
     proto::test::readFrame(socket);  // FrameSetup
     proto::test::readFrame(socket);  // a TileRequest
     send({13, 0, 0, 0, 'n', 'o', 't', ' ', 'a', ' ', 'm', 'e', 's', 's', 'a', 'g', 'e'});

@@ -45,4 +45,10 @@ inline std::vector<std::uint8_t> readFrame(asio::ip::tcp::socket& socket) {
   return error ? std::vector<std::uint8_t>{} : body;
 }
 
+// Writes one frame whole; a client that closed already is not an error here.
+inline void writeFrame(asio::ip::tcp::socket& socket, const std::vector<std::uint8_t>& frame) {
+  asio::error_code ignored;
+  asio::write(socket, asio::buffer(frame), ignored);
+}
+
 }  // namespace glint::proto::test
