@@ -18,8 +18,8 @@ namespace glint {
 // extrapolates exactly; an occluding contour or a sharp crease between the
 // two does not). Requiring both sides keeps the pixels one further from the
 // edge out (their extrapolation crosses it from one side only): tracing
-// them too marked 55 % more pixels of the room and the glass scene for no
-// change in their error.
+// them too marked many more pixels of the thesis's scenes for no change in
+// their error (docs/hybrid.md).
 //
 // `surface` holds the raster's `object << kPixelMarkBits | mark` per pixel
 // and `depth` its depth (proportional to the distance along the view axis,

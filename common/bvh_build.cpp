@@ -27,8 +27,8 @@ struct Cursor {
 // threads of them) builds its second half on a thread of its own, the first
 // on the caller's: the same splits, and the same 8-wide tree as one thread
 // builds. The first such split, not only the root's: the bunny scene's root
-// splits off its floor, and its bunny forks a level down (build 0.87-0.94 ->
-// 0.81 ms; 4096, the old limit, kept it on one thread).
+// splits off its floor, and its bunny forks a level down (a higher limit
+// kept the bunny on one thread; docs/performance.md).
 constexpr std::size_t kParallelSubtree = 1024;
 
 // The SAH cost of a block leaf's two to kBlockTriangles triangles tested
@@ -228,9 +228,8 @@ class BvhBuilderImpl {
 
   // Bins per axis for a node of n primitives: 4 + n / 20, at most sahBins,
   // as Embree's BinMapping chooses them: most nodes are small, and 16 bins
-  // for a handful of primitives cost more than they found. 1M terrain
-  // triangles, one thread: 342-348 -> 295-300 ms, traversal as fast, the
-  // thesis scenes' RT units unchanged (docs/performance.md).
+  // for a handful of primitives cost more than they found: a faster build,
+  // traversal as fast (docs/performance.md).
   int binsFor(std::size_t n) const {
     const auto most = static_cast<std::size_t>(std::clamp(settings_.sahBins, 2, kMaxBins));
     return static_cast<int>(std::min(4 + n / 20, most));

@@ -91,8 +91,9 @@ struct Cut {
 // once (lane 3 unused). An axis whose centroids all lie in one plane is not
 // usable: nothing can be split along it. A centroid's bin is
 // (c - lo) * (bins / extent): the quotient once per node and a product per
-// primitive, where bins * ((c - lo) / extent) divided per primitive and cost
-// 7 % of the build (the two may differ by one bin within an ulp of a plane).
+// primitive, where bins * ((c - lo) / extent) divided per primitive, a
+// measurable share of the build (the two may differ by one bin within an
+// ulp of a plane).
 struct BinGrid {
   int bins;
   Float4 lo;
@@ -143,8 +144,8 @@ struct SahBins {
     }
   }
   // Bins prims a run at a time: the run's bins first, then the updates.
-  // Updating each bin as soon as it was computed took 3x as long (1M
-  // terrain triangles: 12.4 ms, now 3.6-4.1): most likely, an update's load
+  // Updating each bin as soon as it was computed took about three times as
+  // long (docs/performance.md): most likely, an update's load
   // ran before the previous update's store knew its address, was guessed not
   // to alias it, and was thrown away and redone where it did (neighbouring
   // primitives share bins). With the bins in memory, every address is known

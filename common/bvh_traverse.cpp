@@ -18,8 +18,8 @@ struct Pending {
 // Asks for the memory of a child the ray enters while the walk goes on: a
 // node's four cache lines, or every other line of a 320-byte block (as fast
 // as all five or six it straddles; a scalar leaf's primitives lie
-// elsewhere). Measured: 6-10 % more rays per second on the terrain
-// (docs/performance.md). Always inlined: GCC takes a function of nothing
+// elsewhere). More rays per second on large scenes (docs/performance.md).
+// Always inlined: GCC takes a function of nothing
 // but prefetches for one without effect and drops its calls.
 [[gnu::always_inline]] inline void prefetch(const std::vector<BvhNode>& nodes, const TriangleBlock* blocks,
                                             const Pending& child) {
@@ -67,8 +67,8 @@ template <typename V, bool Nearest, typename Visit>
     // Unused lanes hold empty boxes, which no ray enters: no mask needed.
     const unsigned hits = intersectSlabs(node.boxes, slabRay, 0.0f, tMax, entry);
     // Push the children hit, farthest first, so that the nearest is popped
-    // next. Unrolled, each lane's branch is predicted on its own: +5-9 %
-    // rays per second on the terrain (docs/performance.md).
+    // next. Unrolled, each lane's branch is predicted on its own: more rays
+    // per second (docs/performance.md).
     const int first = top;
 #pragma GCC unroll kBvhWidth
     for (int lane = 0; lane < kBvhWidth; ++lane) {
@@ -111,7 +111,7 @@ template <typename V, int kTested, typename Limit, typename Visit>
 
 // testLanes for a block leaf: a block of up to four triangles in one test
 // of four lanes (known at compile time to be one test: a loop that might
-// run twice cost the thesis's room 9 % of its rays per second), a larger
+// run twice cost rays per second; docs/performance.md), a larger
 // one V lanes at a time.
 template <typename V, typename Limit, typename Visit>
 [[gnu::always_inline]] inline bool testBlock(const TriangleBlock* blocks, const Pending& leaf, const Ray& ray,

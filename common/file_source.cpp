@@ -36,7 +36,8 @@ std::string DirectorySource::read(const std::string& path, const std::string& pl
     throw InputError(place + ": cannot open '" + full.string() + "' (" + std::strerror(errno) + ")");
   }
   // One read into a buffer of the file's size; a stream copy grew its
-  // buffer step by step (a 37 MB OBJ: 58 ms, now 7; docs/performance.md).
+  // buffer step by step, several times slower on a large OBJ
+  // (docs/performance.md).
   std::string bytes(size, '\0');
   in.read(bytes.data(), static_cast<std::streamsize>(size));
   const auto got = static_cast<std::size_t>(in.gcount());

@@ -66,8 +66,7 @@ inline bool avx2Available() {
 // halves. Not the one AVX2 instruction: the generic code of the slab and
 // leaf tests is compiled without AVX2 (and always inlined into the AVX2
 // queries), so GCC may not inline an AVX2 function into it, and the leaf
-// test called it three times (a spill and a call each; the terrain's rays
-// 4-5 % slower).
+// test called it three times (a spill and a call each: slower rays).
 [[gnu::always_inline]] inline unsigned laneBits(const Mask8& mask) {
   const Mask4 low = __builtin_shufflevector(mask, mask, 0, 1, 2, 3);
   const Mask4 high = __builtin_shufflevector(mask, mask, 4, 5, 6, 7);

@@ -40,7 +40,7 @@ Renderer::CameraSample Renderer::cameraSample(int x, int y, const SampleLayout::
 void Renderer::addSamples(int x, int y, int first, int end, PixelSamples& p, RayStats& stats) const {
   // The camera rays of a batch are made before any is traced: each is a
   // long chain of dependent multiplications, divisions and square roots,
-  // which the processor then overlaps (3-4 % of the room's RT unit).
+  // which the processor then overlaps.
   constexpr int kBatch = 8;
   const SampleLayout::Pixel key = sampleLayout_.pixel(x, y);
   for (int from = first; from < end; from += kBatch) {

@@ -18,8 +18,8 @@
 namespace glint {
 
 // The most triangles a block leaf holds: one eight-lane test. Blocks of
-// eight instead of four: the terrain's tree has half the nodes, and its
-// rays are 5 % faster (docs/performance.md).
+// eight instead of four: a large mesh's tree has half the nodes, and its
+// rays are faster (docs/performance.md).
 constexpr int kBlockTriangles = 8;
 
 // A block leaf's triangles side by side, structure of arrays:
