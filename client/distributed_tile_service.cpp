@@ -9,8 +9,6 @@ namespace glint {
 namespace {
 
 constexpr std::chrono::milliseconds kStep{5};          // how often stalls are checked while waiting
-constexpr std::chrono::seconds kFirstRetry{1};         // a lost server is tried again after 1, 2, 4 ... s
-constexpr std::chrono::seconds kLongestRetry{30};
 constexpr std::chrono::seconds kGoodbyeGrace{1};       // for the Goodbyes to be written at the end
 
 }  // namespace
@@ -35,15 +33,10 @@ struct DistributedTileService::Frame {
 
 DistributedTileService::DistributedTileService(std::vector<ServerAddress> servers, const proto::SceneBundle& bundle,
                                                const DistributedSettings& settings)
-    : paces_(servers.size()), bundle_(bundle), digest_(proto::digest(bundle)), settings_(settings) {
-  if (settings.tls.any()) {
-    if (settings.tls.ca.empty()) {
-      throw InputError("--tls-cert and --tls-key need --tls-ca: the CA that signed the servers' certificates");
-    }
-    tls_.emplace(proto::clientTlsContext(settings.tls));
-  }
-  for (ServerAddress& address : servers) servers_.push_back({std::move(address), nullptr, false, 0, {}, {}});
-  for (std::size_t i = 0; i < servers_.size(); ++i) connect(i);
+    : paces_(servers.size()),
+      digest_(proto::digest(bundle)),
+      settings_(settings),
+      servers_(io_, std::move(servers), bundle, digest_, settings.timeouts, settings.tls, *this) {
   while (settings.awaitOne && serversUp() == 0) {
     if (sceneError_) throw InputError(*sceneError_);
     throwIfHopeless();
@@ -52,16 +45,14 @@ DistributedTileService::DistributedTileService(std::vector<ServerAddress> server
 }
 
 DistributedTileService::~DistributedTileService() {
-  for (Server& s : servers_) {
-    if (s.link) s.link->close();
-  }
+  servers_.closeAll();
   io_.restart();
   io_.run_for(kGoodbyeGrace);
 }
 
 void DistributedTileService::awaitServers(std::chrono::milliseconds limit) {
   const auto deadline = std::chrono::steady_clock::now() + limit;
-  while (anyConnecting() && std::chrono::steady_clock::now() < deadline) {
+  while (servers_.anyConnecting() && std::chrono::steady_clock::now() < deadline) {
     if (io_.stopped()) io_.restart();
     io_.run_one_until(deadline);
   }
@@ -71,73 +62,28 @@ double DistributedTileService::nowMs() const {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - epoch_).count();
 }
 
-void DistributedTileService::connect(std::size_t index) {
-  Server& s = servers_[index];
-  if (s.link) s.link->detach();
-  s.everReady = false;
-  std::unique_ptr<LinkStream> stream = tls_ ? makeTlsStream(io_, *tls_, s.address.host) : makePlainStream(io_);
-  s.link = std::make_shared<ServerLink>(io_, std::move(stream), index, s.address.name, s.address.endpoint, bundle_,
-                                        digest_, settings_.timeouts);
-  s.link->start(*this);
-}
+std::size_t DistributedTileService::serversUp() const { return servers_.up(); }
 
-// Servers lost in earlier frames get another chance once their backoff ends.
-void DistributedTileService::retryLost() {
-  const auto now = std::chrono::steady_clock::now();
-  for (std::size_t i = 0; i < servers_.size(); ++i) {
-    if (servers_[i].link->failed() && now >= servers_[i].retryAt) connect(i);
-  }
-}
+bool DistributedTileService::uploaded() const { return servers_.anyUploaded(); }
 
-std::size_t DistributedTileService::serversUp() const {
-  return static_cast<std::size_t>(
-      std::count_if(servers_.begin(), servers_.end(), [](const Server& s) { return s.link->ready(); }));
-}
-
-bool DistributedTileService::anyConnecting() const {
-  return std::any_of(servers_.begin(), servers_.end(),
-                     [](const Server& s) { return !s.link->ready() && !s.link->failed(); });
-}
-
-bool DistributedTileService::uploaded() const {
-  return std::any_of(servers_.begin(), servers_.end(), [](const Server& s) { return s.link->uploaded(); });
-}
-
-int DistributedTileService::parallelism() const {
-  int threads = 0;
-  for (const Server& s : servers_) threads += s.link->ready() ? s.link->threads() : 0;
-  return std::max(1, threads);
-}
+int DistributedTileService::parallelism() const { return std::max(1, servers_.threadsUp()); }
 
 // No server serves the frame and none is still on its way: one line each.
 void DistributedTileService::throwIfHopeless() const {
-  if (anyConnecting() || (frame_ ? frame_->dispatcher.liveServers() > 0 : serversUp() > 0)) return;
-  std::string message = "no glintd can serve this frame:";
-  for (const Server& s : servers_) {
-    message += "\n  server " + s.address.name + ": " + std::string(enumWord(s.report.state)) + ", " + s.report.why;
-  }
-  throw InputError(message);
+  if (servers_.anyConnecting() || (frame_ ? frame_->dispatcher.liveServers() > 0 : serversUp() > 0)) return;
+  throw InputError("no glintd can serve this frame:" + servers_.states());
 }
 
 void DistributedTileService::linkReady(ServerLink& link) {
-  Server& s = servers_[link.index()];
-  s.everReady = true;
-  s.failures = 0;
-  s.report.state = ServerState::kOk;
-  s.report.why.clear();
+  servers_.ready(link.index());
   paces_[link.index()].threads = link.threads();
   if (frame_) joinFrame(link.index());
 }
 
 void DistributedTileService::linkFailed(ServerLink& link, const LinkFailure& failure) {
-  Server& s = servers_[link.index()];
-  s.report.state = s.everReady ? ServerState::kLost : ServerState::kUnreachable;
-  s.report.why = failure.what;
-  ++s.failures;
-  const auto backoff = std::min<std::chrono::seconds>(kFirstRetry * (1 << std::min(s.failures - 1, 5)), kLongestRetry);
-  s.retryAt = std::chrono::steady_clock::now() + backoff;
+  servers_.failed(link.index(), failure);
   if (failure.kind == LinkFailure::Kind::kSceneError && !sceneError_) {
-    sceneError_ = "server " + s.address.name + ": " + failure.what;
+    sceneError_ = "server " + servers_[link.index()].address.name + ": " + failure.what;
   }
   if (!frame_ || !frame_->dispatcher.joined(link.index()) || frame_->dispatcher.lost(link.index())) return;
   if (failure.kind != LinkFailure::Kind::kBadBytes) {
@@ -186,7 +132,7 @@ void DistributedTileService::deliverFrame(Frame& frame) {
 
 void DistributedTileService::render(const FrameSettings& settings, std::span<const TileJob> jobs,
                                     const std::function<void(std::size_t, TileOutput&&)>& done) {
-  retryLost();
+  servers_.retryLost();
   std::vector<std::size_t> sent;
   for (std::size_t j = 0; j < jobs.size(); ++j) {
     if (tracedPixels(jobs[j]) > 0) {
@@ -218,7 +164,7 @@ void DistributedTileService::render(const FrameSettings& settings, std::span<con
       step();
     }
   } catch (...) {
-    for (Server& s : servers_) s.link->cancel(frame.id, {});
+    for (ServerPool::Server& s : servers_.all()) s.link->cancel(frame.id, {});
     throw;
   }
   frame.dispatcher.finish();
@@ -243,7 +189,9 @@ void DistributedTileService::step() {
 
 void DistributedTileService::beginFrame() {
   report_ = {};
-  for (Server& s : servers_) s.report = {s.address.name, s.report.state, s.report.why, 0, 0, {}, 0.0, 0.0, 0, 0};
+  for (ServerPool::Server& s : servers_.all()) {
+    s.report = {s.address.name, s.report.state, s.report.why, 0, 0, {}, 0.0, 0.0, 0, 0};
+  }
   costs_.nextFrame();
 }
 
@@ -254,7 +202,7 @@ void DistributedTileService::startReport(Frame& frame) {
     report_.masks.push_back(job.mask);
   }
   report_.deliveredBy.resize(report_.rects.size(), -1);
-  for (Server& s : servers_) {
+  for (const ServerPool::Server& s : servers_.all()) {
     frame.bytesIn.push_back(s.link->bytesReceived());
     frame.bytesOut.push_back(s.link->bytesSent());
   }
@@ -269,7 +217,7 @@ void DistributedTileService::finishReport(const Frame& frame) {
   }
   report_.servers.clear();
   for (std::size_t i = 0; i < servers_.size(); ++i) {
-    Server& s = servers_[i];
+    ServerPool::Server& s = servers_[i];
     if (!s.link->ready() && !s.link->failed()) {
       s.report.state = ServerState::kUnreachable;
       s.report.why = "not ready yet (connecting, or receiving and building the scene)";

@@ -12,6 +12,7 @@
 #include "client/distribution_report.h"
 #include "client/server_link.h"
 #include "client/server_list.h"
+#include "client/server_pool.h"
 #include "client/tile_cost_model.h"
 #include "client/tile_dispatcher.h"
 #include "common/tile_service.h"
@@ -63,14 +64,6 @@ class DistributedTileService : public TileService, private LinkListener {
   bool uploaded() const;
 
  private:
-  struct Server {
-    ServerAddress address;
-    std::shared_ptr<ServerLink> link;
-    bool everReady = false;  // in this link's life
-    int failures = 0;        // in a row, for the retry backoff
-    std::chrono::steady_clock::time_point retryAt;
-    ServerReport report;     // this frame's
-  };
   struct Frame;  // the frame being rendered
 
   // LinkListener
@@ -78,13 +71,10 @@ class DistributedTileService : public TileService, private LinkListener {
   void linkResult(ServerLink& link, std::uint32_t frameId, std::uint32_t tileId, TileOutput&& out) override;
   void linkFailed(ServerLink& link, const LinkFailure& failure) override;
 
-  void connect(std::size_t index);
-  void retryLost();
   void joinFrame(std::size_t index);
   // Runs the I/O context for a moment, then loses stalled servers and sends
   // what the dispatcher assigns.
   void step();
-  bool anyConnecting() const;
   void throwIfHopeless() const;
   void deliverFrame(Frame& frame);
   void startReport(Frame& frame);
@@ -92,12 +82,10 @@ class DistributedTileService : public TileService, private LinkListener {
   double nowMs() const;
 
   asio::io_context io_;
-  std::vector<Server> servers_;
   std::vector<ServerPace> paces_;
-  const proto::SceneBundle& bundle_;
   proto::BundleDigest digest_;
   DistributedSettings settings_;
-  std::optional<asio::ssl::context> tls_;
+  ServerPool servers_;  // after io_, digest_ and settings_, which its links use
   std::chrono::steady_clock::time_point epoch_ = std::chrono::steady_clock::now();
   std::uint32_t frameId_ = 0;
   std::unique_ptr<Frame> frame_;  // from render()'s start to its end; none between frames

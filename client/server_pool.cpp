@@ -1,0 +1,97 @@
+#include "client/server_pool.h"
+
+#include <algorithm>
+
+#include "common/error.h"
+
+namespace glint {
+namespace {
+
+constexpr std::chrono::seconds kFirstRetry{1};  // a lost server is tried again after 1, 2, 4 ... s
+constexpr std::chrono::seconds kLongestRetry{30};
+
+}  // namespace
+
+ServerPool::ServerPool(asio::io_context& io, std::vector<ServerAddress> addresses, const proto::SceneBundle& bundle,
+                       const proto::BundleDigest& digest, const LinkTimeouts& timeouts, const proto::TlsFiles& tls,
+                       LinkListener& listener)
+    : io_(io), bundle_(bundle), digest_(digest), timeouts_(timeouts), listener_(listener) {
+  if (tls.any()) {
+    if (tls.ca.empty()) {
+      throw InputError("--tls-cert and --tls-key need --tls-ca: the CA that signed the servers' certificates");
+    }
+    tls_.emplace(proto::clientTlsContext(tls));
+  }
+  for (ServerAddress& address : addresses) servers_.push_back({std::move(address), nullptr, false, 0, {}, {}});
+  for (std::size_t i = 0; i < servers_.size(); ++i) connect(i);
+}
+
+void ServerPool::connect(std::size_t index) {
+  Server& s = servers_[index];
+  if (s.link) s.link->detach();
+  s.everReady = false;
+  std::unique_ptr<LinkStream> stream = tls_ ? makeTlsStream(io_, *tls_, s.address.host) : makePlainStream(io_);
+  s.link = std::make_shared<ServerLink>(io_, std::move(stream), index, s.address.name, s.address.endpoint, bundle_,
+                                        digest_, timeouts_);
+  s.link->start(listener_);
+}
+
+void ServerPool::closeAll() {
+  for (Server& s : servers_) {
+    if (s.link) s.link->close();
+  }
+}
+
+void ServerPool::retryLost() {
+  const auto now = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < servers_.size(); ++i) {
+    if (servers_[i].link->failed() && now >= servers_[i].retryAt) connect(i);
+  }
+}
+
+void ServerPool::ready(std::size_t index) {
+  Server& s = servers_[index];
+  s.everReady = true;
+  s.failures = 0;
+  s.report.state = ServerState::kOk;
+  s.report.why.clear();
+}
+
+void ServerPool::failed(std::size_t index, const LinkFailure& failure) {
+  Server& s = servers_[index];
+  s.report.state = s.everReady ? ServerState::kLost : ServerState::kUnreachable;
+  s.report.why = failure.what;
+  ++s.failures;
+  const auto backoff = std::min<std::chrono::seconds>(kFirstRetry * (1 << std::min(s.failures - 1, 5)), kLongestRetry);
+  s.retryAt = std::chrono::steady_clock::now() + backoff;
+}
+
+std::size_t ServerPool::up() const {
+  return static_cast<std::size_t>(
+      std::count_if(servers_.begin(), servers_.end(), [](const Server& s) { return s.link->ready(); }));
+}
+
+bool ServerPool::anyConnecting() const {
+  return std::any_of(servers_.begin(), servers_.end(),
+                     [](const Server& s) { return !s.link->ready() && !s.link->failed(); });
+}
+
+bool ServerPool::anyUploaded() const {
+  return std::any_of(servers_.begin(), servers_.end(), [](const Server& s) { return s.link->uploaded(); });
+}
+
+int ServerPool::threadsUp() const {
+  int threads = 0;
+  for (const Server& s : servers_) threads += s.link->ready() ? s.link->threads() : 0;
+  return threads;
+}
+
+std::string ServerPool::states() const {
+  std::string lines;
+  for (const Server& s : servers_) {
+    lines += "\n  server " + s.address.name + ": " + std::string(enumWord(s.report.state)) + ", " + s.report.why;
+  }
+  return lines;
+}
+
+}  // namespace glint

@@ -1,0 +1,75 @@
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <asio.hpp>
+#include <asio/ssl.hpp>
+
+#include "client/distribution_report.h"
+#include "client/server_link.h"
+#include "client/server_list.h"
+#include "proto/scene_bundle.h"
+#include "proto/tls.h"
+
+namespace glint {
+
+// The servers a client renders through and a link to each, on one
+// io_context: all connected at once (over TLS where `tls` names files), each
+// lost one tried again after a backoff of 1, 2, 4 ... at most 30 s, each
+// with its report for the frame. Its links tell `listener`, which tells the
+// pool (ready(), failed()) before it does anything else.
+class ServerPool {
+ public:
+  struct Server {
+    ServerAddress address;
+    std::shared_ptr<ServerLink> link;
+    bool everReady = false;  // in this link's life
+    int failures = 0;        // in a row, for the backoff
+    std::chrono::steady_clock::time_point retryAt;
+    ServerReport report;  // this frame's
+  };
+
+  // Throws InputError for TLS files that cannot be used.
+  ServerPool(asio::io_context& io, std::vector<ServerAddress> addresses, const proto::SceneBundle& bundle,
+             const proto::BundleDigest& digest, const LinkTimeouts& timeouts, const proto::TlsFiles& tls,
+             LinkListener& listener);
+  ServerPool(const ServerPool&) = delete;
+  ServerPool& operator=(const ServerPool&) = delete;
+
+  // Each server's link says Goodbye (the io_context then writes them).
+  void closeAll();
+  // Servers lost earlier whose backoff has ended are connected again.
+  void retryLost();
+  void ready(std::size_t index);
+  void failed(std::size_t index, const LinkFailure& failure);
+
+  std::size_t size() const { return servers_.size(); }
+  Server& operator[](std::size_t index) { return servers_[index]; }
+  const Server& operator[](std::size_t index) const { return servers_[index]; }
+  std::vector<Server>& all() { return servers_; }
+  const std::vector<Server>& all() const { return servers_; }
+  std::size_t up() const;
+  bool anyConnecting() const;
+  bool anyUploaded() const;
+  int threadsUp() const;
+  // One line per server: its state and why.
+  std::string states() const;
+
+ private:
+  void connect(std::size_t index);
+
+  asio::io_context& io_;
+  const proto::SceneBundle& bundle_;
+  const proto::BundleDigest& digest_;
+  LinkTimeouts timeouts_;
+  std::optional<asio::ssl::context> tls_;
+  LinkListener& listener_;
+  std::vector<Server> servers_;
+};
+
+}  // namespace glint
