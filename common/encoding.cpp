@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "common/power.h"
-#include "common/renderer.h"
 
 namespace glint {
 
@@ -14,6 +13,11 @@ Encoder::Encoder(const OutputSettings& output)
 std::uint8_t Encoder::byte(float linear) const {
   const float v = std::clamp(linear * scale_, 0.0f, 1.0f);
   return toByte(srgb_ ? srgbEncode(v) : v);
+}
+
+std::uint8_t toByte(float v) {
+  const float c = std::clamp(v, 0.0f, 1.0f);  // NaN stays NaN; callers pass finite values
+  return static_cast<std::uint8_t>(std::lround(c * 255.0f));
 }
 
 float srgbEncode(float linear) {

@@ -31,4 +31,7 @@ class Encoder {
 // The sRGB transfer function (IEC 61966-2-1) of a value in [0, 1].
 float srgbEncode(float linear);
 
+// Linear [0, 1] -> 8 bits, rounded to nearest; values outside are clamped.
+std::uint8_t toByte(float v);
+
 }  // namespace glint

@@ -4,6 +4,8 @@
 #include <limits>
 #include <mutex>
 
+#include "common/encoding.h"
+
 namespace glint {
 
 LinearImage renderLinear(const Renderer& renderer, ThreadPool& pool, RayStats& stats, LinearRange range,

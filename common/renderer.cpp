@@ -22,11 +22,6 @@ Renderer::Renderer(const PreparedScene& prepared, const FrameSettings& frame, co
       sampleLayout_(frame.sampling),
       tracer_(prepared.scene(), prepared.bvh(), frame_.tracing, plan_) {}
 
-std::uint8_t toByte(float v) {
-  const float c = std::clamp(v, 0.0f, 1.0f);  // NaN stays NaN; callers pass finite values
-  return static_cast<std::uint8_t>(std::lround(c * 255.0f));
-}
-
 Renderer::CameraSample Renderer::cameraSample(int x, int y, const SampleLayout::Pixel& key, int sample) const {
   glm::vec2 offset{0.5f};
   if (plan_.antialiasing) {

@@ -80,7 +80,4 @@ class Renderer {
   Tracer tracer_;
 };
 
-// Linear [0, 1] -> 8 bits, rounded to nearest; values outside are clamped.
-std::uint8_t toByte(float v);
-
 }  // namespace glint

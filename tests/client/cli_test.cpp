@@ -13,7 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "common/image_io.h"
-#include "common/renderer.h"
+#include "common/encoding.h"
 #include "common/scene_budget.h"
 #include "tests/server/glintd_process.h"
 
