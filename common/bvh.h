@@ -92,6 +92,16 @@ constexpr int kBvhMaxDepth = 64;
 // A BVH over one Geometry, bound to it: its primitive ids mean nothing for
 // another, so the queries take only the ray. The geometry must outlive it and
 // stay where it is (PreparedScene keeps the two together).
+// What a builder makes (common/bvh_build.cpp and bvh_collapse.h) and hands
+// to the Bvh it builds, finished.
+struct BvhArrays {
+  std::vector<BvhNode> nodes;
+  std::vector<std::uint32_t> primIds;
+  std::unique_ptr<TriangleBlock[]> blocks;
+  std::size_t blockCount = 0;
+  int depth = 0;
+};
+
 class Bvh {
  public:
   Bvh() = default;  // empty: finds nothing
@@ -109,17 +119,16 @@ class Bvh {
   std::optional<Hit> intersect(const Ray& ray, float tMax, BoxTestWidth width) const;
   bool occluded(const Ray& ray, float tMax, BoxTestWidth width) const;
 
-  const std::vector<BvhNode>& nodes() const { return nodes_; }
+  const std::vector<BvhNode>& nodes() const { return arrays_.nodes; }
   // Every primitive once, each leaf's a range (a block leaf's too, though
   // traversal reads its ids from the block).
-  const std::vector<std::uint32_t>& primIds() const { return primIds_; }
-  std::span<const TriangleBlock> blocks() const { return {blocks_.get(), blockCount_}; }
+  const std::vector<std::uint32_t>& primIds() const { return arrays_.primIds; }
+  std::span<const TriangleBlock> blocks() const { return {arrays_.blocks.get(), arrays_.blockCount}; }
   // Levels of the binary tree the builder made (at most kBvhMaxDepth).
-  int depth() const { return depth_; }
+  int depth() const { return arrays_.depth; }
 
  private:
-  friend class BvhBuilderImpl;
-  friend class BvhCollapse;
+  Bvh(const Geometry& geometry, BvhArrays arrays) : geometry_(&geometry), arrays_(std::move(arrays)) {}
   // The queries with V (Float4 or Float8) lanes per box test instruction.
   template <typename V>
   std::optional<Hit> nearestHit(const Ray& ray, float tMax) const;
@@ -130,11 +139,7 @@ class Bvh {
   std::optional<Hit> nearestHitEight(const Ray& ray, float tMax) const;
   bool anyHitEight(const Ray& ray, float tMax) const;
   const Geometry* geometry_ = nullptr;
-  std::vector<BvhNode> nodes_;
-  std::vector<std::uint32_t> primIds_;
-  std::unique_ptr<TriangleBlock[]> blocks_;
-  std::size_t blockCount_ = 0;
-  int depth_ = 0;
+  BvhArrays arrays_;
 };
 
 }  // namespace glint

@@ -47,7 +47,8 @@ constexpr float kBlockTestCost = 1.5f;
 // 8-wide nodes.
 class BvhBuilderImpl {
  public:
-  BvhBuilderImpl(Bvh& bvh, const BvhSettings& settings) : bvh_(bvh), settings_(settings) {
+  BvhBuilderImpl(BvhArrays& out, const Geometry& geometry, const BvhSettings& settings)
+      : out_(out), geometry_(geometry), settings_(settings) {
     const unsigned threads = settings.buildThreads > 0 ? static_cast<unsigned>(settings.buildThreads)
                                                        : std::max(1u, std::thread::hardware_concurrency());
     forkLevels_ = static_cast<int>(std::bit_width(threads)) - 1;
@@ -67,11 +68,11 @@ class BvhBuilderImpl {
     split(prims, NodeBox::of(prims), 0, forkLevels_, cursor);
     // Leaves were made in place: a leaf's primitives are its range of the
     // partitioned array.
-    bvh_.primIds_.reserve(prims.size());
-    for (const BuildPrimitive& p : prims) bvh_.primIds_.push_back(p.id());
-    bvh_.depth_ = cursor.depth;
-    bvh_.nodes_.reserve(cursor.next / 3 + 1);
-    BvhCollapse(bvh_, binary_, leafCapacity(), forkLevels_ > 0).run(prims.size());
+    out_.primIds.reserve(prims.size());
+    for (const BuildPrimitive& p : prims) out_.primIds.push_back(p.id());
+    out_.depth = cursor.depth;
+    out_.nodes.reserve(cursor.next / 3 + 1);
+    BvhCollapse(out_, geometry_, binary_, leafCapacity(), forkLevels_ > 0).run(prims.size());
   }
 
  private:
@@ -237,7 +238,8 @@ class BvhBuilderImpl {
 
   static constexpr int kMaxLeafPrims = 255;  // BvhNode::count must hold it
 
-  Bvh& bvh_;
+  BvhArrays& out_;
+  const Geometry& geometry_;
   BinaryNode* binary_ = nullptr;            // the tree being built, then collapsed
   const BuildPrimitive* first_ = nullptr;   // the primitives' array, where primIds start
   const BvhSettings& settings_;
@@ -245,16 +247,14 @@ class BvhBuilderImpl {
 };
 
 Bvh Bvh::build(const Geometry& geometry, const BvhSettings& settings) {
-  Bvh bvh;
-  bvh.geometry_ = &geometry;
   std::vector<BuildPrimitive> prims;
   prims.reserve(geometry.primitiveCount());
   for (std::uint32_t i = 0; i < geometry.primitiveCount(); ++i) {
     prims.push_back({geometry.primitiveBounds(i), i, geometry.isSphere(i)});
   }
-  if (prims.empty()) return bvh;  // traversal of an empty tree finds nothing
-  BvhBuilderImpl(bvh, settings).build(prims);
-  return bvh;
+  BvhArrays arrays;
+  if (!prims.empty()) BvhBuilderImpl(arrays, geometry, settings).build(prims);  // an empty tree finds nothing
+  return Bvh(geometry, std::move(arrays));
 }
 
 }  // namespace glint

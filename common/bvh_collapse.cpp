@@ -21,10 +21,10 @@ constexpr std::size_t kFillerThreadFrom = 4096;
 std::uint32_t BvhCollapse::collapse(std::uint32_t index, const BvhLanePlan& plan) {
   std::array<std::uint32_t, kBvhWidth> children{};
   const int n = plan.lanesOf(index, children);
-  const auto wideIndex = static_cast<std::uint32_t>(bvh_.nodes_.size());
-  bvh_.nodes_.emplace_back();
-  for (int lane = n; lane < kBvhWidth; ++lane) bvh_.nodes_[wideIndex].boxes.set(lane, Bounds3{});
-  bvh_.nodes_[wideIndex].children = static_cast<std::uint8_t>(n);
+  const auto wideIndex = static_cast<std::uint32_t>(out_.nodes.size());
+  out_.nodes.emplace_back();
+  for (int lane = n; lane < kBvhWidth; ++lane) out_.nodes[wideIndex].boxes.set(lane, Bounds3{});
+  out_.nodes[wideIndex].children = static_cast<std::uint8_t>(n);
   for (int lane = 0; lane < n; ++lane) {
     const std::uint32_t child = children[static_cast<std::size_t>(lane)];
     const LaneUse use = plan.use(child);
@@ -37,7 +37,7 @@ std::uint32_t BvhCollapse::collapse(std::uint32_t index, const BvhLanePlan& plan
       offset = use == LaneUse::kBlock ? addBlock(range) : range.first;
       count = static_cast<std::uint16_t>(range.count | (use == LaneUse::kBlock ? kBlockLeaf : 0u));
     }
-    BvhNode& node = bvh_.nodes_[wideIndex];
+    BvhNode& node = out_.nodes[wideIndex];
     node.boxes.set(lane, binary_[child].bounds());
     node.offset[static_cast<std::size_t>(lane)] = offset;
     node.count[static_cast<std::size_t>(lane)] = count;
@@ -71,12 +71,12 @@ void BvhCollapse::run(std::size_t primCount) {
   const std::size_t capacity = primCount / 2 + 1;  // a block holds two primitives or more
   blockRanges_ = std::make_unique_for_overwrite<BlockRange[]>(capacity);
   // Untouched pages cost nothing: only the blocks made are ever written.
-  bvh_.blocks_ = std::make_unique_for_overwrite<TriangleBlock[]>(capacity);
+  out_.blocks = std::make_unique_for_overwrite<TriangleBlock[]>(capacity);
   const BvhLanePlan plan(binary_, 2 * primCount,
                          std::min<std::size_t>(kBlockTriangles, leafCapacity_),
                          [this](const BinaryNode& leaf) {
                            for (std::uint32_t i = leaf.offset; i < leaf.offset + leaf.count; ++i) {
-                             if (bvh_.geometry_->isSphere(bvh_.primIds_[i])) return false;
+                             if (geometry_.isSphere(out_.primIds[i])) return false;
                            }
                            return true;
                          });
@@ -104,23 +104,23 @@ void BvhCollapse::run(std::size_t primCount) {
     collapsed_.store(true, std::memory_order_release);
     filler.join();
   }
-  bvh_.blockCount_ = blocksMade_.load(std::memory_order_relaxed);
+  out_.blockCount = blocksMade_.load(std::memory_order_relaxed);
 }
 
 // Writes blocks [begin, end): their triangles' vertices copied side by
 // side, unused lanes zero.
 void BvhCollapse::fillBlocks(std::size_t begin, std::size_t end) {
-  const Geometry& g = *bvh_.geometry_;
+  const Geometry& g = geometry_;
   for (std::size_t b = begin; b < end; ++b) {
     TriangleBlock block{};
     for (std::uint32_t lane = 0; lane < blockRanges_[b].count; ++lane) {
-      const std::uint32_t prim = bvh_.primIds_[blockRanges_[b].first + lane];
+      const std::uint32_t prim = out_.primIds[blockRanges_[b].first + lane];
       const Triangle& t = g.triangles()[prim];
       block.vertices.set(static_cast<int>(lane), g.positions()[t.v[0]], g.positions()[t.v[1]],
                          g.positions()[t.v[2]]);
       block.prims[lane] = prim;
     }
-    bvh_.blocks_[b] = block;
+    out_.blocks[b] = block;
   }
 }
 

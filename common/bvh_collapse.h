@@ -42,15 +42,16 @@ struct BlockRange {
   std::uint32_t count;
 };
 
-// Fills bvh's nodes and blocks from the binary tree rooted at binary[0],
-// whose leaves index bvh's primIds (already written).
+// Fills the nodes and blocks of `out` from the binary tree rooted at
+// binary[0], whose leaves index out.primIds (already written).
 class BvhCollapse {
  public:
   // leafCapacity: the most primitives a leaf may hold (a block, at most
   // kBlockTriangles); twoThreads: whether the blocks may be filled on a
   // second thread.
-  BvhCollapse(Bvh& bvh, const BinaryNode* binary, std::size_t leafCapacity, bool twoThreads)
-      : bvh_(bvh), binary_(binary), leafCapacity_(leafCapacity), twoThreads_(twoThreads) {}
+  BvhCollapse(BvhArrays& out, const Geometry& geometry, const BinaryNode* binary, std::size_t leafCapacity,
+              bool twoThreads)
+      : out_(out), geometry_(geometry), binary_(binary), leafCapacity_(leafCapacity), twoThreads_(twoThreads) {}
 
   // Collapses the tree over primCount primitives and fills its blocks.
   void run(std::size_t primCount);
@@ -61,7 +62,8 @@ class BvhCollapse {
   std::uint32_t addBlock(BlockRange range);
   void fillBlocks(std::size_t begin, std::size_t end);
 
-  Bvh& bvh_;
+  BvhArrays& out_;
+  const Geometry& geometry_;
   const BinaryNode* binary_;
   std::size_t leafCapacity_;
   bool twoThreads_;

@@ -140,14 +140,14 @@ template <typename V>
     }
     return false;
   };
-  walk<V, true>(nodes_, blocks_.get(), ray, tMax, [&](const Pending& leaf) {
+  walk<V, true>(arrays_.nodes, arrays_.blocks.get(), ray, tMax, [&](const Pending& leaf) {
     if (leaf.count & kBlockLeaf) {
       // A later limit is at most this one once a hit is known; before, the
       // first hit's distance may round a little beyond tMax: no bound.
-      return testBlock<V>(blocks_.get(), leaf, ray, w, nearest ? limit() : kInfinity, limit, keep);
+      return testBlock<V>(arrays_.blocks.get(), leaf, ray, w, nearest ? limit() : kInfinity, limit, keep);
     }
     for (std::uint32_t i = leaf.offset; i < leaf.offset + leaf.count; ++i) {
-      const std::optional<Hit> hit = geometry_->intersect(primIds_[i], ray, w, limit());
+      const std::optional<Hit> hit = geometry_->intersect(arrays_.primIds[i], ray, w, limit());
       if (hit) keep(*hit);
     }
     return false;
@@ -159,14 +159,14 @@ template <typename V>
 [[gnu::always_inline]] inline bool Bvh::anyHit(const Ray& ray, float tMax) const {
   const WatertightRay w(ray);
   bool found = false;
-  walk<V, false>(nodes_, blocks_.get(), ray, tMax, [&](const Pending& leaf) {
+  walk<V, false>(arrays_.nodes, arrays_.blocks.get(), ray, tMax, [&](const Pending& leaf) {
     if (leaf.count & kBlockLeaf) {
       const auto stop = [](const Hit&) { return true; };
-      found = testBlock<V>(blocks_.get(), leaf, ray, w, tMax, [&] { return tMax; }, stop);
+      found = testBlock<V>(arrays_.blocks.get(), leaf, ray, w, tMax, [&] { return tMax; }, stop);
       return found;
     }
     for (std::uint32_t i = leaf.offset; i < leaf.offset + leaf.count; ++i) {
-      if (geometry_->intersect(primIds_[i], ray, w, tMax)) {
+      if (geometry_->intersect(arrays_.primIds[i], ray, w, tMax)) {
         found = true;
         return true;
       }
