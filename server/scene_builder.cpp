@@ -21,20 +21,20 @@ BuiltScene buildScene(const SceneJob& job, std::size_t maxSceneBytes, MemoryGaug
   const auto start = Clock::now();
   BuiltScene built;
   built.hash = job.hash;
+  const bool ofTheHash = job.bundle->hash() == job.hash;
   try {
-    if (job.bundle->hash() != job.hash) throw InputError("the scene's bytes do not match its hash");
+    if (!ofTheHash) throw InputError("the scene's bytes do not match its hash");
     LoadLimits limits;
     limits.maxSceneBytes = maxSceneBytes;
     SceneBudget budget(limits, "glintd --max-scene-mb", &buildMemory);
     built.prepared = std::make_shared<const PreparedScene>(proto::loadBundle(*job.bundle, budget), BvhSettings{});
   } catch (const BusyError& e) {
     built.error = e.what();
-    built.transient = true;
   } catch (const InputError& e) {
     built.error = e.what();
+    built.lasting = ofTheHash;
   } catch (const std::exception& e) {  // out of memory, for one
     built.error = std::string("cannot load the scene: ") + e.what();
-    built.transient = true;
   }
   cut(built.error);
   built.ms = msSince(start);

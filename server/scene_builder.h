@@ -20,7 +20,11 @@ struct BuiltScene {
   proto::SceneHash hash{};
   std::shared_ptr<const PreparedScene> prepared;  // null on error
   std::string error;                              // names the JSON path or the limit; at most kMaxErrorBytes
-  bool transient = false;  // refused for memory held by other builds then: the same scene may build later
+  // Refused for what the scene of this hash is: the same upload would be
+  // refused again. Not so when its bytes were not the hash's (another
+  // upload of the hash may be the real scene) or when memory held by other
+  // builds refused it (it may build later).
+  bool lasting = false;
   double ms = 0.0;
 };
 

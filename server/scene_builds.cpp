@@ -48,7 +48,7 @@ void SceneBuilds::run() {
     const BuiltScene built = buildScene(job, maxSceneBytes_, buildMemory_);
     lock.lock();
     ++built_;
-    if (!built.prepared && !built.transient) remember(built);
+    if (!built.prepared && built.lasting) remember(built);
     std::vector<Done> waiting = std::move(waiting_[job.hash]);
     waiting_.erase(job.hash);
     lock.unlock();

@@ -18,8 +18,9 @@ namespace glint::server {
 // build never holds a tracing thread: tiles of every client go on while a
 // scene is parsed and its BVH built. A scene whose build is queued or running
 // is built once for every client that uploads it meanwhile; a scene refused
-// for what it is (not for memory that other builds held at the time) is
-// refused again at once when it comes back, without a second parse.
+// for what it is (not for memory that other builds held at the time, nor
+// for bytes that were not its hash's) is refused again at once when it
+// comes back, without a second parse.
 class SceneBuilds {
  public:
   // Told on the builder thread; post to the I/O thread from there.

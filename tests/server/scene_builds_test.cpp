@@ -1,8 +1,8 @@
 // glintd's scene builds: one build for every client that uploads the same
 // scene while it is queued or running; a scene refused for what it is
-// refused again from memory; a refusal for memory others held is not
-// remembered; the builds run off the tracing pool (hostile_client_test
-// shows tiles going on meanwhile).
+// refused again from memory; a refusal for memory others held, or of bytes
+// that are not their hash's, is not remembered; the builds run off the
+// tracing pool (hostile_client_test shows tiles going on meanwhile).
 #include "server/scene_builds.h"
 
 #include <future>
@@ -64,7 +64,7 @@ TEST(SceneBuilds, ASceneRefusedForWhatItIsIsRefusedAgainWithoutABuild) {
   builds.build(job(bad), once.done());
   const BuiltScene refused = once.future.get();
   ASSERT_EQ(refused.prepared, nullptr);
-  EXPECT_FALSE(refused.transient);
+  EXPECT_TRUE(refused.lasting);
   builds.build(job(bad), again.done());
   EXPECT_EQ(again.future.get().error, refused.error);
   EXPECT_EQ(builds.built(), 1u);
@@ -77,11 +77,28 @@ TEST(SceneBuilds, ASceneRefusedForMemoryOthersHeldIsBuiltAgainWhenItComesBack) {
   Outcome once, again;
   builds.build(job(room()), once.done());
   const BuiltScene refused = once.future.get();
-  EXPECT_TRUE(refused.transient);
+  EXPECT_FALSE(refused.lasting);
   EXPECT_NE(refused.error.find("try again later"), std::string::npos) << refused.error;
   gauge.give(gauge.capacity());
   builds.build(job(room()), again.done());
   EXPECT_NE(again.future.get().prepared, nullptr);
+  EXPECT_EQ(builds.built(), 2u);
+}
+
+// A client that uploads other bytes under a scene's hash is refused, and
+// the refusal is not remembered for that hash: the real scene, uploaded
+// next, builds (remembering it would let anyone refuse a scene to everyone).
+TEST(SceneBuilds, BytesThatAreNotTheHashsDoNotRefuseTheRealScene) {
+  MemoryGauge gauge(std::size_t{1} << 30, "the test gauge");
+  SceneBuilds builds(std::size_t{1} << 30, gauge);
+  Outcome forged, real;
+  builds.build({room().hash(), std::make_shared<const proto::SceneBundle>(proto::SceneBundle{"{}", {}})},
+               forged.done());
+  const BuiltScene refused = forged.future.get();
+  EXPECT_NE(refused.error.find("do not match its hash"), std::string::npos) << refused.error;
+  EXPECT_FALSE(refused.lasting);
+  builds.build(job(room()), real.done());
+  EXPECT_NE(real.future.get().prepared, nullptr);
   EXPECT_EQ(builds.built(), 2u);
 }
 
