@@ -189,6 +189,13 @@ TEST(HostileClient, SceneThatDecodesTooLargeIsRefusedNamingTheLimit) {
   EXPECT_EQ(renderRoom(glintd.address()).width, 48);
 }
 
+// JSON of `values` numbers in one array ("[1,1,...]").
+std::string longArray(int values) {
+  std::string text = "[";
+  for (int i = 1; i < values; ++i) text += "1,";
+  return text + "1]";
+}
+
 // Scene JSON that nests 20 million deep or holds a 15-million-value array
 // (40 and 30 MB, inside the message limit): each is measured and refused
 // before it is parsed, naming the nesting or the JSON's share of the
@@ -196,12 +203,9 @@ TEST(HostileClient, SceneThatDecodesTooLargeIsRefusedNamingTheLimit) {
 // would take (2.3-3.1 GB when they were parsed); a real client is served.
 TEST(HostileClient, DeepOrLongSceneJsonIsRefusedBeforeItsParse) {
   GlintdProcess glintd({"--max-scene-mb", "256", "--cache-mb", "512", "--max-memory-mb", "1024"});
-  std::string longArray = "[";
-  for (int i = 0; i < 15'000'000; ++i) longArray += "1,";
-  longArray += "1]";
   const std::pair<std::string, std::string> cases[] = {
       {std::string(20'000'000, '[') + std::string(20'000'000, ']'), "nests arrays and objects 20000000 deep"},
-      {std::move(longArray), "the scene's JSON (15000002 values): parsing it would take 457.8 MiB"}};
+      {longArray(15'000'001), "the scene's JSON (15000002 values): parsing it would take 457.8 MiB"}};
   const long before = glintd.peakResidentKb();
   for (const auto& [text, expected] : cases) {
     RawClient c(glintd.port());
@@ -216,13 +220,6 @@ TEST(HostileClient, DeepOrLongSceneJsonIsRefusedBeforeItsParse) {
   const long grownKb = glintd.peakResidentKb() - before;
   EXPECT_LT(grownKb, 400 * 1024) << "refusing the JSON grew glintd's peak by " << grownKb << " KiB";
   EXPECT_EQ(renderRoom(glintd.address()).width, 48);
-}
-
-// JSON of `values` numbers in one array ("[1,1,...]").
-std::string longArray(int values) {
-  std::string text = "[";
-  for (int i = 1; i < values; ++i) text += "1,";
-  return text + "1]";
 }
 
 // Under the default limits, the costliest JSON a client can send: 30

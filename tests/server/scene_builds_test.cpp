@@ -33,9 +33,14 @@ struct Outcome {
   }
 };
 
-TEST(SceneBuilds, UploadsOfOneSceneWhileItIsQueuedAreBuiltOnce) {
-  MemoryGauge gauge(std::size_t{1} << 30, "the test gauge");
-  SceneBuilds builds(std::size_t{1} << 30, gauge);
+// A gigabyte for each scene and for the builds together.
+class SceneBuildsTest : public ::testing::Test {
+ protected:
+  MemoryGauge gauge{std::size_t{1} << 30, "the test gauge"};
+  SceneBuilds builds{std::size_t{1} << 30, gauge};
+};
+
+TEST_F(SceneBuildsTest, UploadsOfOneSceneWhileItIsQueuedAreBuiltOnce) {
   // The first build's answer holds the builder until both copies of the
   // second scene are asked for.
   std::promise<void> release;
@@ -56,9 +61,7 @@ TEST(SceneBuilds, UploadsOfOneSceneWhileItIsQueuedAreBuiltOnce) {
   EXPECT_FALSE(first.future.get().error.empty());
 }
 
-TEST(SceneBuilds, ASceneRefusedForWhatItIsIsRefusedAgainWithoutABuild) {
-  MemoryGauge gauge(std::size_t{1} << 30, "the test gauge");
-  SceneBuilds builds(std::size_t{1} << 30, gauge);
+TEST_F(SceneBuildsTest, ASceneRefusedForWhatItIsIsRefusedAgainWithoutABuild) {
   const proto::SceneBundle bad{R"({"glint": 1, "objects": [{"type": "sphere", "radius": -1}]})", {}};
   Outcome once, again;
   builds.build(job(bad), once.done());
@@ -70,9 +73,7 @@ TEST(SceneBuilds, ASceneRefusedForWhatItIsIsRefusedAgainWithoutABuild) {
   EXPECT_EQ(builds.built(), 1u);
 }
 
-TEST(SceneBuilds, ASceneRefusedForMemoryOthersHeldIsBuiltAgainWhenItComesBack) {
-  MemoryGauge gauge(std::size_t{1} << 30, "the test gauge");
-  SceneBuilds builds(std::size_t{1} << 30, gauge);
+TEST_F(SceneBuildsTest, ASceneRefusedForMemoryOthersHeldIsBuiltAgainWhenItComesBack) {
   ASSERT_TRUE(gauge.take(gauge.capacity()));  // other builds hold it all
   Outcome once, again;
   builds.build(job(room()), once.done());
@@ -88,9 +89,7 @@ TEST(SceneBuilds, ASceneRefusedForMemoryOthersHeldIsBuiltAgainWhenItComesBack) {
 // A client that uploads other bytes under a scene's hash is refused, and
 // the refusal is not remembered for that hash: the real scene, uploaded
 // next, builds (remembering it would let anyone refuse a scene to everyone).
-TEST(SceneBuilds, BytesThatAreNotTheHashsDoNotRefuseTheRealScene) {
-  MemoryGauge gauge(std::size_t{1} << 30, "the test gauge");
-  SceneBuilds builds(std::size_t{1} << 30, gauge);
+TEST_F(SceneBuildsTest, BytesThatAreNotTheHashsDoNotRefuseTheRealScene) {
   Outcome forged, real;
   builds.build({room().hash(), std::make_shared<const proto::SceneBundle>(proto::SceneBundle{"{}", {}})},
                forged.done());
@@ -102,9 +101,7 @@ TEST(SceneBuilds, BytesThatAreNotTheHashsDoNotRefuseTheRealScene) {
   EXPECT_EQ(builds.built(), 2u);
 }
 
-TEST(SceneBuilds, ARefusalQuotingAHugeKeyIsCut) {
-  MemoryGauge gauge(std::size_t{1} << 30, "the test gauge");
-  SceneBuilds builds(std::size_t{1} << 30, gauge);
+TEST_F(SceneBuildsTest, ARefusalQuotingAHugeKeyIsCut) {
   const proto::SceneBundle bad{"{\"glint\": 1, \"" + std::string(1 << 20, 'k') + "\": 0}", {}};
   Outcome once;
   builds.build(job(bad), once.done());
