@@ -11,12 +11,12 @@
 #include "client/offscreen_context.h"
 #include "client/raster_scene.h"
 #include "client/scene_warnings.h"
-#include "common/error.h"
-#include "common/frame_limits.h"
-#include "common/image_io.h"
-#include "common/linear_image.h"
-#include "common/load_limits.h"
-#include "common/timing.h"
+#include "common/base/error.h"
+#include "common/scene/frame_limits.h"
+#include "common/image/image_write.h"
+#include "common/render/linear_frame.h"
+#include "common/scene/load_limits.h"
+#include "common/base/timing.h"
 #include "proto/scene_bundle.h"
 
 namespace glint {

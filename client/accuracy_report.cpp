@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "common/error.h"
+#include "common/base/error.h"
 
 namespace glint {
 namespace {

@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "common/frame.h"
-#include "common/image_metrics.h"
-#include "common/ray_stats.h"
+#include "common/render/frame.h"
+#include "common/image/image_metrics.h"
+#include "common/render/ray_stats.h"
 
 namespace glint {
 

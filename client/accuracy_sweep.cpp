@@ -4,8 +4,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "common/error.h"
-#include "common/frame_limits.h"
+#include "common/base/error.h"
+#include "common/scene/frame_limits.h"
 
 namespace glint {
 namespace {

@@ -6,8 +6,8 @@
 #include <utility>
 #include <vector>
 
-#include "common/enum_words.h"
-#include "common/scene.h"
+#include "common/base/enum_words.h"
+#include "common/scene/scene.h"
 
 namespace glint {
 

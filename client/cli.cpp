@@ -17,9 +17,9 @@
 #include "client/accuracy_command.h"
 #include "client/render_command.h"
 #include "client/view_command.h"
-#include "common/build_identity.h"
-#include "common/error.h"
-#include "common/frame_limits.h"
+#include "common/base/build_identity.h"
+#include "common/base/error.h"
+#include "common/scene/frame_limits.h"
 
 namespace glint {
 namespace {
@@ -112,7 +112,7 @@ void addCameraOptions(CLI::App* app, FrameOverrides& o) {
   app->add_option("--fov", o.fovY, "Vertical field of view in degrees")->check(CLI::Range(0.001f, 179.0f));
 }
 
-// An option that takes one of an enum's words (common/enum_words.h); the
+// An option that takes one of an enum's words (common/base/enum_words.h); the
 // words are listed in --help and in the error for any other.
 template <typename Enum>
 CLI::Option* addEnumOption(CLI::App* app, const std::string& name, std::optional<Enum>& target,

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <numeric>
 
-#include "common/error.h"
+#include "common/base/error.h"
 
 namespace glint {
 namespace {

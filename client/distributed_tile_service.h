@@ -15,7 +15,7 @@
 #include "client/server_pool.h"
 #include "client/tile_cost_model.h"
 #include "client/tile_dispatcher.h"
-#include "common/tile_service.h"
+#include "common/render/tile_service.h"
 #include "proto/scene_bundle.h"
 #include "proto/tls.h"
 

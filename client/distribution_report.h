@@ -7,9 +7,9 @@
 #include <utility>
 #include <vector>
 
-#include "common/enum_words.h"
-#include "common/ray_stats.h"
-#include "common/tile.h"
+#include "common/base/enum_words.h"
+#include "common/render/ray_stats.h"
+#include "common/render/tile.h"
 
 namespace glint {
 
@@ -47,7 +47,7 @@ struct DistributionReport {
   std::size_t reissuedTiles = 0;    // taken again from a lost server
   std::size_t duplicatedTiles = 0;  // copies of the last bucket sent to an idle server
   std::vector<TileRect> rects;      // the frame's tiles
-  std::vector<std::vector<std::uint8_t>> masks;  // per tile: its traced pixels (common/tile.h bits; empty: all)
+  std::vector<std::vector<std::uint8_t>> masks;  // per tile: its traced pixels (common/render/tile.h bits; empty: all)
   std::vector<int> deliveredBy;     // per tile: the server's index, -1 when nothing was traced
   std::vector<bool> reissued;       // per tile
 };

@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "common/load_limits.h"
+#include "common/scene/load_limits.h"
 
 namespace glint {
 

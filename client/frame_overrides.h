@@ -4,7 +4,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "common/scene.h"
+#include "common/scene/scene.h"
 
 namespace glint {
 

@@ -8,8 +8,8 @@
 
 #include "client/pixel_mark.h"
 #include "client/raster_edges.h"
-#include "common/error.h"
-#include "common/timing.h"
+#include "common/base/error.h"
+#include "common/base/timing.h"
 
 namespace glint {
 namespace {

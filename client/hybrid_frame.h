@@ -7,8 +7,8 @@
 
 #include "client/gl_api.h"
 #include "client/raster_scene.h"
-#include "common/frame.h"
-#include "common/tile_service.h"
+#include "common/render/frame.h"
+#include "common/render/tile_service.h"
 
 namespace glint {
 

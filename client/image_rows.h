@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "client/gl_api.h"
-#include "common/tile.h"
+#include "common/render/tile.h"
 
 namespace glint {
 

@@ -10,8 +10,8 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
-#include "common/bvh.h"
-#include "common/region_query.h"
+#include "common/geometry/bvh.h"
+#include "common/geometry/region_query.h"
 
 namespace glint::gl {
 namespace {

@@ -7,7 +7,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "common/scene.h"
+#include "common/scene/scene.h"
 
 namespace glint::gl {
 
@@ -35,7 +35,7 @@ struct ShadowSpot {
 // corners they share, and anything lying in the triangle's plane touches
 // only its base), and all of a sphere's lit side when nothing enters a
 // square pyramid from the light around the sphere, up to the plane through
-// its centre (common/region_query.h). What does enter a triangle's
+// its centre (common/geometry/region_query.h). What does enter a triangle's
 // tetrahedron, projected from the light onto the triangle's plane, bounds
 // its spot. The answer is conservative throughout.
 struct LightProof {

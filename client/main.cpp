@@ -1,5 +1,5 @@
 #include "client/cli.h"
-#include "common/heap_tuning.h"
+#include "common/base/heap_tuning.h"
 
 int main(int argc, char** argv) {
   glint::keepFreedMemoryForReuse();

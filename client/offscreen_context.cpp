@@ -2,7 +2,7 @@
 
 #include <GL/osmesa.h>
 
-#include "common/error.h"
+#include "common/base/error.h"
 
 #if defined(__SANITIZE_ADDRESS__)
 // Mesa's OSMesa keeps about 480 bytes per context after

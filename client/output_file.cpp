@@ -11,8 +11,8 @@
 #include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfOutputFile.h>
 
-#include "common/error.h"
-#include "common/image_io.h"
+#include "common/base/error.h"
+#include "common/image/image_write.h"
 
 namespace glint {
 namespace {

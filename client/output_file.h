@@ -3,9 +3,9 @@
 #include <filesystem>
 #include <string>
 
-#include "common/enum_words.h"
-#include "common/frame.h"
-#include "common/linear_image.h"
+#include "common/base/enum_words.h"
+#include "common/render/frame.h"
+#include "common/image/linear_image.h"
 
 namespace glint {
 

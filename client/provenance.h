@@ -5,7 +5,7 @@
 #include <string>
 
 #include "client/distribution_report.h"
-#include "common/frame.h"
+#include "common/render/frame.h"
 
 namespace glint {
 

@@ -11,10 +11,10 @@
 
 #include "client/pixel_mark.h"
 #include "client/shadow_rects.h"
-#include "common/encoding.h"
-#include "common/error.h"
-#include "common/mask_rule.h"
-#include "common/timing.h"
+#include "common/image/encoding.h"
+#include "common/base/error.h"
+#include "common/render/mask_rule.h"
+#include "common/base/timing.h"
 
 namespace glint::gl {
 namespace {

@@ -14,9 +14,9 @@
 #include "client/raster_target.h"
 #include "client/shadow_rects.h"
 #include "client/shadow_maps.h"
-#include "common/bounds.h"
-#include "common/effects.h"
-#include "common/scene.h"
+#include "common/geometry/bounds.h"
+#include "common/render/effects.h"
+#include "common/scene/scene.h"
 
 namespace glint::gl {
 

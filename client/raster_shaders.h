@@ -5,10 +5,10 @@
 namespace glint::gl {
 
 // GLSL sources of the raster pass. The fragment shaders compute exactly the
-// tracer's direct lighting (common/shading.cpp, common/tracer.cpp Tracer::shade;
+// tracer's direct lighting (common/render/shading.cpp, common/render/tracer.cpp Tracer::shade;
 // shadow rays answered by the shadow maps where they can decide, see
 // client/shadow_maps.h): the same terms, face-forwarded normals, attenuation,
-// checker index and image lookups (common/texture.cpp).
+// checker index and image lookups (common/scene/texture.cpp).
 //
 // Each material is drawn by a program made for what it needs (a variant):
 // llvmpipe runs both sides of every branch of a fragment shader, so a term a

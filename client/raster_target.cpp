@@ -3,7 +3,7 @@
 #include <string>
 
 #include "client/image_rows.h"
-#include "common/error.h"
+#include "common/base/error.h"
 
 namespace glint::gl {
 

@@ -6,9 +6,9 @@
 
 #include "client/frame_overrides.h"
 #include "client/tile_backend.h"
-#include "common/bvh.h"
-#include "common/scene.h"
-#include "common/tile.h"
+#include "common/geometry/bvh.h"
+#include "common/scene/scene.h"
+#include "common/render/tile.h"
 
 namespace glint {
 

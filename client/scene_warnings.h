@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <string>
 
-#include "common/scene.h"
+#include "common/scene/scene.h"
 
 namespace glint {
 

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "common/build_identity.h"
-#include "common/printable.h"
+#include "common/base/build_identity.h"
+#include "common/base/printable.h"
 #include "proto/messages.h"
 
 namespace glint {

@@ -12,8 +12,8 @@
 #include <asio.hpp>
 
 #include "client/link_stream.h"
-#include "common/scene.h"
-#include "common/tile_service.h"
+#include "common/scene/scene.h"
+#include "common/render/tile_service.h"
 #include "proto/framing.h"
 #include "proto/scene_bundle.h"
 

@@ -5,7 +5,7 @@
 
 #include <asio.hpp>
 
-#include "common/error.h"
+#include "common/base/error.h"
 
 namespace glint {
 namespace {

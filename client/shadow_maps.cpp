@@ -7,7 +7,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "client/raster_shaders.h"
-#include "common/error.h"
+#include "common/base/error.h"
 
 namespace glint::gl {
 namespace {

@@ -7,8 +7,8 @@
 #include <glm/vec3.hpp>
 
 #include "client/gl_api.h"
-#include "common/bounds.h"
-#include "common/scene.h"
+#include "common/geometry/bounds.h"
+#include "common/scene/scene.h"
 
 namespace glint::gl {
 

@@ -9,8 +9,8 @@
 
 #include "client/distribution_report.h"
 #include "client/hybrid_frame.h"
-#include "common/effects.h"
-#include "common/ray_stats.h"
+#include "common/render/effects.h"
+#include "common/render/ray_stats.h"
 
 namespace glint {
 

@@ -4,10 +4,10 @@
 #include <optional>
 #include <string>
 
-#include "common/bvh.h"
-#include "common/prepared_scene.h"
-#include "common/thread_pool.h"
-#include "common/tile_service.h"
+#include "common/geometry/bvh.h"
+#include "common/render/prepared_scene.h"
+#include "common/base/thread_pool.h"
+#include "common/render/tile_service.h"
 #include "proto/scene_bundle.h"
 #include "proto/tls.h"
 

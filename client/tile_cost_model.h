@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "common/tile_service.h"
+#include "common/render/tile_service.h"
 
 namespace glint {
 

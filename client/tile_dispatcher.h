@@ -24,7 +24,7 @@ struct DispatchSettings {
 
 // Which server traces which tile of one frame: pure logic, no sockets, no
 // clock of its own (every call takes `now` in ms), so that it can be tested
-// and simulated in virtual time (tests/sim).
+// and simulated in virtual time (tests/support/dispatch_sim.h).
 //
 // - Tiles go out costliest first. A tile's cost is an estimate in any unit
 //   (masked pixels times the effect plan's depth, or last frame's measured

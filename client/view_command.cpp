@@ -19,8 +19,8 @@
 #include "client/raster_scene.h"
 #include "client/scene_warnings.h"
 #include "client/tile_backend.h"
-#include "common/error.h"
-#include "common/image_io.h"
+#include "common/base/error.h"
+#include "common/image/image_write.h"
 #include "proto/scene_bundle.h"
 
 namespace glint {

@@ -6,8 +6,8 @@
 
 #include "client/frame_overrides.h"
 #include "client/tile_backend.h"
-#include "common/bvh.h"
-#include "common/scene.h"
+#include "common/geometry/bvh.h"
+#include "common/scene/scene.h"
 
 namespace glint {
 

@@ -2,7 +2,7 @@
 
 #include <asio/ip/address.hpp>
 
-#include "common/error.h"
+#include "common/base/error.h"
 
 namespace glint::proto {
 

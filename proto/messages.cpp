@@ -4,10 +4,10 @@
 #include <climits>
 #include <cmath>
 
-#include "common/build_identity.h"
-#include "common/error.h"
-#include "common/finite.h"
-#include "common/frame_limits.h"
+#include "common/base/build_identity.h"
+#include "common/base/error.h"
+#include "common/math/finite.h"
+#include "common/scene/frame_limits.h"
 
 namespace glint::proto {
 namespace {

@@ -7,17 +7,17 @@
 #include <utility>
 #include <vector>
 
-#include "common/build_identity.h"
-#include "common/ray_stats.h"
-#include "common/scene.h"
-#include "common/tile.h"
+#include "common/base/build_identity.h"
+#include "common/render/ray_stats.h"
+#include "common/scene/scene.h"
+#include "common/render/tile.h"
 #include "proto/framing.h"
 #include "proto/scene_bundle.h"
 
 namespace glint::proto {
 
 // Encoders: each returns one framed message, ready to write.
-// Hello carries this build's identity (common/build_identity.h); a test may
+// Hello carries this build's identity (common/base/build_identity.h); a test may
 // pose as another build.
 std::vector<std::uint8_t> encodeHello(std::uint32_t maxMessageBytes, std::uint32_t threads,
                                       const std::string& software, const std::string& build = buildIdentity());

@@ -4,9 +4,9 @@
 
 #include <openssl/evp.h>
 
-#include "common/error.h"
-#include "common/file_source.h"
-#include "common/scene_load.h"
+#include "common/base/error.h"
+#include "common/base/file_source.h"
+#include "common/scene/scene_load.h"
 
 namespace glint::proto {
 namespace {

@@ -8,9 +8,9 @@
 #include <string_view>
 #include <vector>
 
-#include "common/load_limits.h"
-#include "common/scene.h"
-#include "common/scene_budget.h"
+#include "common/scene/load_limits.h"
+#include "common/scene/scene.h"
+#include "common/scene/scene_budget.h"
 
 namespace glint::proto {
 

@@ -8,7 +8,7 @@
 #include <openssl/ssl.h>
 #include <openssl/x509_vfy.h>
 
-#include "common/error.h"
+#include "common/base/error.h"
 
 namespace glint::proto {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <unordered_set>
 
-#include "common/timing.h"
+#include "common/base/timing.h"
 #include "proto/tls.h"
 #include "server/log.h"
 

@@ -6,7 +6,7 @@
 #include <ctime>
 #include <mutex>
 
-#include "common/printable.h"
+#include "common/base/printable.h"
 
 namespace glint::server {
 namespace {

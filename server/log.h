@@ -5,7 +5,7 @@
 namespace glint::server {
 
 // One line on stderr with a timestamp; safe from any thread. The line is
-// made printable (common/printable.h): what a client sent and the server
+// made printable (common/base/printable.h): what a client sent and the server
 // quotes cannot break it in two or drive a terminal.
 void logLine(const std::string& line);
 

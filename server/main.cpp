@@ -6,9 +6,9 @@
 
 #include <CLI/CLI.hpp>
 
-#include "common/build_identity.h"
-#include "common/error.h"
-#include "common/heap_tuning.h"
+#include "common/base/build_identity.h"
+#include "common/base/error.h"
+#include "common/base/heap_tuning.h"
 #include "server/log.h"
 #include "server/server.h"
 

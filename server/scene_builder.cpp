@@ -1,7 +1,7 @@
 #include "server/scene_builder.h"
 
-#include "common/error.h"
-#include "common/timing.h"
+#include "common/base/error.h"
+#include "common/base/timing.h"
 
 namespace glint::server {
 namespace {

@@ -3,8 +3,8 @@
 #include <memory>
 #include <string>
 
-#include "common/prepared_scene.h"
-#include "common/scene_budget.h"
+#include "common/render/prepared_scene.h"
+#include "common/scene/scene_budget.h"
 #include "proto/scene_bundle.h"
 
 namespace glint::server {

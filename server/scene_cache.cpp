@@ -1,6 +1,6 @@
 #include "server/scene_cache.h"
 
-#include "common/scene_budget.h"
+#include "common/scene/scene_budget.h"
 
 namespace glint::server {
 

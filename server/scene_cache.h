@@ -4,7 +4,7 @@
 #include <memory>
 #include <string>
 
-#include "common/prepared_scene.h"
+#include "common/render/prepared_scene.h"
 #include "server/lru_cache.h"
 
 namespace glint::server {

@@ -1,6 +1,6 @@
 #include "server/server.h"
 
-#include "common/error.h"
+#include "common/base/error.h"
 #include "proto/endpoint.h"
 #include "server/connection.h"
 #include "server/log.h"

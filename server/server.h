@@ -6,7 +6,7 @@
 
 #include <asio.hpp>
 
-#include "common/scene_budget.h"
+#include "common/scene/scene_budget.h"
 #include "server/connection_registry.h"
 #include "server/scene_builds.h"
 #include "server/scene_cache.h"

@@ -1,8 +1,8 @@
 #include "server/session.h"
 
-#include "common/error.h"
-#include "common/frame_limits.h"
-#include "common/timing.h"
+#include "common/base/error.h"
+#include "common/scene/frame_limits.h"
+#include "common/base/timing.h"
 #include "proto/messages.h"
 #include "server/log.h"
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "common/renderer.h"
-#include "common/tile.h"
+#include "common/render/renderer.h"
+#include "common/render/tile.h"
 #include "proto/framing.h"
 #include "server/scene_builder.h"
 #include "server/scene_cache.h"

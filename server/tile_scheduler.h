@@ -7,7 +7,7 @@
 #include <mutex>
 #include <optional>
 
-#include "common/thread_pool.h"
+#include "common/base/thread_pool.h"
 
 namespace glint::server {
 

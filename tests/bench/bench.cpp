@@ -18,16 +18,16 @@
 
 #include <CLI/CLI.hpp>
 
-#include "common/bvh.h"
-#include "common/error.h"
-#include "common/frame.h"
-#include "common/heap_tuning.h"
+#include "common/geometry/bvh.h"
+#include "common/base/error.h"
+#include "common/render/frame.h"
+#include "common/base/heap_tuning.h"
 #include "client/hybrid_frame.h"
 #include "client/offscreen_context.h"
 #include "client/raster_scene.h"
 #include "client/distributed_tile_service.h"
-#include "common/scene_load.h"
-#include "common/timing.h"
+#include "common/scene/scene_load.h"
+#include "common/base/timing.h"
 #include "proto/scene_bundle.h"
 #include "server/log.h"
 #include "server/background_server.h"

@@ -2,8 +2,8 @@
 
 #include <vector>
 
-#include "common/geometry.h"
-#include "common/ray.h"
+#include "common/geometry/geometry.h"
+#include "common/geometry/ray.h"
 
 namespace glint::bench {
 

@@ -8,10 +8,10 @@
 #include "client/hybrid_frame.h"
 #include "client/offscreen_context.h"
 #include "client/raster_scene.h"
-#include "common/timing.h"
+#include "common/base/timing.h"
 #include "proto/scene_bundle.h"
-#include "tests/server/glintd_process.h"
-#include "tests/sim/dispatch_sim.h"
+#include "tests/support/glintd_process.h"
+#include "tests/support/dispatch_sim.h"
 
 namespace glint::bench {
 namespace {

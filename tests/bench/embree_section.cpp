@@ -14,11 +14,11 @@
 #include <embree3/rtcore.h>
 #include <glm/geometric.hpp>
 
-#include "common/bvh.h"
-#include "common/camera.h"
-#include "common/optics.h"
-#include "common/scene_load.h"
-#include "common/timing.h"
+#include "common/geometry/bvh.h"
+#include "common/scene/camera.h"
+#include "common/render/optics.h"
+#include "common/scene/scene_load.h"
+#include "common/base/timing.h"
 #include "tests/bench/bench_scenes.h"
 
 namespace glint::bench {

@@ -8,12 +8,12 @@
 #include <vector>
 
 #include "client/distributed_tile_service.h"
-#include "common/error.h"
-#include "common/frame.h"
-#include "common/thread_pool.h"
-#include "common/timing.h"
+#include "common/base/error.h"
+#include "common/render/frame.h"
+#include "common/base/thread_pool.h"
+#include "common/base/timing.h"
 #include "proto/scene_bundle.h"
-#include "tests/server/glintd_process.h"
+#include "tests/support/glintd_process.h"
 
 namespace glint::bench {
 namespace {

@@ -11,9 +11,9 @@
 #include <assimp/scene.h>
 #include <tiny_obj_loader.h>
 
-#include "common/file_source.h"
-#include "common/obj_load.h"
-#include "common/timing.h"
+#include "common/base/file_source.h"
+#include "common/scene/obj_load.h"
+#include "common/base/timing.h"
 #include "tests/bench/bench_scenes.h"
 
 namespace glint::bench {

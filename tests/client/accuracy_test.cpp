@@ -13,9 +13,9 @@
 #include "client/accuracy_command.h"
 #include "client/accuracy_report.h"
 #include "client/accuracy_sweep.h"
-#include "common/error.h"
-#include "common/image_metrics.h"
-#include "tests/common/test_support.h"
+#include "common/base/error.h"
+#include "common/image/image_metrics.h"
+#include "tests/support/test_support.h"
 
 namespace glint {
 namespace {

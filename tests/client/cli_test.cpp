@@ -12,10 +12,10 @@
 
 #include <gtest/gtest.h>
 
-#include "common/image_io.h"
-#include "common/encoding.h"
-#include "common/scene_budget.h"
-#include "tests/server/glintd_process.h"
+#include "common/scene/image_decode.h"
+#include "common/image/encoding.h"
+#include "common/scene/scene_budget.h"
+#include "tests/support/glintd_process.h"
 
 namespace {
 

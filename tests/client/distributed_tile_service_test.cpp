@@ -7,11 +7,11 @@
 
 #include <gtest/gtest.h>
 
-#include "common/build_identity.h"
-#include "common/error.h"
+#include "common/base/build_identity.h"
+#include "common/base/error.h"
 #include "proto/messages.h"
-#include "tests/proto/hostile_frames.h"
-#include "tests/proto/loopback_peer.h"
+#include "tests/support/hostile_frames.h"
+#include "tests/support/loopback_peer.h"
 
 namespace glint {
 namespace {

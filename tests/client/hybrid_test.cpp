@@ -14,15 +14,15 @@
 #include "client/provenance.h"
 #include "client/raster_scene.h"
 #include "client/distributed_tile_service.h"
-#include "common/encoding.h"
-#include "common/file_source.h"
-#include "common/mask_rule.h"
-#include "common/scene_load.h"
-#include "common/renderer.h"
+#include "common/image/encoding.h"
+#include "common/base/file_source.h"
+#include "common/render/mask_rule.h"
+#include "common/scene/scene_load.h"
+#include "common/render/renderer.h"
 #include "proto/scene_bundle.h"
 #include "server/log.h"
 #include "server/background_server.h"
-#include "tests/common/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace glint {
 namespace {

@@ -14,12 +14,12 @@
 #include "client/offscreen_context.h"
 #include "client/raster_scene.h"
 #include "client/render_command.h"
-#include "common/error.h"
-#include "common/frame.h"
+#include "common/base/error.h"
+#include "common/render/frame.h"
 #include "proto/messages.h"
-#include "tests/common/test_support.h"
-#include "tests/proto/loopback_peer.h"
-#include "tests/server/glintd_process.h"
+#include "tests/support/test_support.h"
+#include "tests/support/loopback_peer.h"
+#include "tests/support/glintd_process.h"
 
 namespace glint {
 namespace {

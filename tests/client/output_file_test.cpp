@@ -11,7 +11,7 @@
 #include <OpenEXR/ImfRgbaFile.h>
 #include <gtest/gtest.h>
 
-#include "common/error.h"
+#include "common/base/error.h"
 
 namespace glint {
 namespace {

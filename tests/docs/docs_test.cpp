@@ -9,12 +9,12 @@
 
 #include <gtest/gtest.h>
 
-#include "common/error.h"
-#include "common/frame.h"
-#include "common/image_io.h"
-#include "common/prepared_scene.h"
-#include "common/scene_load.h"
-#include "tests/common/test_support.h"
+#include "common/base/error.h"
+#include "common/render/frame.h"
+#include "common/scene/image_decode.h"
+#include "common/render/prepared_scene.h"
+#include "common/scene/scene_load.h"
+#include "tests/support/test_support.h"
 
 namespace glint {
 namespace {

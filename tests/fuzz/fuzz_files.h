@@ -2,8 +2,8 @@
 
 #include <string>
 
-#include "common/file_source.h"
-#include "common/load_limits.h"
+#include "common/base/file_source.h"
+#include "common/scene/load_limits.h"
 
 namespace glint::fuzz {
 

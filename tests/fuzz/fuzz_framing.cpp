@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "common/error.h"
+#include "common/base/error.h"
 #include "proto/framing.h"
 #include "proto/messages.h"
 #include "tests/fuzz/fuzz_messages.h"

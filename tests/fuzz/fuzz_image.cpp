@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <string_view>
 
-#include "common/error.h"
-#include "common/image_io.h"
+#include "common/base/error.h"
+#include "common/scene/image_decode.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   glint::LoadLimits limits;

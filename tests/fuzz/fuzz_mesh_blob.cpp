@@ -1,11 +1,11 @@
 // libFuzzer target: the imported-mesh blob a server reads in place of a glTF
-// or PLY file (common/mesh_blob.h). The input is the blob.
+// or PLY file (common/scene/mesh_blob.h). The input is the blob.
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
 
-#include "common/error.h"
-#include "common/mesh_blob.h"
+#include "common/base/error.h"
+#include "common/scene/mesh_blob.h"
 #include "tests/fuzz/fuzz_files.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

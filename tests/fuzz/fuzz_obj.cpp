@@ -8,9 +8,9 @@
 #include <cstdlib>
 #include <string>
 
-#include "common/error.h"
-#include "common/obj_faces.h"
-#include "common/obj_load.h"
+#include "common/base/error.h"
+#include "common/scene/obj_faces.h"
+#include "common/scene/obj_load.h"
 #include "tests/fuzz/fuzz_files.h"
 
 namespace {

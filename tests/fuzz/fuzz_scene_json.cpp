@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <string_view>
 
-#include "common/error.h"
-#include "common/scene_load.h"
+#include "common/base/error.h"
+#include "common/scene/scene_load.h"
 #include "tests/fuzz/fuzz_files.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

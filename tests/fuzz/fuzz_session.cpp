@@ -8,7 +8,7 @@
 #include "server/scene_cache.h"
 #include "server/session.h"
 #include "tests/fuzz/fuzz_messages.h"
-#include "tests/server/inline_host.h"
+#include "tests/support/inline_host.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace glint::server;

@@ -9,15 +9,15 @@
 #include <string>
 #include <vector>
 
-#include "common/frame.h"
-#include "common/image_io.h"
-#include "common/mesh_blob.h"
-#include "common/obj_load.h"
+#include "common/render/frame.h"
+#include "common/image/image_write.h"
+#include "common/scene/mesh_blob.h"
+#include "common/scene/obj_load.h"
 #include "proto/messages.h"
 #include "proto/scene_bundle.h"
 #include "tests/fuzz/fuzz_files.h"
 #include "tests/fuzz/server_link_script.h"
-#include "tests/proto/hostile_frames.h"
+#include "tests/support/hostile_frames.h"
 
 namespace {
 

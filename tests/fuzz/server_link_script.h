@@ -3,8 +3,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "common/tile.h"
-#include "common/tile_service.h"
+#include "common/render/tile.h"
+#include "common/render/tile_service.h"
 #include "proto/scene_bundle.h"
 
 namespace glint::fuzz {

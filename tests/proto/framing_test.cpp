@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "proto/messages.h"
-#include "tests/proto/hostile_frames.h"
+#include "tests/support/hostile_frames.h"
 
 namespace glint::proto {
 namespace {

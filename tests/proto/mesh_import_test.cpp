@@ -9,11 +9,11 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "common/error.h"
-#include "common/file_source.h"
-#include "common/mesh_blob.h"
-#include "common/mesh_import.h"
-#include "common/scene_load.h"
+#include "common/base/error.h"
+#include "common/base/file_source.h"
+#include "common/scene/mesh_blob.h"
+#include "common/scene/mesh_import.h"
+#include "common/scene/scene_load.h"
 #include "proto/scene_bundle.h"
 
 namespace glint {

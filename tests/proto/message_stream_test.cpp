@@ -1,6 +1,6 @@
 // The client's blocking stream against a raw peer on loopback: a promise of
 // bytes to come (SO_RCVLOWAT) never loses or delays a message.
-#include "tests/proto/message_stream.h"
+#include "tests/support/message_stream.h"
 
 #include <chrono>
 #include <thread>
@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "proto/messages.h"
-#include "tests/proto/loopback_peer.h"
+#include "tests/support/loopback_peer.h"
 
 namespace glint::proto {
 namespace {

@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include "common/error.h"
-#include "tests/common/test_support.h"
+#include "common/base/error.h"
+#include "tests/support/test_support.h"
 
 namespace glint::proto {
 namespace {

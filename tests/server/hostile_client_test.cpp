@@ -15,14 +15,13 @@
 #include <gtest/gtest.h>
 
 #include "client/distributed_tile_service.h"
-#include "common/error.h"
-#include "common/frame.h"
-#include "common/image_io.h"
+#include "common/base/error.h"
+#include "common/render/frame.h"
 #include "proto/messages.h"
 #include "server/log.h"
-#include "tests/common/test_support.h"
-#include "tests/proto/hostile_frames.h"
-#include "tests/server/glintd_process.h"
+#include "tests/support/test_support.h"
+#include "tests/support/hostile_frames.h"
+#include "tests/support/glintd_process.h"
 #include "tests/server/raw_client.h"
 
 namespace glint::server {
@@ -253,7 +252,7 @@ TEST(HostileClient, TheCostliestSceneJsonStaysUnderAGigabyte) {
   const long grownKb = glintd.peakResidentKb() - before;
   EXPECT_LT(grownKb, 1000 * 1024) << "the costliest JSON grew glintd's peak by " << grownKb << " KiB";
   // And it is given back: what stays is under the heap's trim threshold
-  // (common/heap_tuning.cpp: 256 MiB); 1.9 GB stayed when the JSON was parsed unbounded.
+  // (common/base/heap_tuning.cpp: 256 MiB); 1.9 GB stayed when the JSON was parsed unbounded.
   const long heldKb = glintd.residentKb() - before;
   std::printf("held after: %ld MiB above the start\n", heldKb / 1024);
   EXPECT_LT(heldKb, 256 * 1024);

@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "tests/proto/message_stream.h"
+#include "tests/support/message_stream.h"
 #include "proto/messages.h"
 
 namespace glint::server::test {

@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "proto/scene_bundle.h"
-#include "tests/common/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace glint::server {
 namespace {

@@ -2,8 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include "common/scene_load.h"
-#include "tests/common/test_support.h"
+#include "common/scene/scene_load.h"
+#include "tests/support/test_support.h"
 
 namespace glint::server {
 namespace {

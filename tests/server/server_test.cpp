@@ -13,14 +13,14 @@
 #include <gtest/gtest.h>
 
 #include "client/distributed_tile_service.h"
-#include "common/error.h"
-#include "common/frame.h"
-#include "tests/proto/message_stream.h"
+#include "common/base/error.h"
+#include "common/render/frame.h"
+#include "tests/support/message_stream.h"
 #include "proto/messages.h"
 #include "server/log.h"
 #include "server/background_server.h"
-#include "tests/common/test_support.h"
-#include "tests/server/glintd_process.h"
+#include "tests/support/test_support.h"
+#include "tests/support/glintd_process.h"
 #include "tests/server/raw_client.h"
 
 namespace glint::server {

@@ -6,8 +6,8 @@
 
 #include "proto/messages.h"
 #include "server/log.h"
-#include "tests/common/test_support.h"
-#include "tests/server/inline_host.h"
+#include "tests/support/test_support.h"
+#include "tests/support/inline_host.h"
 
 namespace glint::server {
 namespace {

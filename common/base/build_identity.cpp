@@ -1,0 +1,37 @@
+#include "common/base/build_identity.h"
+
+#include <cstdint>
+#include <cstdio>
+
+namespace glint {
+namespace {
+
+// Raised whenever a change to the tracer, the shading or the sampling
+// changes the bytes of any pixel.
+// 2: the adaptive pattern; 3: power() (common/math/power.h); 4: exponential()
+// and sineCosine() (common/math/power.h, common/math/circular.h); 5: the hybrid frame
+// rasterizes at one sample a pixel and traces its edges
+// (client/raster_edges.h); 6: the raster reads the shadow maps only where
+// the geometry does not prove the light reaches (client/light_proof.h), and
+// tests OpenGL's own depth.
+constexpr int kTracerVersion = 6;
+
+// FNV-1a: the flags only need a short, stable fingerprint.
+std::uint64_t fingerprint(const char* text) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (const char* c = text; *c; ++c) h = (h ^ static_cast<unsigned char>(*c)) * 1099511628211ull;
+  return h;
+}
+
+}  // namespace
+
+const std::string& buildIdentity() {
+  static const std::string identity = [] {
+    char hash[17];
+    std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(fingerprint(GLINT_PIXEL_FLAGS)));
+    return "pixels-" + std::to_string(kTracerVersion) + " " + GLINT_COMPILER + " " + hash;
+  }();
+  return identity;
+}
+
+}  // namespace glint

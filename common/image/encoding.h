@@ -1,0 +1,37 @@
+#pragma once
+
+#include <cstdint>
+
+#include <glm/vec3.hpp>
+
+#include "common/scene/scene.h"
+
+namespace glint {
+
+// Linear colour -> output values, as OutputSettings say: multiplied by
+// 2^exposure, then (8-bit outputs only) the transfer function. With the
+// defaults (linear, 0 EV) a value passes unchanged, so 8-bit values are the
+// thesis's frame buffer. The raster shaders apply the same formulas
+// (client/raster_shaders.cpp, encodeOutput).
+class Encoder {
+ public:
+  explicit Encoder(const OutputSettings& output);
+
+  // The value a float output (.exr, .pfm) holds: scaled, not encoded.
+  glm::vec3 scaled(const glm::vec3& linear) const { return linear * scale_; }
+  // The 8-bit value: scaled, clamped to [0, 1], encoded, rounded.
+  std::uint8_t byte(float linear) const;
+  float scale() const { return scale_; }
+
+ private:
+  float scale_;
+  bool srgb_;
+};
+
+// The sRGB transfer function (IEC 61966-2-1) of a value in [0, 1].
+float srgbEncode(float linear);
+
+// Linear [0, 1] -> 8 bits, rounded to nearest; values outside are clamped.
+std::uint8_t toByte(float v);
+
+}  // namespace glint

@@ -1,0 +1,92 @@
+#include "common/render/effects.h"
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
+
+#include "common/render/mask_rule.h"
+
+namespace glint {
+namespace {
+
+// True when the geometry cannot cast a shadow on itself: one sphere alone,
+// or triangles that all lie in one plane (a lit point of a convex or planar
+// surface never sees that surface between itself and a light in front).
+bool selfShadowFree(const Geometry& g) {
+  if (g.triangles().empty()) return g.spheres().size() <= 1;
+  if (!g.spheres().empty()) return false;
+  const auto& tris = g.triangles();
+  const auto& pos = g.positions();
+  const glm::vec3 p0 = pos[tris[0].v[0]];
+  const glm::vec3 n = glm::normalize(glm::cross(pos[tris[0].v[1]] - p0, pos[tris[0].v[2]] - p0));
+  float scale = 0.0f;
+  for (const Triangle& t : tris) {
+    for (std::uint32_t v : t.v) scale = std::max(scale, glm::length(pos[v] - p0));
+  }
+  for (const Triangle& t : tris) {
+    for (std::uint32_t v : t.v) {
+      if (std::abs(glm::dot(pos[v] - p0, n)) > 1e-6f * scale) return false;
+    }
+  }
+  return true;
+}
+
+bool hasPositive(const glm::vec3& c) { return c.x > 0.0f || c.y > 0.0f || c.z > 0.0f; }
+
+}  // namespace
+
+EffectPlan EffectPlan::derive(const Scene& scene, const FrameSettings& frame) {
+  EffectPlan plan;
+  const bool secondary = frame.tracing.maxDepth > 1;
+  const float minWeight = frame.tracing.minWeight;
+  for (const Material& m : scene.materials) {
+    MaterialEffects e;
+    e.direct = m.diffuse > 0.0f || m.specular > 0.0f;
+    e.specular = m.specular > 0.0f;
+    e.textured = m.texture >= 0 && scene.textures[m.texture].type != TextureType::kSolid;
+    // Total internal reflection hands the transparent weight to the reflected
+    // ray; it can only happen when the material's index differs from air's.
+    const bool tir = m.transparency > 0.0f && m.ior != 1.0f;
+    const float reflected = m.reflectivity + (tir ? m.transparency : 0.0f);
+    e.reflects = secondary && reflected > 0.0f && reflected >= minWeight;
+    e.refracts = secondary && m.transparency > 0.0f && m.transparency >= minWeight;
+    plan.reflection = plan.reflection || e.reflects;
+    plan.refraction = plan.refraction || e.refracts;
+    plan.textures = plan.textures || e.textured;
+    plan.materials.push_back(e);
+  }
+  bool anyLight = false;
+  for (const PointLight& l : scene.lights) {
+    const bool active = hasPositive(l.color);
+    plan.lights.push_back(active);
+    anyLight = anyLight || active;
+    if (active && (l.attenuation.y != 0.0f || l.attenuation.z != 0.0f)) plan.attenuation = true;
+  }
+  bool anyDirect = false;
+  for (const MaterialEffects& e : plan.materials) anyDirect = anyDirect || e.direct;
+  plan.shadows = anyLight && anyDirect && !selfShadowFree(scene.geometry);
+  plan.antialiasing =
+      frame.sampling.samples > 1 || frame.sampling.pattern != SamplePattern::kRegular;
+  return plan;
+}
+
+nlohmann::json toJson(const EffectPlan& plan) {
+  nlohmann::json j = {{"shadows", plan.shadows},       {"reflection", plan.reflection},
+                      {"refraction", plan.refraction}, {"textures", plan.textures},
+                      {"attenuation", plan.attenuation}, {"antialiasing", plan.antialiasing}};
+  int active = 0;
+  for (bool l : plan.lights) active += l ? 1 : 0;
+  j["active_lights"] = active;
+  return j;
+}
+
+bool rasterShadows(const Scene& scene, const EffectPlan& plan, const MaskSettings& mask) {
+  if (!plan.shadows || mask.shadowMap <= 0 || mask.rule == MaskRule::kAll) return false;
+  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+    if (plan.materials[i].direct && !materialMasked(scene.materials[i], mask)) return true;
+  }
+  return false;
+}
+
+}  // namespace glint

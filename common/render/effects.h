@@ -1,0 +1,44 @@
+#pragma once
+
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "common/scene/scene.h"
+
+namespace glint {
+
+// What a material can need from the tracer.
+struct MaterialEffects {
+  bool direct = false;      // diffuse or specular > 0: lights and shadow rays matter
+  bool specular = false;    // specular > 0: the (V . R)^h term
+  bool textured = false;    // checker or image texture: uv lookups
+  bool reflects = false;    // a reflected ray can carry at least min_weight
+  bool refracts = false;    // a refracted ray can carry at least min_weight
+};
+
+// Which effects can occur at all in a scene, decided before rendering so the
+// tracer does no work (rays, code paths, lookups) for an effect no material,
+// light or setting calls for. derive() is exact in one direction: an effect
+// it turns off cannot change the image.
+struct EffectPlan {
+  bool shadows = false;       // shadow rays: lights, lit materials and a possible occluder
+  bool reflection = false;    // reflected rays
+  bool refraction = false;    // refracted rays
+  bool textures = false;      // texture lookups other than a solid colour
+  bool attenuation = false;   // distance fall-off of some light (other than a constant)
+  bool antialiasing = false;  // samples off the pixel centre: several, or jittered
+  std::vector<MaterialEffects> materials;
+  std::vector<bool> lights;   // false: the light adds nothing (black) and is skipped
+
+  static EffectPlan derive(const Scene& scene, const FrameSettings& frame);
+  static EffectPlan derive(const Scene& scene) { return derive(scene, scene.frame); }
+};
+
+nlohmann::json toJson(const EffectPlan& plan);
+
+// Whether the raster pass needs shadow maps: shadows can occur, the mask
+// leaves a lit material to OpenGL, and the maps are not turned off.
+bool rasterShadows(const Scene& scene, const EffectPlan& plan, const MaskSettings& mask);
+
+}  // namespace glint

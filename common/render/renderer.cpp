@@ -1,0 +1,140 @@
+#include "common/render/renderer.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "common/image/encoding.h"
+#include "common/math/finite.h"
+#include "common/render/sampling.h"
+
+namespace glint {
+
+Renderer::Renderer(const PreparedScene& prepared, const FrameSettings& frame)
+    : Renderer(prepared, frame, EffectPlan::derive(prepared.scene(), frame)) {}
+
+Renderer::Renderer(const PreparedScene& prepared, const FrameSettings& frame, const EffectPlan& plan)
+    : prepared_(prepared),
+      frame_(frame),
+      plan_(plan),
+      camera_(frame.camera, frame.width, frame.height),
+      filter_(frame.sampling.filter),
+      sampleLayout_(frame.sampling),
+      tracer_(prepared.scene(), prepared.bvh(), frame_.tracing, plan_) {}
+
+Renderer::CameraSample Renderer::cameraSample(int x, int y, const SampleLayout::Pixel& key, int sample) const {
+  glm::vec2 offset{0.5f};
+  if (plan_.antialiasing) {
+    const glm::vec2 u = sampleLayout_.position(key, sample);
+    offset = {0.5f + filter_.warp(u.x), 0.5f + filter_.warp(u.y)};
+  }
+  const float w = plan_.antialiasing ? filter_.sign(offset.x - 0.5f) * filter_.sign(offset.y - 0.5f) : 1.0f;
+  return {camera_.generateRay({static_cast<float>(x) + offset.x, static_cast<float>(y) + offset.y}), w};
+}
+
+void Renderer::addSamples(int x, int y, int first, int end, PixelSamples& p, RayStats& stats) const {
+  // The camera rays of a batch are made before any is traced: each is a
+  // long chain of dependent multiplications, divisions and square roots,
+  // which the processor then overlaps.
+  constexpr int kBatch = 8;
+  const SampleLayout::Pixel key = sampleLayout_.pixel(x, y);
+  for (int from = first; from < end; from += kBatch) {
+    std::array<CameraSample, kBatch> batch;
+    const int count = std::min(kBatch, end - from);
+    for (int i = 0; i < count; ++i) batch[i] = cameraSample(x, y, key, from + i);
+    for (int i = 0; i < count; ++i) {
+      const glm::vec3 c = tracer_.radiance(batch[i].ray, stats);
+      if (!allFinite(c)) {
+        ++stats.nonFiniteSamples;
+        continue;
+      }
+      p.sum += batch[i].weight * c;
+      p.weightSum += batch[i].weight;
+      p.unweighted += c;
+      ++p.finite;
+    }
+  }
+}
+
+glm::vec3 Renderer::resolve(const PixelSamples& p) const {
+  if (p.finite == 0) return prepared_.scene().background;
+  // Negative lobes (Mitchell) can leave too little positive weight in a few
+  // samples; the plain mean is the stable answer then.
+  if (p.weightSum < 0.5f * static_cast<float>(p.finite)) return p.unweighted / static_cast<float>(p.finite);
+  return p.sum / p.weightSum;
+}
+
+glm::vec3 Renderer::pixel(int x, int y, RayStats& stats) const {
+  PixelSamples p;
+  addSamples(x, y, 0, frame_.sampling.samples, p, stats);
+  return resolve(p);
+}
+
+// The adaptive pattern: each pixel's first (jittered) sample, then the rest
+// of its jittered samples where it differs from a 4-neighbour's first sample
+// by more than the threshold in a channel. The first samples of the tile and
+// of a one-pixel border are traced as needed: they depend on the pixel alone,
+// so every tile split, thread count and server decides alike.
+void Renderer::renderAdaptive(const TileRect& rect, std::span<const std::uint8_t> mask, std::vector<glm::vec3>& out,
+                              RayStats& stats) const {
+  const int x0 = std::max(0, rect.x - 1), y0 = std::max(0, rect.y - 1);
+  const int x1 = std::min(frame_.width, rect.x + rect.width + 1), y1 = std::min(frame_.height, rect.y + rect.height + 1);
+  const auto gridWidth = static_cast<std::size_t>(x1 - x0);
+  std::vector<PixelSamples> first(gridWidth * static_cast<std::size_t>(y1 - y0));
+  std::vector<bool> traced(first.size(), false);
+  const auto firstAt = [&](int x, int y) -> const PixelSamples& {
+    const std::size_t i = static_cast<std::size_t>(y - y0) * gridWidth + static_cast<std::size_t>(x - x0);
+    if (!traced[i]) addSamples(x, y, 0, 1, first[i], stats);
+    traced[i] = true;
+    return first[i];
+  };
+  const float threshold = frame_.sampling.adaptiveThreshold;
+  constexpr int kNeighbours[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
+  std::size_t i = 0;
+  for (int y = rect.y; y < rect.y + rect.height; ++y) {
+    for (int x = rect.x; x < rect.x + rect.width; ++x, ++i) {
+      if (!mask.empty() && !maskBit(mask, i)) continue;
+      PixelSamples p = firstAt(x, y);
+      const glm::vec3 v = resolve(p);
+      bool differs = false;
+      for (const auto& d : kNeighbours) {
+        const int nx = x + d[0], ny = y + d[1];
+        if (differs || nx < 0 || ny < 0 || nx >= frame_.width || ny >= frame_.height) continue;
+        const glm::vec3 delta = glm::abs(resolve(firstAt(nx, ny)) - v);
+        differs = delta.r > threshold || delta.g > threshold || delta.b > threshold;
+      }
+      if (differs) addSamples(x, y, 1, frame_.sampling.samples, p, stats);
+      out.push_back(resolve(p));
+    }
+  }
+}
+
+void Renderer::renderTileLinear(const TileRect& rect, std::span<const std::uint8_t> mask, std::vector<glm::vec3>& out,
+                                RayStats& stats) const {
+  if (frame_.sampling.pattern == SamplePattern::kAdaptive) {
+    renderAdaptive(rect, mask, out, stats);
+    return;
+  }
+  std::size_t i = 0;
+  for (int y = rect.y; y < rect.y + rect.height; ++y) {
+    for (int x = rect.x; x < rect.x + rect.width; ++x, ++i) {
+      if (!mask.empty() && !maskBit(mask, i)) continue;
+      out.push_back(pixel(x, y, stats));
+    }
+  }
+}
+
+void Renderer::renderTile(const TileRect& rect, std::span<const std::uint8_t> mask,
+                          std::vector<std::uint8_t>& rgb, RayStats& stats) const {
+  std::vector<glm::vec3> linear;
+  linear.reserve(rect.pixelCount());
+  renderTileLinear(rect, mask, linear, stats);
+  const Encoder encoder(frame_.output);
+  for (const glm::vec3& c : linear) {
+    rgb.push_back(encoder.byte(c.r));
+    rgb.push_back(encoder.byte(c.g));
+    rgb.push_back(encoder.byte(c.b));
+  }
+}
+
+}  // namespace glint

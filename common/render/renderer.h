@@ -1,0 +1,83 @@
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "common/render/prepared_scene.h"
+#include "common/scene/camera.h"
+#include "common/render/effects.h"
+#include "common/render/filter.h"
+#include "common/render/ray_stats.h"
+#include "common/render/sampling.h"
+#include "common/scene/scene.h"
+#include "common/render/tile.h"
+#include "common/render/tracer.h"
+
+namespace glint {
+
+// Everything needed to trace pixels of one frame: the prepared scene, the
+// frame's settings, the effect plan, the camera and the filter. Cheap to make
+// (the BVH belongs to the prepared scene) and immutable, so any number of
+// threads may render tiles of it at once.
+class Renderer {
+ public:
+  Renderer(const PreparedScene& prepared, const FrameSettings& frame);
+  // With a given plan (the one above derives it from the scene and frame).
+  Renderer(const PreparedScene& prepared, const FrameSettings& frame, const EffectPlan& plan);
+  // Its tracer refers to its own plan: a copy would trace with the original's.
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // The tile interface, called the same way in-process, by the server and by
+  // the GL client: traces the pixels of `rect` whose mask bit is set (every
+  // pixel for an empty mask) and appends their RGB8 values to `rgb` in scan
+  // order, 3 bytes per pixel.
+  void renderTile(const TileRect& rect, std::span<const std::uint8_t> mask,
+                  std::vector<std::uint8_t>& rgb, RayStats& stats) const;
+  // The same pixels as linear colour (before clamping and rounding).
+  void renderTileLinear(const TileRect& rect, std::span<const std::uint8_t> mask, std::vector<glm::vec3>& out,
+                        RayStats& stats) const;
+
+  // Linear colour of pixel (x, y): the filtered average of its samples
+  // (regular and jittered patterns; the adaptive one needs its neighbours:
+  // renderTileLinear).
+  glm::vec3 pixel(int x, int y, RayStats& stats) const;
+
+  const Scene& scene() const { return prepared_.scene(); }
+  const FrameSettings& frame() const { return frame_; }
+  const EffectPlan& plan() const { return plan_; }
+  const Camera& camera() const { return camera_; }
+
+ private:
+  // A pixel's samples so far: their filter-weighted and plain sums.
+  struct PixelSamples {
+    glm::vec3 sum{0.0f};
+    glm::vec3 unweighted{0.0f};
+    float weightSum = 0.0f;
+    int finite = 0;
+  };
+  // A camera ray and the filter's weight for its radiance.
+  struct CameraSample {
+    Ray ray;
+    float weight;
+  };
+  CameraSample cameraSample(int x, int y, const SampleLayout::Pixel& key, int sample) const;
+  // Traces samples first to end - 1 of pixel (x, y) into p.
+  void addSamples(int x, int y, int first, int end, PixelSamples& p, RayStats& stats) const;
+  glm::vec3 resolve(const PixelSamples& p) const;
+  void renderAdaptive(const TileRect& rect, std::span<const std::uint8_t> mask, std::vector<glm::vec3>& out,
+                      RayStats& stats) const;
+
+  const PreparedScene& prepared_;
+  FrameSettings frame_;
+  EffectPlan plan_;
+  Camera camera_;
+  Filter filter_;
+  SampleLayout sampleLayout_;
+  Tracer tracer_;
+};
+
+}  // namespace glint

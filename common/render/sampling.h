@@ -1,0 +1,53 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "common/scene/scene.h"
+
+namespace glint {
+
+// A uniform float in [0, 1) from a hash of (seed, pixel, sample, dimension):
+// the same inputs always give the same value, so an image does not depend on
+// the thread count, the tile split or the order pixels are visited in.
+float hashUniform(std::uint32_t seed, int px, int py, int sample, int dimension);
+
+// The stratum of a jittered sample: [x0, x1) x [y0, y1).
+struct Stratum {
+  float x0, x1, y0, y1;
+};
+Stratum jitteredStratum(int samples, int sample);
+
+// Where a frame's samples lie: position(px, py, sample) is sample `sample`
+// (0 to samples - 1) of pixel (px, py) inside the pixel's unit square, in
+// [0, 1)^2, before the filter warps it.
+//  - regular: a k x k grid of cell centres (n = k^2); n = 2 is the two
+//    diagonal quarter points (0.25, 0.25) and (0.75, 0.75).
+//  - jittered (and adaptive): n equal-area strata, one sample each,
+//    uniformly placed in its stratum by hashUniform's dimensions 0 and 1.
+//    For any n: rows of floor or ceil(n / rows) cells whose heights are
+//    proportional to their cell count, so every stratum has area 1 / n.
+// The points and strata, the same for every pixel, are computed once.
+class SampleLayout {
+ public:
+  // What a pixel's samples share of their hash (hashUniform's seed and
+  // pixel steps), computed once per pixel instead of once per sample.
+  struct Pixel {
+    std::uint64_t hash = 0;
+  };
+
+  explicit SampleLayout(const SamplingSettings& sampling);
+  Pixel pixel(int px, int py) const;
+  glm::vec2 position(const Pixel& pixel, int sample) const;
+  glm::vec2 position(int px, int py, int sample) const { return position(pixel(px, py), sample); }
+
+ private:
+  std::uint64_t seedHash_;  // the seed's step of the hash, the same for every pixel
+  bool jittered_;
+  std::vector<glm::vec2> points_;  // regular: each sample's point
+  std::vector<Stratum> strata_;    // jittered: each sample's stratum
+};
+
+}  // namespace glint

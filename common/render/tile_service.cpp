@@ -1,0 +1,36 @@
+#include "common/render/tile_service.h"
+
+#include <mutex>
+
+#include "common/render/renderer.h"
+#include "common/base/timing.h"
+
+namespace glint {
+
+void LocalTileService::render(const FrameSettings& frame, std::span<const TileJob> jobs,
+                              const std::function<void(std::size_t, TileOutput&&)>& done) {
+  const Renderer renderer(prepared_, frame);
+  renderOnPool(renderer, pool_, jobs, done);
+}
+
+std::size_t tracedPixels(const TileJob& job) {
+  return job.mask.empty() ? job.rect.pixelCount() : countMasked(job.rect, job.mask);
+}
+
+void TileService::renderOnPool(const Renderer& renderer, ThreadPool& pool, std::span<const TileJob> jobs,
+                               const std::function<void(std::size_t, TileOutput&&)>& done) const {
+  std::mutex doneMutex;
+  std::size_t count = 0;
+  pool.parallelFor(jobs.size(), [&](std::size_t i) {
+    TileOutput out;
+    out.rgb.reserve(jobs[i].rect.pixelCount() * 3);
+    const auto start = Clock::now();
+    renderer.renderTile(jobs[i].rect, jobs[i].mask, out.rgb, out.rays);
+    out.computeMs = msSince(start);
+    std::lock_guard lock(doneMutex);
+    done(i, std::move(out));
+    traced(++count);
+  });
+}
+
+}  // namespace glint

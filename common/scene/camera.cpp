@@ -1,0 +1,47 @@
+#include "common/scene/camera.h"
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "common/math/finite.h"
+
+namespace glint {
+
+std::string cameraProblem(const CameraSpec& c) {
+  if (!allFinite(c.eye)) return "eye: must be finite";
+  if (!allFinite(c.lookAt)) return "look_at: must be finite";
+  if (!allFinite(c.up)) return "up: must be finite";
+  if (!(c.fovY > 0.0f && c.fovY <= 179.0f)) return "fov_y: must be in (0, 179]";
+  const glm::vec3 forward = c.lookAt - c.eye;
+  if (glm::dot(forward, forward) == 0.0f) return "look_at: must differ from camera.eye";
+  if (glm::dot(c.up, c.up) == 0.0f) return "up: must not be the zero vector";
+  const glm::vec3 side = glm::cross(glm::normalize(forward), glm::normalize(c.up));
+  if (!(glm::length(side) > 1e-6f)) {
+    return "up: is parallel to the viewing direction (look_at - eye); choose another up vector";
+  }
+  return "";
+}
+
+Camera::Camera(const CameraSpec& spec, int width, int height)
+    : eye_(spec.eye),
+      width_(static_cast<float>(width)),
+      height_(static_cast<float>(height)) {
+  // gluLookAt: f = normalize(center - eye), s = normalize(f x up), u = s x f.
+  forward_ = glm::normalize(spec.lookAt - spec.eye);
+  right_ = glm::normalize(glm::cross(forward_, spec.up));
+  up_ = glm::cross(right_, forward_);
+  halfHeight_ = std::tan(glm::radians(spec.fovY) * 0.5f);
+  halfWidth_ = halfHeight_ * width_ / height_;
+}
+
+Ray Camera::generateRay(const glm::vec2& film) const {
+  // Normalised device coordinates in [-1, 1], y up as in OpenGL.
+  const float ndcX = 2.0f * film.x / width_ - 1.0f;
+  const float ndcY = 1.0f - 2.0f * film.y / height_;
+  const glm::vec3 d = forward_ + (ndcX * halfWidth_) * right_ + (ndcY * halfHeight_) * up_;
+  return Ray(eye_, glm::normalize(d));
+}
+
+}  // namespace glint

@@ -1,0 +1,47 @@
+#pragma once
+
+#include <string>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "common/geometry/ray.h"
+
+namespace glint {
+
+// The scene's camera, as the user writes it.
+struct CameraSpec {
+  glm::vec3 eye{0.0f, 0.0f, 0.0f};
+  glm::vec3 lookAt{0.0f, 0.0f, -1.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float fovY = 45.0f;  // degrees, vertical
+};
+
+// What makes a camera unusable, as "field: what is wrong" ("up: must not be
+// the zero vector"), or "" for a good camera. Fields are the scene format's.
+std::string cameraProblem(const CameraSpec& spec);
+
+// A pinhole camera that sees exactly what gluLookAt(eye, lookAt, up) with
+// gluPerspective(fovY, width / height, ...) shows: square pixels, film
+// position (x, y) in pixels from the top-left corner of the image, and the
+// ray through (x + 0.5, y + 0.5) passes through the centre of pixel (x, y),
+// where OpenGL samples it.
+class Camera {
+ public:
+  Camera(const CameraSpec& spec, int width, int height);
+
+  Ray generateRay(const glm::vec2& film) const;
+  const glm::vec3& eye() const { return eye_; }
+
+ private:
+  glm::vec3 eye_;
+  glm::vec3 forward_;  // unit, towards lookAt
+  glm::vec3 right_;    // unit, image +x
+  glm::vec3 up_;       // unit, image -y (film y grows downwards)
+  float halfHeight_;   // tan(fovY / 2): film half-height at distance 1
+  float halfWidth_;
+  float width_;
+  float height_;
+};
+
+}  // namespace glint

@@ -1,0 +1,18 @@
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "common/scene/scene_budget.h"
+#include "common/scene/texture.h"
+
+namespace glint {
+
+// Decodes a PNG or 24-bit BMP held in memory into 8-bit RGB texels. The size
+// its header gives is checked against the texture limit and charged to the
+// budget before anything is decoded. Images wider or taller than their data,
+// corrupt, or over a limit are rejected with an InputError that starts with
+// `place`.
+Image decodeImage(std::string_view bytes, const std::string& place, SceneBudget& budget);
+
+}  // namespace glint

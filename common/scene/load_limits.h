@@ -1,0 +1,22 @@
+#pragma once
+
+#include <cstddef>
+
+#include "common/scene/frame_limits.h"
+
+namespace glint {
+
+// Upper bounds on what a scene may make the loader allocate; a file over one
+// is rejected before the allocation, with a message naming the limit.
+struct LoadLimits {
+  std::size_t maxFileBytes = std::size_t{1} << 30;        // one scene, mesh or texture file
+  std::size_t maxTriangles = 30'000'000;                  // all meshes together
+  std::size_t maxVertices = 30'000'000;                   // all meshes together
+  std::size_t maxTexturePixels = std::size_t{1} << 26;    // one texture (8192 x 8192)
+  std::size_t maxImagePixels = FrameLimits::kMaxPixels;   // the rendered image
+  int maxJsonDepth = 64;                                  // arrays and objects nested in a scene file
+  // What one scene holds once built: texels, meshes, BVH (SceneBudget counts it).
+  std::size_t maxSceneBytes = std::size_t{8} << 30;
+};
+
+}  // namespace glint

@@ -1,0 +1,206 @@
+#include "common/scene/mesh_blob.h"
+
+#include <cstring>
+#include <type_traits>
+
+#include "common/base/error.h"
+
+namespace glint {
+namespace {
+
+constexpr std::string_view kMagic = "GLINTMSH";
+constexpr std::uint32_t kVersion = 1;
+
+class Writer {
+ public:
+  template <typename T>
+  void put(T value) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    out_.append(reinterpret_cast<const char*>(&value), sizeof value);
+  }
+  template <typename T>
+  void putArray(const std::vector<T>& values) {
+    if (values.empty()) return;
+    out_.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+  }
+  void putString(std::string_view s) {
+    put(static_cast<std::uint32_t>(s.size()));
+    out_.append(s);
+  }
+  std::string take() { return std::move(out_); }
+
+ private:
+  std::string out_;
+};
+
+// Reads what is there; asking for more than remains is an InputError.
+class Reader {
+ public:
+  Reader(std::string_view bytes, const std::string& place) : bytes_(bytes), place_(place) {}
+
+  template <typename T>
+  T get() {
+    T value;
+    std::memcpy(&value, need(sizeof value, "a field"), sizeof value);
+    return value;
+  }
+  // `count` elements, checked against the bytes left before allocating.
+  template <typename T>
+  std::vector<T> getArray(std::size_t count, const char* what) {
+    if (count > remaining() / sizeof(T)) fail(std::string("announces more ") + what + " than it holds");
+    if (count == 0) return {};
+    std::vector<T> values(count);
+    std::memcpy(values.data(), need(count * sizeof(T), what), count * sizeof(T));
+    return values;
+  }
+  std::string getString() {
+    const auto n = get<std::uint32_t>();
+    return std::string(need(n, "a name"), n);
+  }
+  std::size_t remaining() const { return bytes_.size() - at_; }
+  [[noreturn]] void fail(const std::string& what) const {
+    throw InputError(place_ + ": the imported mesh " + what);
+  }
+
+ private:
+  const char* need(std::size_t n, const char* what) {
+    if (n > remaining()) fail(std::string("ends inside ") + what);
+    const char* p = bytes_.data() + at_;
+    at_ += n;
+    return p;
+  }
+  std::string_view bytes_;
+  std::size_t at_ = 0;
+  const std::string& place_;
+};
+
+void writeMaterial(Writer& w, const Material& m) {
+  w.putString(m.name);
+  w.put(m.color);
+  w.put(static_cast<std::int32_t>(m.texture));
+  for (const float v : {m.ambient, m.diffuse, m.specular, m.shininess, m.reflectivity, m.transparency, m.ior}) {
+    w.put(v);
+  }
+  w.put(static_cast<std::uint8_t>(m.raytrace));
+}
+
+Material readMaterial(Reader& r, std::size_t textures) {
+  Material m;
+  m.name = r.getString();
+  m.color = r.get<glm::vec3>();
+  m.texture = r.get<std::int32_t>();
+  if (m.texture < -1 || m.texture >= static_cast<std::int64_t>(textures)) r.fail("names a texture it does not hold");
+  for (float* v : {&m.ambient, &m.diffuse, &m.specular, &m.shininess, &m.reflectivity, &m.transparency, &m.ior}) {
+    *v = r.get<float>();
+  }
+  const auto rule = r.get<std::uint8_t>();
+  if (rule > static_cast<std::uint8_t>(RaytraceRule::kNever)) r.fail("has an unknown raytrace rule");
+  m.raytrace = static_cast<RaytraceRule>(rule);
+  return m;
+}
+
+Texture readTexture(Reader& r, const std::string& place, SceneBudget& budget) {
+  const auto width = r.get<std::uint32_t>(), height = r.get<std::uint32_t>();
+  const auto filter = r.get<std::uint8_t>();
+  if (filter > static_cast<std::uint8_t>(ImageFilter::kBilinear)) r.fail("has an unknown texture filter");
+  if (width == 0 || height == 0 || std::size_t{width} * height > budget.limits().maxTexturePixels) {
+    r.fail("has a texture of no pixels or over the limit of " + std::to_string(budget.limits().maxTexturePixels));
+  }
+  budget.chargeImage(static_cast<int>(width), static_cast<int>(height), place);
+  auto image = std::make_shared<Image>();
+  image->width = static_cast<int>(width);
+  image->height = static_cast<int>(height);
+  image->rgb = r.getArray<std::uint8_t>(std::size_t{width} * height * 3, "texels");
+  Texture t;
+  t.type = TextureType::kImage;
+  t.filter = static_cast<ImageFilter>(filter);
+  t.image = std::move(image);
+  return t;
+}
+
+MeshInput readMesh(Reader& r, std::size_t materials, const LoadLimits& limits) {
+  MeshInput mesh;
+  mesh.material = r.get<std::uint32_t>();
+  if (mesh.material >= materials) r.fail("has a mesh with a material it does not hold");
+  const auto vertices = r.get<std::uint32_t>();
+  if (vertices > limits.maxVertices) r.fail("has more vertices than the limit");
+  const bool normals = r.get<std::uint8_t>() != 0, uvs = r.get<std::uint8_t>() != 0;
+  mesh.positions = r.getArray<glm::vec3>(vertices, "positions");
+  if (normals) mesh.normals = r.getArray<glm::vec3>(vertices, "normals");
+  if (uvs) mesh.uvs = r.getArray<glm::vec2>(vertices, "uvs");
+  const auto indices = r.get<std::uint32_t>();
+  if (indices % 3 != 0) r.fail("has a mesh whose index count is not a multiple of 3");
+  mesh.indices = r.getArray<std::uint32_t>(indices, "indices");
+  for (const std::uint32_t i : mesh.indices) {
+    if (i >= vertices) r.fail("has an index past its vertices");
+  }
+  return mesh;
+}
+
+}  // namespace
+
+std::string encodeMeshBlob(const MeshModel& model) {
+  Writer w;
+  for (const char c : kMagic) w.put(c);
+  w.put(kVersion);
+  w.put(static_cast<std::uint32_t>(model.textures.size()));
+  for (const Texture& t : model.textures) {
+    w.put(static_cast<std::uint32_t>(t.image->width));
+    w.put(static_cast<std::uint32_t>(t.image->height));
+    w.put(static_cast<std::uint8_t>(t.filter));
+    w.putArray(t.image->rgb);
+  }
+  w.put(static_cast<std::uint32_t>(model.materials.size()));
+  for (const Material& m : model.materials) writeMaterial(w, m);
+  w.put(static_cast<std::uint32_t>(model.meshes.size()));
+  for (const MeshInput& mesh : model.meshes) {
+    w.put(mesh.material);
+    w.put(static_cast<std::uint32_t>(mesh.positions.size()));
+    w.put(static_cast<std::uint8_t>(!mesh.normals.empty()));
+    w.put(static_cast<std::uint8_t>(!mesh.uvs.empty()));
+    w.putArray(mesh.positions);
+    w.putArray(mesh.normals);
+    w.putArray(mesh.uvs);
+    w.put(static_cast<std::uint32_t>(mesh.indices.size()));
+    w.putArray(mesh.indices);
+  }
+  w.put(static_cast<std::uint8_t>(model.camera.has_value()));
+  if (model.camera) {
+    w.put(model.camera->eye);
+    w.put(model.camera->lookAt);
+    w.put(model.camera->up);
+    w.put(model.camera->fovY);
+  }
+  return w.take();
+}
+
+MeshModel decodeMeshBlob(std::string_view bytes, const std::string& place, SceneBudget& budget) {
+  Reader r(bytes, place);
+  if (bytes.substr(0, kMagic.size()) != kMagic) {
+    throw InputError(place + ": a glTF or PLY mesh reaches a server imported by the client; these bytes are not "
+                             "an imported mesh (glintd does not run importers on what a peer sends)");
+  }
+  r.getArray<char>(kMagic.size(), "the magic");
+  if (r.get<std::uint32_t>() != kVersion) r.fail("is of another version");
+  MeshModel model;
+  const auto textures = r.get<std::uint32_t>();
+  for (std::uint32_t i = 0; i < textures; ++i) model.textures.push_back(readTexture(r, place, budget));
+  const auto materials = r.get<std::uint32_t>();
+  if (materials > r.remaining()) r.fail("announces more materials than it holds");
+  for (std::uint32_t i = 0; i < materials; ++i) model.materials.push_back(readMaterial(r, textures));
+  const auto meshes = r.get<std::uint32_t>();
+  if (meshes > r.remaining()) r.fail("announces more meshes than it holds");
+  for (std::uint32_t i = 0; i < meshes; ++i) model.meshes.push_back(readMesh(r, materials, budget.limits()));
+  if (r.get<std::uint8_t>() != 0) {  // the camera is checked where the scene takes it
+    CameraSpec camera;
+    camera.eye = r.get<glm::vec3>();
+    camera.lookAt = r.get<glm::vec3>();
+    camera.up = r.get<glm::vec3>();
+    camera.fovY = r.get<float>();
+    model.camera = camera;
+  }
+  if (r.remaining() != 0) r.fail("has bytes after its last mesh");
+  return model;
+}
+
+}  // namespace glint

@@ -1,0 +1,104 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "common/scene/camera.h"
+#include "common/base/enum_words.h"
+#include "common/geometry/geometry.h"
+#include "common/scene/material.h"
+#include "common/scene/texture.h"
+
+namespace glint {
+
+// kAdaptive: one sample per pixel, then the jittered pattern's full count
+// where the pixel differs from a neighbour by more than adaptiveThreshold.
+enum class SamplePattern { kRegular, kJittered, kAdaptive };
+enum class FilterType { kBox, kTent, kGaussian, kMitchell };
+enum class MaskRule { kAuto, kAll, kNone };
+// How linear colour becomes an 8-bit value: kLinear stores it as it is (the
+// thesis's frame buffer), kSrgb applies the sRGB transfer function.
+enum class Encoding { kLinear, kSrgb };
+
+template <>
+struct EnumWords<SamplePattern> {
+  static constexpr std::array<std::pair<SamplePattern, std::string_view>, 3> kWords{
+      {{SamplePattern::kRegular, "regular"}, {SamplePattern::kJittered, "jittered"}, {SamplePattern::kAdaptive, "adaptive"}}};
+};
+template <>
+struct EnumWords<FilterType> {
+  static constexpr std::array<std::pair<FilterType, std::string_view>, 4> kWords{{{FilterType::kBox, "box"},
+                                                                                  {FilterType::kTent, "tent"},
+                                                                                  {FilterType::kGaussian, "gaussian"},
+                                                                                  {FilterType::kMitchell, "mitchell"}}};
+};
+template <>
+struct EnumWords<Encoding> {
+  static constexpr std::array<std::pair<Encoding, std::string_view>, 2> kWords{
+      {{Encoding::kLinear, "linear"}, {Encoding::kSrgb, "srgb"}}};
+};
+template <>
+struct EnumWords<MaskRule> {
+  static constexpr std::array<std::pair<MaskRule, std::string_view>, 3> kWords{
+      {{MaskRule::kAuto, "auto"}, {MaskRule::kAll, "all"}, {MaskRule::kNone, "none"}}};
+};
+
+struct SamplingSettings {
+  SamplePattern pattern = SamplePattern::kRegular;
+  int samples = 1;
+  FilterType filter = FilterType::kBox;
+  std::uint32_t seed = 0;
+  float adaptiveThreshold = 1.0f / 64.0f;  // per channel, linear; adaptive pattern only
+};
+
+struct TracingSettings {
+  int maxDepth = 5;         // primary ray = depth 1
+  float minWeight = 0.01f;  // rays whose path weight falls below this are not traced
+};
+
+struct MaskSettings {
+  static constexpr int kMaxShadowMap = 4096;
+  MaskRule rule = MaskRule::kAuto;
+  float minReflectivity = 0.2f;
+  float minTransparency = 0.0f;
+  // Texels along a shadow map's face edge (client/shadow_maps.h), 0: surfaces
+  // OpenGL draws get no shadows (the thesis's frame).
+  int shadowMap = 1024;
+};
+
+// What a frame's colour becomes in its output: scaled by 2^exposure (EV),
+// then, for 8-bit values, encoded (common/image/encoding.h).
+struct OutputSettings {
+  Encoding encoding = Encoding::kLinear;
+  float exposure = 0.0f;
+};
+
+// What may change from one frame of a scene to the next: the view and the
+// accuracy settings. The scene file gives the first frame's.
+struct FrameSettings {
+  int width = 640;
+  int height = 480;
+  CameraSpec camera;
+  SamplingSettings sampling;
+  TracingSettings tracing;
+  OutputSettings output;
+};
+
+// A loaded scene: everything the scene file says, with names resolved to
+// indices and every object turned into primitives.
+struct Scene {
+  FrameSettings frame;  // the first frame's view and accuracy settings
+  MaskSettings mask;
+  glm::vec3 background{0.0f};
+  std::vector<Texture> textures;
+  std::vector<Material> materials;
+  std::vector<PointLight> lights;
+  Geometry geometry;
+  // What the loader let pass (a file an OBJ names that is missing), each once.
+  std::vector<std::string> warnings;
+};
+
+}  // namespace glint

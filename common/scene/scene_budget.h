@@ -1,0 +1,84 @@
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <string>
+
+#include "common/scene/load_limits.h"
+
+namespace glint {
+
+// Memory shared by loads that run at once (glintd's scenes being built): each
+// load draws its charges from it and gives them back when it is done.
+class MemoryGauge {
+ public:
+  MemoryGauge(std::size_t capacityBytes, std::string name) : capacity_(capacityBytes), name_(std::move(name)) {}
+  MemoryGauge(const MemoryGauge&) = delete;
+  MemoryGauge& operator=(const MemoryGauge&) = delete;
+
+  // Takes `bytes` if they fit; false (and nothing taken) otherwise.
+  bool take(std::size_t bytes);
+  void give(std::size_t bytes) { used_.fetch_sub(bytes); }
+  std::size_t used() const { return used_.load(); }
+  std::size_t capacity() const { return capacity_; }
+  const std::string& name() const { return name_; }
+
+ private:
+  std::atomic<std::size_t> used_{0};
+  std::size_t capacity_;
+  std::string name_;
+};
+
+// What one scene will hold in memory once built, counted as the loader reads
+// it and before each allocation that the input decides: an image's texels
+// from its header (before decoding), a mesh's vertices and triangles, and the
+// BVH's share of each primitive. A scene that would pass its limit (or the
+// shared gauge) fails at the item that crosses it, with an InputError that
+// names the place, the limit and by how much. Not thread-safe: one per load.
+class SceneBudget {
+ public:
+  // Bytes each item costs (Geometry's arrays; the BVH's nodes, and what its
+  // builder holds meanwhile, per primitive).
+  static const std::size_t kBytesPerVertex;
+  static const std::size_t kBytesPerTriangle;
+  static const std::size_t kBytesPerSphere;
+  static const std::size_t kBvhBytesPerPrimitive;
+  static constexpr std::size_t kBytesPerTexel = 3;
+  // A parsed JSON document's bytes per value and per object member
+  // (nlohmann::json: 31 bytes per element of a long array, 175 per object of
+  // one member, measured with getrusage).
+  static constexpr std::size_t kJsonBytesPerValue = 32;
+  static constexpr std::size_t kJsonBytesPerMember = 128;
+  // The share of the scene's limit its JSON document may take (1 / this):
+  // the document describes; geometry in bulk belongs in mesh files, read
+  // without a document. Keeps a parse's peak well below the scene's limit.
+  static constexpr std::size_t kJsonShare = 4;
+
+  // `limitName` says how a user changes limits.maxSceneBytes ("glintd
+  // --max-scene-mb"); `shared`, if any, is drawn from too.
+  explicit SceneBudget(const LoadLimits& limits = {}, std::string limitName = "the limit for one scene",
+                       MemoryGauge* shared = nullptr);
+  ~SceneBudget();
+  SceneBudget(const SceneBudget&) = delete;
+  SceneBudget& operator=(const SceneBudget&) = delete;
+
+  const LoadLimits& limits() const { return limits_; }
+  std::size_t used() const { return used_; }
+
+  void charge(std::size_t bytes, const std::string& place);
+  void chargeImage(int width, int height, const std::string& place);
+  void chargeMesh(std::size_t vertices, std::size_t triangles, const std::string& place);
+  void chargeSphere(const std::string& place);
+  // What parsing a document of this shape takes, held until refund() (the
+  // document lives while the scene is loaded from it); returns the bytes.
+  std::size_t chargeJson(std::size_t values, std::size_t members, const std::string& place);
+  void refund(std::size_t bytes);
+
+ private:
+  LoadLimits limits_;
+  std::string limitName_;
+  MemoryGauge* shared_;
+  std::size_t used_ = 0;
+};
+
+}  // namespace glint

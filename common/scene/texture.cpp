@@ -1,0 +1,84 @@
+#include "common/scene/texture.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace glint {
+namespace {
+
+// Wraps a texture coordinate into [0, 1).
+float wrap(float x) {
+  const float w = x - std::floor(x);
+  return w < 1.0f ? w : 0.0f;
+}
+
+int wrapIndex(int i, int n) { return ((i % n) + n) % n; }
+
+// byte / 255 for every byte, computed once.
+struct UnitTable {
+  float value[256];
+  constexpr UnitTable() : value() {
+    for (int i = 0; i < 256; ++i) value[i] = static_cast<float>(i) / 255.0f;
+  }
+};
+constexpr UnitTable kUnit;
+
+glm::vec3 texel(const Image& image, int x, int y) {
+  return image.texel(static_cast<std::size_t>(wrapIndex(y, image.height)) * static_cast<std::size_t>(image.width) +
+                     static_cast<std::size_t>(wrapIndex(x, image.width)));
+}
+
+// u runs to the right and v up, so v = 1 is the top row (row 0).
+glm::vec3 lookup(const Image& image, ImageFilter filter, const glm::vec2& uv) {
+  if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return texel(image, 0, 0);
+  const float x = wrap(uv.x) * static_cast<float>(image.width);
+  const float y = (1.0f - wrap(uv.y)) * static_cast<float>(image.height);
+  if (filter == ImageFilter::kNearest) {
+    return texel(image, static_cast<int>(x), static_cast<int>(y));
+  }
+  // Bilinear between the four nearest texel centres (at i + 0.5).
+  const float fx = x - 0.5f;
+  const float fy = y - 0.5f;
+  const float x0 = std::floor(fx);
+  const float y0 = std::floor(fy);
+  const float tx = fx - x0;
+  const float ty = fy - y0;
+  const int ix = static_cast<int>(x0);
+  const int iy = static_cast<int>(y0);
+  const glm::vec3 top = (1.0f - tx) * texel(image, ix, iy) + tx * texel(image, ix + 1, iy);
+  const glm::vec3 bottom = (1.0f - tx) * texel(image, ix, iy + 1) + tx * texel(image, ix + 1, iy + 1);
+  return (1.0f - ty) * top + ty * bottom;
+}
+
+}  // namespace
+
+glm::vec3 Image::texel(std::size_t index) const {
+  const std::uint8_t* t = &rgb[3 * index];
+  return {kUnit.value[t[0]], kUnit.value[t[1]], kUnit.value[t[2]]};
+}
+
+int checkerIndex(const glm::vec2& uv, float scale) {
+  const double u = std::floor(double(uv.x) * scale);
+  const double v = std::floor(double(uv.y) * scale);
+  const double sum = u + v;
+  if (!std::isfinite(sum)) return 0;
+  // sum mod 2 without fmod's library call: below 2^53 the sum is an exact
+  // integer, and from 2^53 on every double is even.
+  const double magnitude = std::abs(sum);
+  return magnitude < 0x1p53 && (static_cast<std::int64_t>(magnitude) & 1) != 0 ? 1 : 0;
+}
+
+glm::vec3 Texture::evaluate(const glm::vec2& uv) const {
+  switch (type) {
+    case TextureType::kSolid:
+      return colors[0];
+    case TextureType::kChecker:
+      return colors[checkerIndex(uv, scale)];
+    case TextureType::kImage:
+      return lookup(*image, filter, uv);
+  }
+  return colors[0];
+}
+
+}  // namespace glint

@@ -1,0 +1,54 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "common/base/enum_words.h"
+
+namespace glint {
+
+// Decoded texture image: 8-bit RGB texels as the file held them (3 bytes a
+// texel, a quarter of floats), row 0 at the top. A texel reads as byte / 255.
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgb;  // width * height * 3
+
+  glm::vec3 texel(std::size_t index) const;
+};
+
+enum class TextureType { kSolid, kChecker, kImage };
+enum class ImageFilter { kNearest, kBilinear };
+
+template <>
+struct EnumWords<TextureType> {
+  static constexpr std::array<std::pair<TextureType, std::string_view>, 3> kWords{
+      {{TextureType::kSolid, "solid"}, {TextureType::kChecker, "checker"}, {TextureType::kImage, "image"}}};
+};
+template <>
+struct EnumWords<ImageFilter> {
+  static constexpr std::array<std::pair<ImageFilter, std::string_view>, 2> kWords{
+      {{ImageFilter::kNearest, "nearest"}, {ImageFilter::kBilinear, "bilinear"}}};
+};
+
+// The thesis's abstract texture: a colour at (u, v).
+struct Texture {
+  TextureType type = TextureType::kSolid;
+  glm::vec3 colors[2] = {glm::vec3(1.0f), glm::vec3(0.0f)};  // solid uses colors[0]
+  float scale = 1.0f;                                        // checker squares per unit of u and v
+  std::shared_ptr<const Image> image;
+  ImageFilter filter = ImageFilter::kNearest;
+
+  glm::vec3 evaluate(const glm::vec2& uv) const;
+};
+
+// Checker square index at (u, v): (floor(u s) + floor(v s)) mod 2, as the
+// scene format defines it; 0 for coordinates that are not finite.
+int checkerIndex(const glm::vec2& uv, float scale);
+
+}  // namespace glint

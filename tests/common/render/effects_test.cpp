@@ -1,0 +1,136 @@
+#include "common/render/effects.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "common/scene/scene_load.h"
+#include "tests/support/test_support.h"
+
+namespace glint {
+namespace {
+
+using nlohmann::json;
+
+// Renders with the derived plan and with every effect on: the images must be
+// byte-identical (turning off an absent effect changes nothing).
+std::pair<FrameResult, FrameResult> derivedAndFull(const Scene& s) {
+  FrameResult derived = test::render(s, EffectPlan::derive(s), 2);
+  FrameResult full = test::render(s, test::everyEffect(s), 2);
+  EXPECT_EQ(derived.image.rgb, full.image.rgb);
+  return {std::move(derived), std::move(full)};
+}
+
+json sphereScene() {
+  return json::parse(R"({
+    "glint": 1, "image": {"width": 48, "height": 32},
+    "camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0]},
+    "materials": {"m": {"color": [1, 0.5, 0.2], "ambient": 0.1, "specular": 0.4, "shininess": 20}},
+    "lights": [{"type": "point", "position": [2, 3, 4]}],
+    "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]
+  })");
+}
+
+TEST(Effects, RoomPlan) {
+  const Scene s = loadSceneFile(test::sourcePath("scenes/room.json"));
+  const EffectPlan p = EffectPlan::derive(s);
+  EXPECT_TRUE(p.shadows);
+  EXPECT_TRUE(p.reflection);
+  EXPECT_FALSE(p.refraction);
+  EXPECT_TRUE(p.textures);
+  EXPECT_TRUE(p.attenuation);
+  EXPECT_TRUE(p.antialiasing);
+}
+
+TEST(Effects, NoShadowRaysWhereNothingCanCastAShadow) {
+  const Scene s = test::sceneFromJson(sphereScene().dump());
+  EXPECT_FALSE(EffectPlan::derive(s).shadows);
+  EXPECT_FALSE(EffectPlan::derive(s).attenuation);
+  EXPECT_FALSE(EffectPlan::derive(s).reflection);
+  EXPECT_FALSE(EffectPlan::derive(s).textures);
+  EXPECT_FALSE(EffectPlan::derive(s).antialiasing);
+  const auto [derived, full] = derivedAndFull(s);
+  EXPECT_EQ(derived.stats.shadow, 0u);
+  EXPECT_GT(full.stats.shadow, 0u);
+}
+
+TEST(Effects, BlackLightsAndUnlitMaterialsCastNoShadowRays) {
+  json j = sphereScene();
+  j["lights"].push_back({{"type", "point"}, {"position", {-2, 3, 4}}, {"color", {0, 0, 0}}});
+  j["objects"].push_back({{"type", "sphere"}, {"center", {1.5, 0, 0}}, {"radius", 0.4}, {"material", "m"}});
+  const Scene s = test::sceneFromJson(j.dump());
+  const EffectPlan plan = EffectPlan::derive(s);
+  EXPECT_TRUE(plan.shadows);
+  EXPECT_FALSE(plan.lights[1]);
+  const auto [derived, full] = derivedAndFull(s);
+  EXPECT_LT(derived.stats.shadow, full.stats.shadow);  // the black light casts none
+
+  json mirror = j;
+  mirror["materials"]["m"] = {{"ambient", 0.2}, {"diffuse", 0}, {"reflectivity", 0.5}};
+  const Scene m = test::sceneFromJson(mirror.dump());
+  EXPECT_FALSE(EffectPlan::derive(m).materials[0].direct);
+  const auto [d2, f2] = derivedAndFull(m);
+  EXPECT_EQ(d2.stats.shadow, 0u);
+  EXPECT_GT(f2.stats.shadow, 0u);
+}
+
+// The raster pass draws shadow maps only where a shadow can fall on a
+// surface OpenGL draws: something casts one, a lit material is left to
+// OpenGL by the mask, and the maps are not turned off.
+TEST(Effects, ShadowMapsOnlyWhereARasterSurfaceCanBeShadowed) {
+  const Scene room = loadSceneFile(test::sourcePath("scenes/room.json"));
+  const EffectPlan plan = EffectPlan::derive(room);
+  MaskSettings mask = room.mask;
+  EXPECT_TRUE(rasterShadows(room, plan, mask));
+  mask.shadowMap = 0;
+  EXPECT_FALSE(rasterShadows(room, plan, mask));
+  mask = room.mask;
+  mask.rule = MaskRule::kAll;  // nothing is drawn by OpenGL
+  EXPECT_FALSE(rasterShadows(room, plan, mask));
+  mask.rule = MaskRule::kAuto;
+  mask.minReflectivity = -1.0f;  // every material traced (reflectivity >= 0 > -1)
+  EXPECT_FALSE(rasterShadows(room, plan, mask));
+  mask.rule = MaskRule::kNone;
+  EXPECT_TRUE(rasterShadows(room, plan, mask));
+
+  const Scene lone = test::sceneFromJson(sphereScene().dump());  // a sphere alone shadows nothing
+  EXPECT_FALSE(rasterShadows(lone, EffectPlan::derive(lone), lone.mask));
+}
+
+TEST(Effects, NoSecondaryRaysAtDepthOneOrBelowMinWeight) {
+  Scene s = loadSceneFile(test::sourcePath("scenes/room.json"));
+  s.frame.width = 64;
+  s.frame.height = 48;
+  s.frame.tracing.maxDepth = 1;
+  EXPECT_FALSE(EffectPlan::derive(s).reflection);
+  const auto [derived, full] = derivedAndFull(s);
+  EXPECT_EQ(derived.stats.reflection, 0u);
+
+  s.frame.tracing.maxDepth = 5;
+  s.frame.tracing.minWeight = 0.9f;  // above every reflectivity in the room
+  EXPECT_FALSE(EffectPlan::derive(s).reflection);
+  const auto [d2, f2] = derivedAndFull(s);
+  EXPECT_EQ(d2.stats.reflection, 0u);
+}
+
+TEST(Effects, NoRefractionWithoutTransparency) {
+  Scene s = loadSceneFile(test::sourcePath("scenes/room.json"));
+  s.frame.width = 64;
+  s.frame.height = 48;
+  EXPECT_FALSE(EffectPlan::derive(s).refraction);
+  const auto [derived, full] = derivedAndFull(s);
+  EXPECT_EQ(derived.stats.refraction, 0u);
+  EXPECT_GT(derived.stats.reflection, 0u);
+}
+
+TEST(Effects, GlassSceneRefracts) {
+  Scene s = loadSceneFile(test::sourcePath("scenes/glass.json"));
+  s.frame.width = 64;
+  s.frame.height = 48;
+  EXPECT_TRUE(EffectPlan::derive(s).refraction);
+  const auto [derived, full] = derivedAndFull(s);
+  EXPECT_GT(derived.stats.refraction, 0u);
+  EXPECT_EQ(derived.stats.nonFiniteSamples, 0u);
+}
+
+}  // namespace
+}  // namespace glint

@@ -1,0 +1,110 @@
+// Image textures from memory: only PNG and BMP reach the decoder, and memory
+// follows the bytes that arrived: a file that claims more than it holds is
+// refused before the decoder allocates for the claim.
+#include "common/scene/image_decode.h"
+#include "common/image/image_write.h"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "common/base/error.h"
+#include "tests/support/test_support.h"
+
+namespace glint {
+namespace {
+
+std::string decodeError(const std::string& bytes) {
+  SceneBudget budget;
+  try {
+    decodeImage(bytes, "t.png", budget);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(decoded without error)";
+}
+
+// This process's peak virtual memory, in KiB (/proc/self/status VmPeak).
+long peakVirtualKb() {
+  std::ifstream in("/proc/self/status");
+  std::string key;
+  long kb = -1;
+  while (in >> key) {
+    if (key == "VmPeak:") in >> kb;
+  }
+  return kb;
+}
+
+TEST(ImageDecode, PngRoundTripKeepsEveryByte) {
+  FrameImage image{5, 3, std::vector<std::uint8_t>(45)};
+  for (std::size_t i = 0; i < image.rgb.size(); ++i) image.rgb[i] = static_cast<std::uint8_t>(i * 37);
+  const auto path = std::filesystem::temp_directory_path() / "glint-image-io-test.png";
+  writePng(path, image);
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream bytes;
+  bytes << in.rdbuf();
+  std::filesystem::remove(path);
+  SceneBudget budget;
+  const Image decoded = decodeImage(bytes.str(), "t.png", budget);
+  EXPECT_EQ(decoded.width, 5);
+  EXPECT_EQ(decoded.height, 3);
+  EXPECT_EQ(decoded.rgb, image.rgb);
+  EXPECT_EQ(budget.used(), 45u);
+}
+
+TEST(ImageDecode, OnlyPngAndBmpReachTheDecoder) {
+  EXPECT_NE(decodeError("GIF89a\x01\x00\x01\x00").find("t.png: not a PNG or BMP image"), std::string::npos);
+  EXPECT_NE(decodeError("\xff\xd8\xff\xe0 JFIF").find("not a PNG or BMP image"), std::string::npos);
+}
+
+// Found by the image fuzzer (tests/fuzz/corpus/image/regression-png-idat-claim):
+// an 85-byte PNG whose second IDAT chunk claims 2 GB made stb_image reserve
+// 2 GiB before reading it. Chunks are now checked against the file first.
+TEST(ImageDecode, PngChunkLongerThanTheFileIsRefusedBeforeDecoding) {
+  const std::string png(
+      "\x89\x50\x4e\x47\x0d\x0a\x1a\x0a\x00\x00\x00\x0d\x49\x48\x44\x52\x00\x00\x00\x04\x00\x00\x04\x03"
+      "\x08\x02\x00\x00\x00\x3b\x96\x38\x91\x00\x00\x00\x1a\x49\x44\x41\x54\x78\x5e\x63\x0e\x0a\x00\x00"
+      "\x00\x0d\x49\x48\x44\x52\x00\x00\x00\x04\x00\x00\x00\x03\x08\x02\x00\xff\xff\x5f\x40\x00\x01\x7b"
+      "\xb6\x00\x1a\x49\x44\x41\x54\x78\xfa\x4e\x44\xae\x42",
+      85);
+  const long before = peakVirtualKb();
+  const std::string error = decodeError(png);
+  EXPECT_NE(error.find("t.png: PNG chunk IDAT claims 2075525146 bytes, but only 2 follow"), std::string::npos)
+      << error;
+  EXPECT_LT(peakVirtualKb() - before, 256 * 1024) << "an 85-byte PNG reserved memory for what it claims";
+}
+
+// Found by the image fuzzer (corpus/image/regression-png-empty-idat): an
+// empty IDAT chunk made stb_image memcpy into a null buffer.
+TEST(ImageDecode, PngWithAnEmptyIdatIsRefused) {
+  const std::string png(
+      "\x89PNG\r\n\x1a\n\x00\x00\x00\x0dIHDR\x00\x00\x00\x04\x00\x00\x04\x03\x08\x02\x00\x00\x00\x3b\x96\x39"
+      "\x91\x00\x00\x00\x00IDAT\xae\x42\x60\x82",
+      45);
+  EXPECT_NE(decodeError(png).find("t.png: PNG with an empty IDAT chunk is not supported"), std::string::npos)
+      << decodeError(png);
+}
+
+// A BMP header announcing 4096 x 4096 pixels with no pixels after it: stb_image
+// would allocate (and fill) 48 MiB for it.
+TEST(ImageDecode, BmpShorterThanItsRowsIsRefusedBeforeDecoding) {
+  const long before = peakVirtualKb();
+  const std::string error = decodeError(test::bmp(4096, 4096, false));
+  EXPECT_NE(error.find("BMP of 4096x4096 needs 50331702 bytes, the file has 54"), std::string::npos) << error;
+  EXPECT_LT(peakVirtualKb() - before, 16 * 1024);
+  SceneBudget budget;
+  EXPECT_EQ(decodeImage(test::bmp(4, 2, true), "t.bmp", budget).rgb.size(), 24u);
+}
+
+// Found by the image fuzzer (corpus/image/regression-bmp-short-header): a BMP
+// cut inside its header passed stb_image's header check, and the row check
+// read past the end of the file.
+TEST(ImageDecode, BmpCutInsideItsHeaderIsRefused) {
+  const std::string cut = test::bmp(1, 1, true).substr(0, 27);
+  EXPECT_NE(decodeError(cut).find("BMP header of 27 bytes (truncated)"), std::string::npos) << decodeError(cut);
+}
+
+}  // namespace
+}  // namespace glint

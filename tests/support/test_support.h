@@ -1,0 +1,51 @@
+#pragma once
+
+#include <string>
+
+#include "common/render/effects.h"
+#include "common/render/frame.h"
+#include "common/geometry/geometry.h"
+#include "common/scene/scene.h"
+
+namespace glint::test {
+
+// Loads a scene from JSON text that names no files.
+Scene sceneFromJson(const std::string& json);
+
+// Every effect switched on for every material and light: the reference the
+// tests compare EffectPlan::derive against.
+EffectPlan everyEffect(const Scene& scene);
+
+// Direct light only, no shadow, reflected or refracted rays: what the OpenGL
+// pass draws, for comparing the two.
+EffectPlan directLightOnly(const Scene& scene, const FrameSettings& frame);
+
+// Renders a whole frame through the tile interface.
+FrameResult render(const Scene& scene, int threads = 1, int tileSize = 32);
+FrameResult render(const Scene& scene, const EffectPlan& plan, int threads = 1, int tileSize = 32);
+
+// Path of a file in the source tree (scenes/room.json).
+std::string sourcePath(const std::string& relative);
+
+// A 24-bit BMP file of width x height pixels (all black); with `pixels`
+// false, only its 54-byte header.
+std::string bmp(int width, int height, bool pixels);
+
+// The bytes of a PNG of one colour: small to send, large once decoded.
+std::string flatPng(int width, int height);
+
+// RGB of pixel (x, y) of an image.
+struct Rgb {
+  int r, g, b;
+};
+Rgb pixelAt(const FrameImage& image, int x, int y);
+
+}  // namespace glint::test
+
+namespace glint::test {
+
+// A closed triangle mesh of a sphere: an icosahedron subdivided `levels`
+// times, vertices shared, wound counter-clockwise seen from outside.
+MeshInput icosphere(int levels, const glm::vec3& centre, float radius);
+
+}  // namespace glint::test
