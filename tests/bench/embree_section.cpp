@@ -216,7 +216,8 @@ void compare(RTCDevice device, const PeerCase& c, int runs) {
   std::printf("| %s | build ms (SAH, every thread; Embree's includes copying the mesh) | %.3g | %.3g | %.2fx time | |\n",
               c.name.c_str(), build.glintMs, build.embreeMs, build.glintOverEmbree);
   printTraced(c.name, "primary rays", rays.primary, trace(bvh, scene, rays.primary, runs));
-  printTraced(c.name, "mirror bounces (incoherent: the issue's)", rays.mirror, trace(bvh, scene, rays.mirror, runs));
+  printTraced(c.name, "mirror bounces (incoherent: as Glint's reflections)", rays.mirror,
+              trace(bvh, scene, rays.mirror, runs));
   printTraced(c.name, "random directions (incoherent: diffuse)", rays.random, trace(bvh, scene, rays.random, runs));
   rtcReleaseScene(scene);
 }
