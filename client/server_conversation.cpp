@@ -12,8 +12,6 @@ namespace {
 constexpr const char* kSceneWait = "scene upload and build; --scene-timeout";
 constexpr std::uint32_t kMaxThreadsBelieved = 4096;  // sizes the dispatcher's window, nothing more
 
-std::uint64_t key(std::uint32_t frameId, std::uint32_t tileId) { return std::uint64_t{frameId} << 32 | tileId; }
-
 }  // namespace
 
 ServerConversation::ServerConversation(ConversationHost& host, const proto::SceneBundle& bundle,
@@ -26,7 +24,9 @@ void ServerConversation::await(std::chrono::milliseconds timeout, const char* wa
   host_.await(timeout);
 }
 
-void ServerConversation::start() { await(timeouts_.connect, "connecting"); }
+void ServerConversation::start() {
+  await(timeouts_.connect, "connecting");
+}
 
 void ServerConversation::connected() {
   if (state_ != State::kConnecting) return;
@@ -118,14 +118,14 @@ bool ServerConversation::sendMissingFiles(const wire::SceneStatus& status) {
   for (const auto& [path, bytes] : bundle_.files) files.push_back(&bytes);
   constexpr std::size_t kChunkOverhead = 4096;  // the FileChunk's own fields and framing
   const std::size_t chunkBytes =
-      std::min(proto::kFileChunkBytes, maxMessageBytes_ > 2 * kChunkOverhead ? maxMessageBytes_ - kChunkOverhead
-                                                                              : kChunkOverhead);
+      std::min(proto::kFileChunkBytes,
+               maxMessageBytes_ > 2 * kChunkOverhead ? maxMessageBytes_ - kChunkOverhead : kChunkOverhead);
   if (!status.missing()) return true;
   std::vector<bool> sent(files.size(), false);  // a server asking twice gets a file once
   for (const std::uint32_t i : *status.missing()) {
     if (i >= files.size()) {
-      fail(LinkFailure::Kind::kBadBytes, "asked for file " + std::to_string(i) + " of a scene of " +
-                                             std::to_string(files.size()) + " files");
+      fail(LinkFailure::Kind::kBadBytes,
+           "asked for file " + std::to_string(i) + " of a scene of " + std::to_string(files.size()) + " files");
       return false;
     }
     if (sent[i]) continue;
@@ -164,7 +164,7 @@ void ServerConversation::setupFrame(std::uint32_t frameId, const FrameSettings& 
 }
 
 void ServerConversation::request(std::uint32_t frameId, std::uint32_t tileId, const TileJob& job) {
-  pending_[key(frameId, tileId)] = 3 * tracedPixels(job);
+  pending_[proto::tileKey(frameId, tileId)] = 3 * tracedPixels(job);
   host_.send(proto::encodeTileRequest(frameId, tileId, job.rect, job.mask));
 }
 
@@ -175,16 +175,17 @@ void ServerConversation::cancel(std::uint32_t frameId, std::span<const std::uint
 // A result must answer a request of this server (a cancelled one may still
 // come) with one RGB triple per masked pixel.
 void ServerConversation::onResult(const wire::TileResult& result) {
-  const auto it = pending_.find(key(result.frame_id(), result.tile_id()));
-  const std::string tile = "tile " + std::to_string(result.tile_id()) + " of frame " + std::to_string(result.frame_id());
+  const auto it = pending_.find(proto::tileKey(result.frame_id(), result.tile_id()));
+  const std::string tile =
+      "tile " + std::to_string(result.tile_id()) + " of frame " + std::to_string(result.frame_id());
   if (it == pending_.end()) {
     fail(LinkFailure::Kind::kBadBytes, "sent " + tile + ", which was not asked of it (or came twice)");
     return;
   }
   const std::size_t rgbBytes = result.rgb() ? result.rgb()->size() : 0;
   if (rgbBytes != it->second) {
-    fail(LinkFailure::Kind::kBadBytes, "sent " + tile + " with " + std::to_string(rgbBytes) +
-                                           " bytes of pixels, not " + std::to_string(it->second));
+    fail(LinkFailure::Kind::kBadBytes,
+         "sent " + tile + " with " + std::to_string(rgbBytes) + " bytes of pixels, not " + std::to_string(it->second));
     return;
   }
   pending_.erase(it);

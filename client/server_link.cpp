@@ -3,7 +3,6 @@
 namespace glint {
 namespace {
 
-constexpr std::size_t kReadChunkBytes = 64 * 1024;
 constexpr std::size_t kGatherBytes = 1 << 20;
 
 }  // namespace
@@ -60,24 +59,20 @@ void ServerLink::lost(const LinkFailure& failure) {
 }
 
 void ServerLink::send(std::vector<std::uint8_t> frame) {
-  writes_.push_back(std::move(frame));
-  if (inFlight_ == 0) writeNext();
+  writes_.push(std::move(frame));
+  if (!writes_.writing()) writeNext();
 }
 
 // One write in flight, gathering the messages queued meanwhile up to about
 // kGatherBytes, so that an upload's progress is seen a piece at a time.
 void ServerLink::writeNext() {
-  if (writes_.empty() || !stream_->isOpen()) return;
+  if (!stream_->isOpen()) return;
   std::vector<asio::const_buffer> buffers;
-  std::size_t bytes = 0;
-  for (inFlight_ = 0; inFlight_ < writes_.size() && (inFlight_ == 0 || bytes < kGatherBytes); ++inFlight_) {
-    buffers.push_back(asio::buffer(writes_[inFlight_]));
-    bytes += writes_[inFlight_].size();
-  }
+  for (const auto& frame : writes_.next(kGatherBytes)) buffers.push_back(asio::buffer(frame.data(), frame.size()));
+  if (buffers.empty()) return;
   stream_->write(buffers, [self = shared_from_this()](const asio::error_code& error, std::size_t n) {
     self->sent_ += n;
-    for (std::size_t i = 0; i < self->inFlight_; ++i) self->writes_.pop_front();
-    self->inFlight_ = 0;
+    self->writes_.written();
     const bool closing = self->conversation_.state() == ServerConversation::State::kClosed;
     if (closing && self->writes_.empty()) self->stream_->close();
     if (!closing && error) {
@@ -89,33 +84,26 @@ void ServerLink::writeNext() {
 }
 
 void ServerLink::readMore() {
-  const std::size_t had = buffer_.size();
-  buffer_.resize(had + kReadChunkBytes);
-  stream_->readSome(asio::buffer(buffer_.data() + had, kReadChunkBytes),
-                    [self = shared_from_this(), had](const asio::error_code& error, std::size_t n) {
-                      self->buffer_.resize(had + n);
-                      self->onRead(error, n);
-                    });
+  const std::span<std::uint8_t> space = reader_.space();
+  stream_->readSome(
+      asio::buffer(space.data(), space.size()),
+      [self = shared_from_this()](const asio::error_code& error, std::size_t n) { self->onRead(error, n); });
 }
 
-// Hands every whole message that arrived to the conversation, in order;
-// keeps a partial one.
+// Hands every whole message that arrived to the conversation, in order.
 void ServerLink::onRead(const asio::error_code& error, std::size_t n) {
   if (conversation_.over()) return;
   if (error) return conversation_.streamEnded(stream_->describe(error));
   received_ += n;
-  std::size_t consumed = 0;
+  reader_.filled(n);
   while (!conversation_.over()) {
-    const std::span<const std::uint8_t> unread(buffer_.data() + consumed, buffer_.size() - consumed);
-    const proto::Decoded d = proto::decodeFrame(unread, proto::kDefaultMaxMessageBytes, aligned_);
-    if (d.status == proto::DecodeStatus::kNeedMore) break;
-    if (d.status == proto::DecodeStatus::kBad) return conversation_.fail(LinkFailure::Kind::kBadBytes, "sent a bad message: " + d.error);
-    consumed += d.consumed;
+    const proto::Decoded d = reader_.next(proto::kDefaultMaxMessageBytes);
+    if (d.status == proto::DecodeStatus::kNeedMore) return readMore();
+    if (d.status == proto::DecodeStatus::kBad) {
+      return conversation_.fail(LinkFailure::Kind::kBadBytes, "sent a bad message: " + d.error);
+    }
     conversation_.handle(*d.message);
   }
-  if (conversation_.over()) return;
-  buffer_.erase(buffer_.begin(), buffer_.begin() + static_cast<std::ptrdiff_t>(consumed));
-  readMore();
 }
 
 }  // namespace glint

@@ -1,7 +1,6 @@
 #pragma once
 
 #include <cstdint>
-#include <deque>
 #include <memory>
 #include <span>
 #include <string>
@@ -11,6 +10,8 @@
 
 #include "client/link_stream.h"
 #include "client/server_conversation.h"
+#include "proto/frame_reader.h"
+#include "proto/write_queue.h"
 
 namespace glint {
 
@@ -84,10 +85,8 @@ class ServerLink : public std::enable_shared_from_this<ServerLink>, private Conv
   asio::ip::tcp::endpoint endpoint_;
   LinkListener* listener_ = nullptr;
   ServerConversation conversation_;
-  std::deque<std::vector<std::uint8_t>> writes_;
-  std::size_t inFlight_ = 0;  // messages of writes_ in the current write
-  std::vector<std::uint8_t> buffer_;  // received, not yet decoded
-  std::vector<std::uint64_t> aligned_;
+  proto::WriteQueue writes_;
+  proto::FrameReader reader_;
   std::uint64_t sent_ = 0;
   std::uint64_t received_ = 0;
 };

@@ -29,4 +29,10 @@ asio::ip::tcp::endpoint parseEndpoint(const std::string& address, const std::str
   return {ip, static_cast<std::uint16_t>(port)};
 }
 
+std::string peerAddress(const asio::ip::tcp::socket::lowest_layer_type& socket, const std::string& fallback) {
+  asio::error_code ec;
+  const auto remote = socket.remote_endpoint(ec);
+  return ec ? fallback : remote.address().to_string() + ":" + std::to_string(remote.port());
+}
+
 }  // namespace glint::proto

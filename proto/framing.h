@@ -25,6 +25,12 @@ constexpr std::size_t kMaxSceneFiles = 65536;
 // are refused, and a client stops expecting their results.
 constexpr std::uint32_t kFramesRemembered = 16;
 
+// A tile's key in a frame: where requests, results and cancels are matched,
+// on either end.
+inline std::uint64_t tileKey(std::uint32_t frameId, std::uint32_t tileId) {
+  return std::uint64_t{frameId} << 32 | tileId;
+}
+
 // The length a frame header announces.
 std::uint32_t frameLength(std::span<const std::uint8_t, kHeaderBytes> header);
 

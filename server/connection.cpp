@@ -3,29 +3,17 @@
 #include <unordered_set>
 
 #include "common/base/timing.h"
+#include "proto/endpoint.h"
 #include "proto/tls.h"
 #include "server/log.h"
 
 namespace glint::server {
 namespace {
 
-constexpr std::size_t kReadChunkBytes = 64 * 1024;  // a message buffer's first size, and what an idle one keeps
-
-std::string peerName(const asio::ip::tcp::socket::lowest_layer_type& socket, std::uint64_t id) {
-  asio::error_code ec;
-  const auto remote = socket.remote_endpoint(ec);
-  return ec ? "client " + std::to_string(id) : remote.address().to_string() + ":" + std::to_string(remote.port());
-}
-
-// A tile's name in the scheduler's queue, for Cancel.
-std::uint64_t tileTag(std::uint32_t frameId, std::uint32_t tileId) {
-  return std::uint64_t{frameId} << 32 | tileId;
-}
-
 Session::Settings sessionSettings(const ServerContext& context) {
   return {static_cast<std::uint32_t>(context.options.maxMessageBytes),
-          static_cast<std::uint32_t>(context.scheduler.threads()),
-          static_cast<std::size_t>(context.options.maxClients), context.options.maxSceneBytes};
+          static_cast<std::uint32_t>(context.scheduler.threads()), static_cast<std::size_t>(context.options.maxClients),
+          context.options.maxSceneBytes};
 }
 
 }  // namespace
@@ -38,7 +26,7 @@ BasicConnection<Stream>::BasicConnection(Stream stream, ServerContext& context, 
       id_(id),
       outbox_(context.scheduler.threads()),
       session_(*this, {context.cache, context.files, context.buildMemory}, sessionSettings(context),
-               peerName(socket_.lowest_layer(), id)) {
+               proto::peerAddress(socket_.lowest_layer(), "client " + std::to_string(id))) {
   asio::error_code ignored;
   socket_.lowest_layer().set_option(asio::ip::tcp::no_delay(true), ignored);
 }
@@ -49,7 +37,8 @@ void BasicConnection<Stream>::start() {
   if constexpr (std::is_same_v<Stream, TlsStream>) {
     handshake();
   } else {
-    readHeader();
+    waitForMessage();
+    read();
   }
 }
 
@@ -62,7 +51,8 @@ void BasicConnection<Stream>::handshake() {
     socket_.async_handshake(asio::ssl::stream_base::server,
                             [self = this->shared_from_this()](const asio::error_code& e) {
                               if (!e) {
-                                self->readHeader();
+                                self->waitForMessage();
+                                self->read();
                                 return;
                               }
                               const long verify = SSL_get_verify_result(self->socket_.native_handle());
@@ -87,7 +77,7 @@ void BasicConnection<Stream>::onTimer(const char* what) {
     close(greeted() ? "read timeout: a message was not finished" : "handshake timeout: no Hello");
   } else if (pending_ > 0) {
     armTimer(context_.options.idleTimeout, what);  // our own work is not idleness
-  } else if (writing_) {
+  } else if (writes_.writing()) {
     if (Clock::now() - lastWrite_ > context_.options.readTimeout) {
       close("client stopped reading its results");
     } else {
@@ -99,90 +89,60 @@ void BasicConnection<Stream>::onTimer(const char* what) {
 }
 
 template <typename Stream>
-void BasicConnection<Stream>::readHeader() {
+void BasicConnection<Stream>::read() {
   if (closed_ || closeAfterWrites_) return;
+  const std::span<std::uint8_t> space = reader_.space();
+  socket_.async_read_some(asio::buffer(space.data(), space.size()), [self = this->shared_from_this()](
+                                                                        const asio::error_code& error, std::size_t n) {
+    if (error) {
+      const bool mid = self->reader_.midMessage();
+      self->close(error == asio::error::eof ? (mid ? "disconnected mid-message" : "disconnected") : error.message());
+      return;
+    }
+    self->reader_.filled(n);
+    self->takeMessages();
+  });
+}
+
+// Hands every whole message that arrived to the session, then reads on. A
+// message started arms the read timeout once (before Hello the handshake's
+// deadline stands: a header does not buy a connection more time); a
+// connection between messages waits under the idle or handshake timeout.
+template <typename Stream>
+void BasicConnection<Stream>::takeMessages() {
+  bool took = false;
+  while (!closed_ && !closeAfterWrites_) {
+    const std::size_t limit = greeted() ? context_.options.maxMessageBytes : ServerOptions::kMaxHandshakeMessageBytes;
+    const proto::Decoded d = reader_.next(limit);
+    if (d.status == proto::DecodeStatus::kNeedMore) break;
+    if (d.status == proto::DecodeStatus::kBad) {
+      const bool tooLarge = d.code == wire::ErrorCode::TooLarge;
+      const std::string hint = greeted() ? " (is this a Glint client?)" : " before Hello (is this a Glint client?)";
+      return session_.error(d.code, d.error + (tooLarge ? hint : ""), true);
+    }
+    took = true;
+    session_.handle(*d.message);
+  }
+  if (closed_ || closeAfterWrites_) return;
+  const bool mid = reader_.midMessage();
+  if (mid && (took || !midMessage_) && greeted()) armTimer(context_.options.readTimeout, "read");
+  if (!mid && took) waitForMessage();
+  midMessage_ = mid;
+  read();
+}
+
+template <typename Stream>
+void BasicConnection<Stream>::waitForMessage() {
   armTimer(greeted() ? context_.options.idleTimeout : context_.options.handshakeTimeout,
            greeted() ? "idle" : "handshake");
-  asio::async_read(socket_, asio::buffer(header_),
-                   [self = this->shared_from_this()](const asio::error_code& error, std::size_t) {
-                     if (error) {
-                       self->close(error == asio::error::eof ? "disconnected" : error.message());
-                       return;
-                     }
-                     const std::uint32_t length = proto::frameLength(self->header_);
-                     const bool greeted = self->greeted();
-                     const std::size_t limit = greeted ? self->context_.options.maxMessageBytes
-                                                       : ServerOptions::kMaxHandshakeMessageBytes;
-                     if (length > limit) {
-                       self->session_.error(wire::ErrorCode::TooLarge,
-                                            "message of " + std::to_string(length) + " bytes is over the limit of " +
-                                                std::to_string(limit) + (greeted ? "" : " before Hello") +
-                                                " (is this a Glint client?)",
-                                            true);
-                       return;
-                     }
-                     self->readBody(length);
-                   });
-}
-
-template <typename Stream>
-void BasicConnection<Stream>::readBody(std::uint32_t length) {
-  midMessage_ = true;
-  // Before Hello the handshake's deadline stands: a header does not buy a
-  // connection the read timeout.
-  if (greeted()) armTimer(context_.options.readTimeout, "read");
-  body_.clear();
-  readMore(length);
-}
-
-// Memory follows the bytes that arrive, not the length a header announces:
-// the buffer grows by at most what it already holds (kReadChunkBytes to
-// start), so a peer that announces 64 MiB and sends 4 bytes costs 64 KiB.
-template <typename Stream>
-void BasicConnection<Stream>::readMore(std::uint32_t length) {
-  const std::size_t have = body_.size();
-  const std::size_t step = std::min<std::size_t>(length - have, std::max(kReadChunkBytes, have));
-  body_.resize(have + step);
-  asio::async_read(socket_, asio::buffer(body_.data() + have, step),
-                   [self = this->shared_from_this(), length](const asio::error_code& error, std::size_t) {
-                     if (error) {
-                       self->close(error == asio::error::eof ? "disconnected mid-message" : error.message());
-                     } else if (self->body_.size() < length) {
-                       self->readMore(length);
-                     } else {
-                       self->onBody();
-                     }
-                   });
-}
-
-template <typename Stream>
-void BasicConnection<Stream>::onBody() {
-  midMessage_ = false;
-  std::string problem;
-  const wire::Message* message = proto::verifyMessage(body_, &problem);
-  if (message) {
-    session_.handle(*message);
-  } else {
-    session_.error(wire::ErrorCode::Malformed, problem, true);
-  }
-  // What a message needs is copied out by the session: a large buffer is not
-  // kept for an idle connection.
-  if (body_.capacity() > kReadChunkBytes) std::vector<std::uint8_t>().swap(body_);
-  readHeader();
 }
 
 template <typename Stream>
 void BasicConnection<Stream>::end(const std::string& why) {
   logLine(session_.peer() + ": " + why);
   closeAfterWrites_ = true;
-  if (!writing_) close(why);
+  if (!writes_.writing()) close(why);
 }
-
-template <typename Stream>
-bool BasicConnection<Stream>::admit() { return context_.registry.admit(id_); }
-
-template <typename Stream>
-void BasicConnection<Stream>::worked() { context_.registry.worked(id_); }
 
 template <typename Stream>
 void BasicConnection<Stream>::build(SceneJob job) {
@@ -199,7 +159,7 @@ template <typename Stream>
 void BasicConnection<Stream>::trace(TileWork work) {
   ++pending_;
   outbox_.expect();
-  const std::uint64_t tag = tileTag(work.frameId, work.tileId);
+  const std::uint64_t tag = proto::tileKey(work.frameId, work.tileId);
   context_.scheduler.submit(
       id_,
       [self = this->shared_from_this(), work = std::move(work)] {
@@ -229,47 +189,39 @@ void BasicConnection<Stream>::takeOutbox() {
 template <typename Stream>
 void BasicConnection<Stream>::reply(std::vector<std::uint8_t> frame) {
   if (closed_) return;
-  queuedBytes_ += frame.size();
-  if (queuedBytes_ > context_.options.maxQueuedBytes) {
-    close("client is not reading its results (" + std::to_string(queuedBytes_) + " bytes queued)");
+  const std::size_t queued = writes_.queuedBytes() + frame.size();
+  if (queued > context_.options.maxQueuedBytes) {
+    close("client is not reading its results (" + std::to_string(queued) + " bytes queued)");
     return;
   }
-  writes_.push_back(std::move(frame));
-  if (!writing_) writeNext();
+  writes_.push(std::move(frame));
+  if (!writes_.writing()) writeNext();
 }
 
+// Everything queued goes out in one gathered write (one system call for many
+// small tile results); new results queue up behind it.
 template <typename Stream>
 void BasicConnection<Stream>::writeNext() {
-  if (writes_.empty() || closed_) {
-    writing_ = false;
+  if (closed_) return;
+  const std::vector<std::span<const std::uint8_t>> frames = writes_.next(SIZE_MAX);
+  if (frames.empty()) {
     if (closeAfterWrites_) close("closed after its last reply");
     return;
   }
-  // Everything queued goes out in one gathered write (one system call for
-  // many small tile results); new results queue up behind it.
-  writing_ = true;
   lastWrite_ = Clock::now();
-  inFlight_ = writes_.size();
   std::vector<asio::const_buffer> buffers;
   if constexpr (std::is_same_v<Stream, TlsStream>) {
     // A TLS stream writes one buffer at a time (a record and a system call
     // each): the messages are joined first.
     flat_.clear();
-    for (const auto& frame : writes_) flat_.insert(flat_.end(), frame.begin(), frame.end());
+    for (const auto& frame : frames) flat_.insert(flat_.end(), frame.begin(), frame.end());
     buffers.push_back(asio::buffer(flat_));
   } else {
-    buffers.reserve(inFlight_);
-    for (const auto& frame : writes_) buffers.push_back(asio::buffer(frame));
+    for (const auto& frame : frames) buffers.push_back(asio::buffer(frame.data(), frame.size()));
   }
   asio::async_write(socket_, buffers, [self = this->shared_from_this()](const asio::error_code& error, std::size_t) {
-    if (error) {
-      self->close(error.message());
-      return;
-    }
-    for (std::size_t i = 0; i < self->inFlight_; ++i) {
-      self->queuedBytes_ -= self->writes_.front().size();
-      self->writes_.pop_front();
-    }
+    if (error) return self->close(error.message());
+    self->writes_.written();
     self->writeNext();
   });
 }
@@ -285,8 +237,8 @@ void BasicConnection<Stream>::close(const std::string& why) {
   timer_.cancel();
   socket_.lowest_layer().shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
   socket_.lowest_layer().close(ignored);
-  logLine(session_.peer() + ": closed (" + why + (dropped ? ", " + std::to_string(dropped) + " queued tiles cancelled" : "") +
-          ")");
+  logLine(session_.peer() + ": closed (" + why +
+          (dropped ? ", " + std::to_string(dropped) + " queued tiles cancelled" : "") + ")");
 }
 
 template class BasicConnection<asio::ip::tcp::socket>;

@@ -1,9 +1,7 @@
 #pragma once
 
-#include <array>
 #include <chrono>
 #include <cstdint>
-#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
@@ -11,7 +9,8 @@
 #include <asio.hpp>
 #include <asio/ssl.hpp>
 
-#include "proto/framing.h"
+#include "proto/frame_reader.h"
+#include "proto/write_queue.h"
 #include "server/connection_registry.h"
 #include "server/outbox.h"
 #include "server/server.h"
@@ -45,17 +44,16 @@ class BasicConnection : public std::enable_shared_from_this<BasicConnection<Stre
   // SessionHost
   void reply(std::vector<std::uint8_t> frame) override;
   void end(const std::string& why) override;
-  bool admit() override;
-  void worked() override;
+  bool admit() override { return context_.registry.admit(id_); }
+  void worked() override { context_.registry.worked(id_); }
   void build(SceneJob job) override;
   void trace(TileWork work) override;
   void cancel(std::uint32_t frameId, std::span<const std::uint32_t> tileIds) override;
 
   void handshake();  // TLS streams only
-  void readHeader();
-  void readBody(std::uint32_t length);
-  void readMore(std::uint32_t length);
-  void onBody();
+  void read();
+  void takeMessages();
+  void waitForMessage();
   void armTimer(std::chrono::milliseconds timeout, const char* what);
   void onTimer(const char* what);
   void takeOutbox();  // on the I/O thread
@@ -68,16 +66,12 @@ class BasicConnection : public std::enable_shared_from_this<BasicConnection<Stre
   std::uint64_t id_;
   Outbox outbox_;  // finished tiles from the pool
   Session session_;
-  std::array<std::uint8_t, proto::kHeaderBytes> header_{};
-  std::vector<std::uint8_t> body_;
-  std::deque<std::vector<std::uint8_t>> writes_;
+  proto::FrameReader reader_;
+  proto::WriteQueue writes_;
   std::vector<std::uint8_t> flat_;  // TLS: the queued messages in one buffer, one record run per write
-  std::size_t queuedBytes_ = 0;
-  std::size_t inFlight_ = 0;  // messages of writes_ in the current write
-  bool writing_ = false;
   bool closeAfterWrites_ = false;
   bool closed_ = false;
-  bool midMessage_ = false;  // a header arrived, its body has not yet
+  bool midMessage_ = false;  // part of a message arrived, not all of it
   std::chrono::steady_clock::time_point lastWrite_;
   int pending_ = 0;  // tiles and scene builds queued or running for this client
 };

@@ -165,8 +165,8 @@ TEST_F(ServerConversationTest, ErrorsSayWhetherTheSceneOrTheServerFailed) {
   ServerConversation busy(busyHost, bundle_, digest_, {});
   busy.start();
   busy.connected();
-  const proto::Decoded d = proto::decodeFrame(proto::encodeError(wire::ErrorCode::Busy, "full"),
-                                              proto::kDefaultMaxMessageBytes, aligned_);
+  const proto::Decoded d =
+      proto::decodeFrame(proto::encodeError(wire::ErrorCode::Busy, "full"), proto::kDefaultMaxMessageBytes, aligned_);
   busy.handle(*d.message);
   EXPECT_EQ(busyHost.failures.at(0).kind, LinkFailure::Kind::kRefused);
 }

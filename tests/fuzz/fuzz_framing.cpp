@@ -1,5 +1,5 @@
-// libFuzzer target: framing and message decoding. Any bytes go through
-// decodeFrame; every verified message goes through the decoder of its kind,
+// libFuzzer target: framing and message decoding. Any bytes go through the
+// FrameReader both ends read with; every verified message goes through the decoder of its kind,
 // which must either return checked values or throw InputError.
 #include <cstddef>
 #include <cstdint>
