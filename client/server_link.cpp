@@ -7,20 +7,19 @@ constexpr std::size_t kGatherBytes = 1 << 20;
 
 }  // namespace
 
-ServerLink::ServerLink(asio::io_context& io, std::unique_ptr<LinkStream> stream, std::size_t index, std::string name,
-                       const asio::ip::tcp::endpoint& endpoint, const proto::SceneBundle& bundle,
-                       const proto::BundleDigest& digest, const LinkTimeouts& timeouts)
+ServerLink::ServerLink(asio::io_context& io, std::unique_ptr<proto::ByteStream> stream, std::size_t index,
+                       std::string name, const proto::SceneBundle& bundle, const proto::BundleDigest& digest,
+                       const LinkTimeouts& timeouts)
     : stream_(std::move(stream)),
       timer_(io),
       index_(index),
       name_(std::move(name)),
-      endpoint_(endpoint),
       conversation_(*this, bundle, digest, timeouts) {}
 
 void ServerLink::start(LinkListener& listener) {
   listener_ = &listener;
   conversation_.start();
-  stream_->connect(endpoint_, [self = shared_from_this()](const std::string& failure) {
+  stream_->open([self = shared_from_this()](const std::string& failure) {
     if (!failure.empty()) return self->conversation_.fail(LinkFailure::Kind::kUnreachable, failure);
     if (self->conversation_.over()) return;
     self->conversation_.connected();

@@ -8,8 +8,8 @@
 
 #include <asio.hpp>
 
-#include "client/link_stream.h"
 #include "client/server_conversation.h"
+#include "proto/byte_stream.h"
 #include "proto/frame_reader.h"
 #include "proto/write_queue.h"
 
@@ -33,10 +33,9 @@ class LinkListener {
 // in flight outlive a link its owner dropped.
 class ServerLink : public std::enable_shared_from_this<ServerLink>, private ConversationHost {
  public:
-  // `stream` is plain TCP or TLS (client/link_stream.h).
-  ServerLink(asio::io_context& io, std::unique_ptr<LinkStream> stream, std::size_t index, std::string name,
-             const asio::ip::tcp::endpoint& endpoint, const proto::SceneBundle& bundle,
-             const proto::BundleDigest& digest, const LinkTimeouts& timeouts);
+  // `stream`, not yet open, is plain TCP or TLS (proto/byte_stream.h).
+  ServerLink(asio::io_context& io, std::unique_ptr<proto::ByteStream> stream, std::size_t index, std::string name,
+             const proto::SceneBundle& bundle, const proto::BundleDigest& digest, const LinkTimeouts& timeouts);
   ServerLink(const ServerLink&) = delete;
   ServerLink& operator=(const ServerLink&) = delete;
 
@@ -48,9 +47,7 @@ class ServerLink : public std::enable_shared_from_this<ServerLink>, private Conv
   void request(std::uint32_t frameId, std::uint32_t tileId, const TileJob& job) {
     conversation_.request(frameId, tileId, job);
   }
-  void cancel(std::uint32_t frameId, std::span<const std::uint32_t> tileIds) {
-    conversation_.cancel(frameId, tileIds);
-  }
+  void cancel(std::uint32_t frameId, std::span<const std::uint32_t> tileIds) { conversation_.cancel(frameId, tileIds); }
   // Fails the link from outside (the dispatcher found it stalled).
   void fail(LinkFailure::Kind kind, const std::string& what) { conversation_.fail(kind, what); }
   // Says Goodbye and closes once it is written.
@@ -78,11 +75,10 @@ class ServerLink : public std::enable_shared_from_this<ServerLink>, private Conv
   void readMore();
   void onRead(const asio::error_code& error, std::size_t n);
 
-  std::unique_ptr<LinkStream> stream_;
+  std::unique_ptr<proto::ByteStream> stream_;
   asio::steady_timer timer_;
   std::size_t index_;
   std::string name_;
-  asio::ip::tcp::endpoint endpoint_;
   LinkListener* listener_ = nullptr;
   ServerConversation conversation_;
   proto::WriteQueue writes_;

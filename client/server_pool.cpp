@@ -30,9 +30,10 @@ void ServerPool::connect(std::size_t index) {
   Server& s = servers_[index];
   if (s.link) s.link->detach();
   s.everReady = false;
-  std::unique_ptr<LinkStream> stream = tls_ ? makeTlsStream(io_, *tls_, s.address.host) : makePlainStream(io_);
-  s.link = std::make_shared<ServerLink>(io_, std::move(stream), index, s.address.name, s.address.endpoint, bundle_,
-                                        digest_, timeouts_);
+  std::unique_ptr<proto::ByteStream> stream =
+      tls_ ? proto::connectingTlsStream(io_, s.address.endpoint, *tls_, s.address.host)
+           : proto::connectingStream(io_, s.address.endpoint);
+  s.link = std::make_shared<ServerLink>(io_, std::move(stream), index, s.address.name, bundle_, digest_, timeouts_);
   s.link->start(listener_);
 }
 

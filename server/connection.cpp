@@ -3,8 +3,6 @@
 #include <unordered_set>
 
 #include "common/base/timing.h"
-#include "proto/endpoint.h"
-#include "proto/tls.h"
 #include "server/log.h"
 
 namespace glint::server {
@@ -18,61 +16,38 @@ Session::Settings sessionSettings(const ServerContext& context) {
 
 }  // namespace
 
-template <typename Stream>
-BasicConnection<Stream>::BasicConnection(Stream stream, ServerContext& context, std::uint64_t id)
-    : socket_(std::move(stream)),
+Connection::Connection(std::unique_ptr<proto::ByteStream> stream, ServerContext& context, std::uint64_t id,
+                       std::string peer)
+    : stream_(std::move(stream)),
       timer_(context.io),
       context_(context),
       id_(id),
       outbox_(context.scheduler.threads()),
-      session_(*this, {context.cache, context.files, context.buildMemory}, sessionSettings(context),
-               proto::peerAddress(socket_.lowest_layer(), "client " + std::to_string(id))) {
-  asio::error_code ignored;
-  socket_.lowest_layer().set_option(asio::ip::tcp::no_delay(true), ignored);
-}
+      session_(*this, {context.cache, context.files, context.buildMemory}, sessionSettings(context), std::move(peer)) {}
 
-template <typename Stream>
-void BasicConnection<Stream>::start() {
+// Before Hello comes the TLS handshake (at once over plain TCP), under the
+// same timeout and in the same waiting pool: a peer that starts one and
+// stalls holds little, briefly.
+void Connection::start() {
   logLine(session_.peer() + ": connected");
-  if constexpr (std::is_same_v<Stream, TlsStream>) {
-    handshake();
-  } else {
-    waitForMessage();
-    read();
-  }
+  armTimer(context_.options.handshakeTimeout, "TLS handshake");
+  stream_->open([self = shared_from_this()](const std::string& failure) {
+    if (!failure.empty()) return self->close("TLS handshake failed: " + failure);
+    self->waitForMessage();
+    self->read();
+  });
 }
 
-// Before Hello comes the TLS handshake, under the same timeout and in the
-// same waiting pool: a peer that starts one and stalls holds little, briefly.
-template <typename Stream>
-void BasicConnection<Stream>::handshake() {
-  if constexpr (std::is_same_v<Stream, TlsStream>) {
-    armTimer(context_.options.handshakeTimeout, "TLS handshake");
-    socket_.async_handshake(asio::ssl::stream_base::server,
-                            [self = this->shared_from_this()](const asio::error_code& e) {
-                              if (!e) {
-                                self->waitForMessage();
-                                self->read();
-                                return;
-                              }
-                              const long verify = SSL_get_verify_result(self->socket_.native_handle());
-                              self->close("TLS handshake failed: " + proto::describeTlsFailure(e, verify, false));
-                            });
-  }
-}
-
-template <typename Stream>
-void BasicConnection<Stream>::armTimer(std::chrono::milliseconds timeout, const char* what) {
+void Connection::armTimer(std::chrono::milliseconds timeout, const char* what) {
   timer_.expires_after(timeout);
-  timer_.async_wait([self = this->shared_from_this(), what](const asio::error_code& error) {
+  timer_.async_wait([self = shared_from_this(), what](const asio::error_code& error) {
     if (!error && !self->closed_) self->onTimer(what);  // else re-armed or closed
   });
 }
 
 // What a silent client holds is freed: a message started and not finished,
 // a connection with nothing to do, a client that stopped reading its results.
-template <typename Stream>
-void BasicConnection<Stream>::onTimer(const char* what) {
+void Connection::onTimer(const char* what) {
   if (midMessage_) {
     close(greeted() ? "read timeout: a message was not finished" : "handshake timeout: no Hello");
   } else if (pending_ > 0) {
@@ -88,12 +63,11 @@ void BasicConnection<Stream>::onTimer(const char* what) {
   }
 }
 
-template <typename Stream>
-void BasicConnection<Stream>::read() {
+void Connection::read() {
   if (closed_ || closeAfterWrites_) return;
   const std::span<std::uint8_t> space = reader_.space();
-  socket_.async_read_some(asio::buffer(space.data(), space.size()), [self = this->shared_from_this()](
-                                                                        const asio::error_code& error, std::size_t n) {
+  stream_->readSome(asio::buffer(space.data(), space.size()), [self = shared_from_this()](const asio::error_code& error,
+                                                                                          std::size_t n) {
     if (error) {
       const bool mid = self->reader_.midMessage();
       self->close(error == asio::error::eof ? (mid ? "disconnected mid-message" : "disconnected") : error.message());
@@ -108,8 +82,7 @@ void BasicConnection<Stream>::read() {
 // message started arms the read timeout once (before Hello the handshake's
 // deadline stands: a header does not buy a connection more time); a
 // connection between messages waits under the idle or handshake timeout.
-template <typename Stream>
-void BasicConnection<Stream>::takeMessages() {
+void Connection::takeMessages() {
   bool took = false;
   while (!closed_ && !closeAfterWrites_) {
     const std::size_t limit = greeted() ? context_.options.maxMessageBytes : ServerOptions::kMaxHandshakeMessageBytes;
@@ -131,23 +104,20 @@ void BasicConnection<Stream>::takeMessages() {
   read();
 }
 
-template <typename Stream>
-void BasicConnection<Stream>::waitForMessage() {
+void Connection::waitForMessage() {
   armTimer(greeted() ? context_.options.idleTimeout : context_.options.handshakeTimeout,
            greeted() ? "idle" : "handshake");
 }
 
-template <typename Stream>
-void BasicConnection<Stream>::end(const std::string& why) {
+void Connection::end(const std::string& why) {
   logLine(session_.peer() + ": " + why);
   closeAfterWrites_ = true;
   if (!writes_.writing()) close(why);
 }
 
-template <typename Stream>
-void BasicConnection<Stream>::build(SceneJob job) {
+void Connection::build(SceneJob job) {
   ++pending_;
-  context_.builds.build(std::move(job), [self = this->shared_from_this()](const BuiltScene& built) {
+  context_.builds.build(std::move(job), [self = shared_from_this()](const BuiltScene& built) {
     asio::post(self->context_.io, [self, built] {
       --self->pending_;
       if (!self->closed_) self->session_.sceneBuilt(built);
@@ -155,21 +125,19 @@ void BasicConnection<Stream>::build(SceneJob job) {
   });
 }
 
-template <typename Stream>
-void BasicConnection<Stream>::trace(TileWork work) {
+void Connection::trace(TileWork work) {
   ++pending_;
   outbox_.expect();
   const std::uint64_t tag = proto::tileKey(work.frameId, work.tileId);
   context_.scheduler.submit(
       id_,
-      [self = this->shared_from_this(), work = std::move(work)] {
+      [self = shared_from_this(), work = std::move(work)] {
         if (self->outbox_.put(traceTile(work))) asio::post(self->context_.io, [self] { self->takeOutbox(); });
       },
       tag);
 }
 
-template <typename Stream>
-void BasicConnection<Stream>::cancel(std::uint32_t frameId, std::span<const std::uint32_t> tileIds) {
+void Connection::cancel(std::uint32_t frameId, std::span<const std::uint32_t> tileIds) {
   const std::unordered_set<std::uint32_t> tiles(tileIds.begin(), tileIds.end());
   const std::size_t dropped = context_.scheduler.cancel(id_, [&](std::uint64_t tag) {
     return tag >> 32 == frameId && (tiles.empty() || tiles.contains(static_cast<std::uint32_t>(tag)));
@@ -179,15 +147,13 @@ void BasicConnection<Stream>::cancel(std::uint32_t frameId, std::span<const std:
   if (outbox_.forget(dropped)) takeOutbox();
 }
 
-template <typename Stream>
-void BasicConnection<Stream>::takeOutbox() {
+void Connection::takeOutbox() {
   std::vector<std::vector<std::uint8_t>> results = outbox_.take();
   pending_ -= static_cast<int>(results.size());
   for (auto& r : results) reply(std::move(r));
 }
 
-template <typename Stream>
-void BasicConnection<Stream>::reply(std::vector<std::uint8_t> frame) {
+void Connection::reply(std::vector<std::uint8_t> frame) {
   if (closed_) return;
   const std::size_t queued = writes_.queuedBytes() + frame.size();
   if (queued > context_.options.maxQueuedBytes) {
@@ -200,8 +166,7 @@ void BasicConnection<Stream>::reply(std::vector<std::uint8_t> frame) {
 
 // Everything queued goes out in one gathered write (one system call for many
 // small tile results); new results queue up behind it.
-template <typename Stream>
-void BasicConnection<Stream>::writeNext() {
+void Connection::writeNext() {
   if (closed_) return;
   const std::vector<std::span<const std::uint8_t>> frames = writes_.next(SIZE_MAX);
   if (frames.empty()) {
@@ -210,38 +175,24 @@ void BasicConnection<Stream>::writeNext() {
   }
   lastWrite_ = Clock::now();
   std::vector<asio::const_buffer> buffers;
-  if constexpr (std::is_same_v<Stream, TlsStream>) {
-    // A TLS stream writes one buffer at a time (a record and a system call
-    // each): the messages are joined first.
-    flat_.clear();
-    for (const auto& frame : frames) flat_.insert(flat_.end(), frame.begin(), frame.end());
-    buffers.push_back(asio::buffer(flat_));
-  } else {
-    for (const auto& frame : frames) buffers.push_back(asio::buffer(frame.data(), frame.size()));
-  }
-  asio::async_write(socket_, buffers, [self = this->shared_from_this()](const asio::error_code& error, std::size_t) {
+  for (const auto& frame : frames) buffers.push_back(asio::buffer(frame.data(), frame.size()));
+  stream_->write(buffers, [self = shared_from_this()](const asio::error_code& error, std::size_t) {
     if (error) return self->close(error.message());
     self->writes_.written();
     self->writeNext();
   });
 }
 
-template <typename Stream>
-void BasicConnection<Stream>::close(const std::string& why) {
+void Connection::close(const std::string& why) {
   if (closed_) return;
   closed_ = true;
   context_.registry.remove(id_);
   const std::size_t dropped = context_.scheduler.cancel(id_);
   pending_ -= static_cast<int>(dropped);
-  asio::error_code ignored;
   timer_.cancel();
-  socket_.lowest_layer().shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
-  socket_.lowest_layer().close(ignored);
+  stream_->close();
   logLine(session_.peer() + ": closed (" + why +
           (dropped ? ", " + std::to_string(dropped) + " queued tiles cancelled" : "") + ")");
 }
-
-template class BasicConnection<asio::ip::tcp::socket>;
-template class BasicConnection<TlsStream>;
 
 }  // namespace glint::server

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include <asio.hpp>
-#include <asio/ssl.hpp>
 
+#include "proto/byte_stream.h"
 #include "proto/frame_reader.h"
 #include "proto/write_queue.h"
 #include "server/connection_registry.h"
@@ -24,17 +24,13 @@ namespace glint::server {
 // back, one write in flight. Lives on the I/O thread; work on the
 // pool reaches it only through asio::post. Nothing a client sends can stop
 // the server or other clients: a connection that cannot go on is closed.
-// Stream is the byte stream (a TCP socket; a TLS stream over one is another
-// type, not another copy): it needs Asio's async read and write and a
-// lowest_layer() that is a TCP socket.
-template <typename Stream>
-class BasicConnection : public std::enable_shared_from_this<BasicConnection<Stream>>,
-                        public ConnectionHandle,
-                        private SessionHost {
+// The stream is plain TCP or TLS over it (proto/byte_stream.h), one design.
+class Connection : public std::enable_shared_from_this<Connection>, public ConnectionHandle, private SessionHost {
  public:
-  BasicConnection(Stream stream, ServerContext& context, std::uint64_t id);
-  BasicConnection(const BasicConnection&) = delete;
-  BasicConnection& operator=(const BasicConnection&) = delete;
+  // `peer` names the client in the log ("10.0.0.2:51234").
+  Connection(std::unique_ptr<proto::ByteStream> stream, ServerContext& context, std::uint64_t id, std::string peer);
+  Connection(const Connection&) = delete;
+  Connection& operator=(const Connection&) = delete;
 
   void start();
   // Cancels queued work and closes the stream; safe to call twice.
@@ -50,7 +46,6 @@ class BasicConnection : public std::enable_shared_from_this<BasicConnection<Stre
   void trace(TileWork work) override;
   void cancel(std::uint32_t frameId, std::span<const std::uint32_t> tileIds) override;
 
-  void handshake();  // TLS streams only
   void read();
   void takeMessages();
   void waitForMessage();
@@ -60,7 +55,7 @@ class BasicConnection : public std::enable_shared_from_this<BasicConnection<Stre
   void writeNext();
   bool greeted() const { return session_.state() != Session::State::kAwaitingHello; }
 
-  Stream socket_;
+  std::unique_ptr<proto::ByteStream> stream_;
   asio::steady_timer timer_;
   ServerContext& context_;
   std::uint64_t id_;
@@ -68,19 +63,11 @@ class BasicConnection : public std::enable_shared_from_this<BasicConnection<Stre
   Session session_;
   proto::FrameReader reader_;
   proto::WriteQueue writes_;
-  std::vector<std::uint8_t> flat_;  // TLS: the queued messages in one buffer, one record run per write
   bool closeAfterWrites_ = false;
   bool closed_ = false;
   bool midMessage_ = false;  // part of a message arrived, not all of it
   std::chrono::steady_clock::time_point lastWrite_;
   int pending_ = 0;  // tiles and scene builds queued or running for this client
 };
-
-// glintd's connections: plain TCP (loopback, or --insecure), or TLS over TCP.
-using Connection = BasicConnection<asio::ip::tcp::socket>;
-using TlsStream = asio::ssl::stream<asio::ip::tcp::socket>;
-using TlsConnection = BasicConnection<TlsStream>;
-extern template class BasicConnection<asio::ip::tcp::socket>;
-extern template class BasicConnection<TlsStream>;
 
 }  // namespace glint::server

@@ -1,6 +1,7 @@
 #include "server/server.h"
 
 #include "common/base/error.h"
+#include "proto/byte_stream.h"
 #include "proto/endpoint.h"
 #include "server/connection.h"
 #include "server/log.h"
@@ -20,11 +21,13 @@ const ServerOptions& checked(const ServerOptions& o) {
   }
   if (o.cacheBytes + 2 * o.maxSceneBytes > o.maxMemoryBytes) {
     throw InputError("--max-memory-mb " + mb(o.maxMemoryBytes) + " is below --cache-mb + 2 x --max-scene-mb (" +
-                     mb(o.cacheBytes + 2 * o.maxSceneBytes) + "): the scene cache, the uploaded files kept, and a "
+                     mb(o.cacheBytes + 2 * o.maxSceneBytes) +
+                     "): the scene cache, the uploaded files kept, and a "
                      "scene being built");
   }
   if (o.tls.any() && (o.tls.ca.empty() || o.tls.cert.empty() || o.tls.key.empty())) {
-    throw InputError("TLS needs all three of --tls-cert, --tls-key and --tls-client-ca (deploy/glint-certs makes them)");
+    throw InputError(
+        "TLS needs all three of --tls-cert, --tls-key and --tls-client-ca (deploy/glint-certs makes them)");
   }
   return o;
 }
@@ -81,25 +84,24 @@ Server::Server(const ServerOptions& options)
   accept();
 }
 
-Server::~Server() { io_.stop(); }
+Server::~Server() {
+  io_.stop();
+}
 
 void Server::accept() {
   acceptor_.async_accept([this](const asio::error_code& error, asio::ip::tcp::socket socket) {
     if (error == asio::error::operation_aborted) return;  // stopping
     if (error) return acceptLater(error);
     const std::uint64_t id = nextId_++;
-    if (tls_) {
-      admit(std::make_shared<TlsConnection>(TlsStream(std::move(socket), *tls_), context_, id), id);
-    } else {
-      admit(std::make_shared<Connection>(std::move(socket), context_, id), id);
-    }
+    std::string peer = proto::peerAddress(socket, "client " + std::to_string(id));
+    auto stream = tls_ ? proto::acceptedTlsStream(std::move(socket), *tls_) : proto::acceptedStream(std::move(socket));
+    admit(std::make_shared<Connection>(std::move(stream), context_, id, std::move(peer)), id);
     accept();
   });
 }
 
 // A new connection waits for its Hello (and first its TLS handshake) in the
 // registry's waiting pool.
-template <typename Connection>
 void Server::admit(std::shared_ptr<Connection> connection, std::uint64_t id) {
   registry_.addWaiting(id, connection);
   connection->start();
@@ -115,7 +117,9 @@ void Server::acceptLater(const asio::error_code& error) {
   });
 }
 
-void Server::run() { io_.run(); }
+void Server::run() {
+  io_.run();
+}
 
 void Server::stop() {
   asio::post(io_, [this] {

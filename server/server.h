@@ -15,6 +15,8 @@
 
 namespace glint::server {
 
+class Connection;
+
 // State the connections share; lives as long as the server.
 struct ServerContext {
   asio::io_context& io;
@@ -50,7 +52,6 @@ class Server {
 
  private:
   void accept();
-  template <typename Connection>
   void admit(std::shared_ptr<Connection> connection, std::uint64_t id);
   // Accepting failed for want of resources (EMFILE): make room, try again soon.
   void acceptLater(const asio::error_code& error);

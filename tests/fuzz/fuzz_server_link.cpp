@@ -19,11 +19,11 @@ namespace {
 using namespace glint;
 
 // Reads give the input, a piece at a time, then end of file; writes succeed.
-class InputStream : public LinkStream {
+class InputStream : public proto::ByteStream {
  public:
   InputStream(asio::io_context& io, std::span<const std::uint8_t> input, std::size_t piece)
       : io_(io), input_(input), piece_(piece) {}
-  void connect(const asio::ip::tcp::endpoint&, std::function<void(const std::string&)> done) override {
+  void open(std::function<void(const std::string&)> done) override {
     asio::post(io_, [done] { done(""); });
   }
   void write(const std::vector<asio::const_buffer>& buffers, Done done) override {
@@ -72,9 +72,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   input.insert(input.end(), data + 1, data + size);
   const std::size_t piece = 1 + static_cast<std::size_t>(data[0] >> 1) * 512;
   asio::io_context io;
-  auto link = std::make_shared<ServerLink>(io, std::make_unique<InputStream>(io, input, piece),
-                                           0, "fuzz", asio::ip::tcp::endpoint{}, fuzz::linkBundle(), digest,
-                                           LinkTimeouts{});
+  auto link = std::make_shared<ServerLink>(io, std::make_unique<InputStream>(io, input, piece), 0, "fuzz",
+                                           fuzz::linkBundle(), digest, LinkTimeouts{});
   Client client;
   link->start(client);
   io.run();
