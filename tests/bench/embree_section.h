@@ -9,7 +9,7 @@ namespace glint::bench {
 // rippled sphere of 980,000, seen from inside), both in a 1024 x 768 view,
 // and the bunny and the thesis's room from the folder `scenes` (their own
 // views and image sizes). Three ray sets each: primary rays; the mirror
-// bounces that follow them to depth 5 (the incoherent rays); and
+// bounces that follow them to depth 5 (incoherent as Glint's reflections are); and
 // from each primary hit one ray in a random direction (incoherent as a
 // diffuse bounce's, which Glint never casts). Traced one at a time on one
 // thread by Bvh::intersect and by rtcIntersect1 (the room's sphere is one
