@@ -227,7 +227,10 @@ std::function<void()> declareRender(CLI::App* render) {
                      "Render N frames and print the median time of each step (like the thesis's Table 4.1)")
       ->check(CLI::Range(1, 100000))
       ->default_val(1);
-  render->add_flag("-q,--quiet", o.quiet, "No summary line on stderr");
+  render->add_flag("-q,--quiet", o.quiet, "No progress and no summary on stderr");
+  render->add_flag("--progress", o.progress,
+                   "Show each frame's progress (tiles, each server's share, time left) even when stderr is not a "
+                   "terminal (a line a second) or the frame is short");
   return [options] { runRender(*options); };
 }
 

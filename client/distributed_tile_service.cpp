@@ -29,6 +29,7 @@ struct DistributedTileService::Frame {
   std::vector<std::uint64_t> bytesIn;   // per server, at the frame's start
   std::vector<std::uint64_t> bytesOut;
   std::size_t reportBase = 0;  // report_'s index of jobs[0]
+  std::vector<std::size_t> tracedBy{};  // per server: results held from it
 };
 
 DistributedTileService::DistributedTileService(std::vector<ServerAddress> servers, const proto::SceneBundle& bundle,
@@ -91,7 +92,10 @@ void DistributedTileService::linkFailed(ServerLink& link, const LinkFailure& fai
     return;
   }
   for (const std::size_t tile : frame_->dispatcher.distrust(link.index())) {
-    if (frame_->outputs[tile]) --frame_->traced;
+    if (frame_->outputs[tile]) {
+      --frame_->traced;
+      --frame_->tracedBy[frame_->from[tile]];
+    }
     frame_->outputs[tile].reset();
   }
   traced(frame_->traced);
@@ -111,6 +115,7 @@ void DistributedTileService::linkResult(ServerLink& link, std::uint32_t frameId,
   for (const std::size_t other : d.cancelOn) servers_[other].link->cancel(frameId, std::span(&tileId, 1));
   frame_->outputs[tileId] = std::move(out);
   frame_->from[tileId] = index;
+  ++frame_->tracedBy[index];
   traced(++frame_->traced);
 }
 
@@ -153,6 +158,7 @@ void DistributedTileService::render(const FrameSettings& settings, std::span<con
     ~EndOfFrame() { frame.reset(); }
   } end{frame_};
   Frame& frame = *frame_;
+  frame.tracedBy.assign(servers_.size(), 0);
   startReport(frame);
   try {
     for (std::size_t i = 0; i < servers_.size(); ++i) {
@@ -227,6 +233,17 @@ void DistributedTileService::finishReport(const Frame& frame) {
     s.report.bytesOut += s.link->bytesSent() - std::min(s.link->bytesSent(), frame.bytesOut[i]);
     report_.servers.push_back(s.report);
   }
+}
+
+std::string DistributedTileService::tracedShares() const {
+  if (!frame_ || frame_->traced == 0) return "";
+  std::string shares;
+  for (std::size_t i = 0; i < servers_.size(); ++i) {
+    if (frame_->tracedBy[i] == 0) continue;
+    if (!shares.empty()) shares += ", ";
+    shares += servers_[i].address.name + " " + std::to_string(frame_->tracedBy[i] * 100 / frame_->traced) + " %";
+  }
+  return shares;
 }
 
 }  // namespace glint

@@ -59,6 +59,10 @@ class DistributedTileService : public TileService, private LinkListener {
 
   const DistributionReport& lastFrame() const { return report_; }
   std::size_t serversUp() const;
+  // While a frame renders (from a progress callback): the share of its
+  // results so far each server traced ("10.0.0.2:7878 40 %, ..."); "" when
+  // none came yet.
+  std::string tracedShares() const;
   std::size_t serverCount() const { return servers_.size(); }
   // Sent the scene to at least one server (it did not hold it).
   bool uploaded() const;

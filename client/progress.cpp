@@ -3,29 +3,51 @@
 #include <unistd.h>
 
 namespace glint {
+namespace {
 
-ProgressBar::ProgressBar(const char* label)
-    : label_(label), terminal_(isatty(STDERR_FILENO) == 1), start_(std::chrono::steady_clock::now()) {}
+constexpr double kQuietSeconds = 1.0;  // kAuto: a frame shorter than this shows nothing
+constexpr std::chrono::seconds kLineEvery{1};  // kForced, not a terminal: at most a line a second
 
-ProgressBar::~ProgressBar() {
-  if (drawn_) std::fputs("\r\033[K", stderr);  // clear the bar line
+}  // namespace
+
+ProgressLine::ProgressLine(ProgressMode mode, std::FILE* out, bool terminal, std::string label,
+                           Clock::time_point start)
+    : mode_(mode), out_(out), terminal_(terminal), label_(std::move(label)), start_(start) {}
+
+ProgressLine::~ProgressLine() {
+  if (drawn_) std::fputs("\r\033[K", out_);
 }
 
-void ProgressBar::update(int done, int total) {
-  if (!terminal_ || total <= 0) return;
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  if (seconds < 1.0) return;
-  constexpr int kWidth = 40;
-  const int filled = done * kWidth / total;
-  char bar[kWidth + 1];
-  for (int i = 0; i < kWidth; ++i) bar[i] = i < filled ? '#' : '.';
-  bar[kWidth] = '\0';
-  const double eta = done > 0 ? seconds * (total - done) / done : 0.0;
-  std::fprintf(stderr, "\r%s [%s] %3d%%  %.1f s, about %.1f s left", label_, bar, done * 100 / total,
-               seconds, eta);
-  std::fflush(stderr);
-  drawn_ = true;
+std::string ProgressLine::text(int done, int total, const std::string& shares, double seconds) const {
+  char numbers[128];
+  std::snprintf(numbers, sizeof numbers, ": %d/%d tiles (%d %%), %.1f s", done, total, done * 100 / total, seconds);
+  std::string line = label_ + numbers;
+  if (done > 0 && done < total) {
+    std::snprintf(numbers, sizeof numbers, ", about %.0f s left", seconds * (total - done) / done);
+    line += numbers;
+  }
+  if (!shares.empty()) line += "; " + shares;
+  return line;
+}
+
+void ProgressLine::update(int done, int total, const std::string& shares, Clock::time_point now) {
+  if (mode_ == ProgressMode::kQuiet || total <= 0) return;
+  const double seconds = std::chrono::duration<double>(now - start_).count();
+  if (terminal_) {
+    if (mode_ == ProgressMode::kAuto && seconds < kQuietSeconds) return;
+    std::fprintf(out_, "\r\033[K%s", text(done, total, shares, seconds).c_str());
+    drawn_ = true;
+  } else {
+    if (mode_ != ProgressMode::kForced) return;
+    if (done < total && lastLine_ != Clock::time_point{} && now - lastLine_ < kLineEvery) return;
+    std::fprintf(out_, "%s\n", text(done, total, shares, seconds).c_str());
+    lastLine_ = now;
+  }
+  std::fflush(out_);
+}
+
+ProgressLine stderrProgress(ProgressMode mode, std::string label) {
+  return ProgressLine(mode, stderr, isatty(STDERR_FILENO) == 1, std::move(label), ProgressLine::Clock::now());
 }
 
 }  // namespace glint

@@ -2,22 +2,47 @@
 
 #include <chrono>
 #include <cstdio>
+#include <string>
 
 namespace glint {
 
-// A progress bar on stderr for long renders: drawn only when stderr is a
-// terminal and once the work has taken more than a second.
-class ProgressBar {
+// How a long frame's progress shows on stderr: kAuto, redrawn in place on a
+// terminal once the frame has taken a second, nothing otherwise; kForced
+// (--progress), redrawn on a terminal from the start, and elsewhere (a log,
+// a pipe) a line at most once a second; kQuiet (--quiet), never.
+enum class ProgressMode { kAuto, kForced, kQuiet };
+
+// One frame's progress line: tiles traced of the total, the share each
+// server traced, and an estimate of the time left from the pace so far.
+// Time is an input, so that what it prints can be tested.
+class ProgressLine {
  public:
-  explicit ProgressBar(const char* label);
-  ~ProgressBar();
-  void update(int done, int total);
+  using Clock = std::chrono::steady_clock;
+
+  // `label` names the frame ("rendering", "frame 3 of 30"); `terminal`:
+  // `out` is one, where a line is redrawn in place.
+  ProgressLine(ProgressMode mode, std::FILE* out, bool terminal, std::string label, Clock::time_point start);
+  // Clears a line drawn in place.
+  ~ProgressLine();
+  ProgressLine(const ProgressLine&) = delete;
+  ProgressLine& operator=(const ProgressLine&) = delete;
+
+  // `shares`: who traced what, in words ("a 40 %, b 60 %"); may be empty.
+  void update(int done, int total, const std::string& shares, Clock::time_point now);
 
  private:
-  const char* label_;
+  std::string text(int done, int total, const std::string& shares, double seconds) const;
+
+  ProgressMode mode_;
+  std::FILE* out_;
   bool terminal_;
-  bool drawn_ = false;
-  std::chrono::steady_clock::time_point start_;
+  std::string label_;
+  Clock::time_point start_;
+  Clock::time_point lastLine_{};  // when the last line was printed (not on a terminal)
+  bool drawn_ = false;            // a line is drawn in place
 };
+
+// stderr, and whether it is a terminal.
+ProgressLine stderrProgress(ProgressMode mode, std::string label);
 
 }  // namespace glint

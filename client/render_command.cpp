@@ -54,13 +54,30 @@ void printTimingTable(const std::vector<HybridTimes>& frames, bool hybrid) {
   std::fprintf(stderr, "  frame      %8.1f ms\n", median(&HybridTimes::totalMs));
 }
 
+// How a frame's progress shows, and what it is called.
+struct FrameProgress {
+  ProgressMode mode;
+  std::string label;
+};
+
+FrameProgress frameProgress(const RenderOptions& options, int frame) {
+  const ProgressMode mode =
+      options.quiet ? ProgressMode::kQuiet : options.progress ? ProgressMode::kForced : ProgressMode::kAuto;
+  if (options.frames == 1) return {mode, "rendering"};
+  return {mode, "frame " + std::to_string(frame + 1) + " of " + std::to_string(options.frames)};
+}
+
 // --mask all: every pixel (of the crop window) through the tile service, no
 // OpenGL.
-void renderFullTrace(TileService& service, const FrameSettings& frame, FrameOptions frameOptions, HybridResult& r) {
+void renderFullTrace(TileBackend& backend, const FrameSettings& frame, FrameOptions frameOptions,
+                     const FrameProgress& shown, HybridResult& r) {
   const Clock::time_point start = Clock::now();
-  ProgressBar progress("rendering");
-  frameOptions.progress = [&progress](int done, int total) { progress.update(done, total); };
-  FrameResult full = renderFrame(service, frame, frameOptions);
+  ProgressLine progress = stderrProgress(shown.mode, shown.label);
+  frameOptions.progress = [&](int done, int total) {
+    progress.update(done, total, backend.distributed() ? backend.distributed()->tracedShares() : "",
+                    ProgressLine::Clock::now());
+  };
+  FrameResult full = renderFrame(backend.service(), frame, frameOptions);
   r.image = std::move(full.image);
   r.rays = full.stats;
   const TileRect window = frameWindow(frame, frameOptions);
@@ -72,10 +89,12 @@ void renderFullTrace(TileService& service, const FrameSettings& frame, FrameOpti
 // The same in process for a float output: the tracer's linear values, not
 // clamped, scaled by the exposure.
 LinearImage renderFullTraceLinear(TileBackend& backend, const FrameSettings& frame, FrameOptions frameOptions,
-                                  HybridResult& r) {
+                                  const FrameProgress& shown, HybridResult& r) {
   const Clock::time_point start = Clock::now();
-  ProgressBar progress("rendering");
-  frameOptions.progress = [&progress](int done, int total) { progress.update(done, total); };
+  ProgressLine progress = stderrProgress(shown.mode, shown.label);
+  frameOptions.progress = [&](int done, int total) {
+    progress.update(done, total, "", ProgressLine::Clock::now());
+  };
   const Renderer renderer(*backend.prepared(), frame);
   r.rays = RayStats{};
   LinearImage image = renderLinear(renderer, *backend.pool(), r.rays, LinearRange::kUnbounded, frameOptions);
@@ -213,9 +232,9 @@ std::optional<LinearImage> renderFrames(const RenderRun& run, TileBackend& backe
       renderHybrid(context->api(), *raster, backend.service(), frame, scene.mask, options.frame.tileSize, r,
                    options.crop);
     } else if (linear) {
-      image = renderFullTraceLinear(backend, frame, frameOptions, r);
+      image = renderFullTraceLinear(backend, frame, frameOptions, frameProgress(options, f), r);
     } else {
-      renderFullTrace(backend.service(), frame, frameOptions, r);
+      renderFullTrace(backend, frame, frameOptions, frameProgress(options, f), r);
     }
     if (f == 0 && !options.maskOut.empty()) writeMaskPng(options.maskOut, r.mask, frame.width, frame.height);
     if (stats) {

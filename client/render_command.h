@@ -25,7 +25,8 @@ struct RenderOptions {
   std::string provenanceOut;  // PNG of who traced which tile, "" none
   std::string statsPath;  // "" none, "-" stdout
   int frames = 1;          // frames rendered (the last is written); > 1 prints medians
-  bool quiet = false;
+  bool quiet = false;     // no progress and no summary on stderr
+  bool progress = false;  // --progress: each frame's progress even off a terminal
 };
 
 // Loads the scene, applies the options, renders and writes the image (its

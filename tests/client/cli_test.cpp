@@ -93,6 +93,31 @@ TEST_F(Cli, RendersThePngAndStats) {
   }
 }
 
+// stderr here is a pipe, not a terminal: --progress prints lines (the last
+// with each server's share), --quiet nothing, and neither changes the image.
+TEST_F(Cli, ProgressLinesWhenAskedAndNothingWhenQuiet) {
+  glint::server::test::GlintdProcess a({"--threads", "1"}), b({"--threads", "1"});
+  const std::string args = "render " + scene("room.json") +
+                           " --mask all --size 320x240 --samples 1 --pattern regular --frames 2 --server " +
+                           a.address() + "," + b.address();
+  const Result shown = glint(args + " --progress -o " + path("shown.png"));
+  ASSERT_EQ(shown.status, 0) << shown.output;
+  EXPECT_NE(shown.output.find("frame 1 of 2: "), std::string::npos) << shown.output;
+  const std::size_t last = shown.output.find("frame 2 of 2: 20/20 tiles (100 %)");
+  ASSERT_NE(last, std::string::npos) << shown.output;
+  const std::string lastLine = shown.output.substr(last, shown.output.find('\n', last) - last);
+  EXPECT_NE(lastLine.find(a.address()), std::string::npos) << lastLine;  // both servers traced
+  EXPECT_NE(lastLine.find(b.address()), std::string::npos) << lastLine;
+
+  const Result unasked = glint(args + " -o " + path("unasked.png"));
+  ASSERT_EQ(unasked.status, 0) << unasked.output;
+  EXPECT_EQ(unasked.output.find("tiles ("), std::string::npos) << unasked.output;  // not a terminal
+  const Result quiet = glint(args + " --progress --quiet -o " + path("quiet.png"));
+  ASSERT_EQ(quiet.status, 0) << quiet.output;
+  EXPECT_EQ(quiet.output, "");
+  EXPECT_EQ(decodePng(path("shown.png")).rgb, decodePng(path("quiet.png")).rgb);
+}
+
 TEST_F(Cli, HybridRenderWritesImageMaskAndStepTimes) {
   const Result run = glint("render " + scene("room.json") + " -o " + path("h.png") + " --mask auto --size 160x120" +
                            " --mask-out " + path("m.png") + " --stats " + path("s.json"));

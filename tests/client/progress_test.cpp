@@ -1,0 +1,78 @@
+// A frame's progress line: what it prints, where and when, with time as
+// an input.
+#include "client/progress.h"
+
+#include <gtest/gtest.h>
+
+namespace glint {
+namespace {
+
+using Clock = ProgressLine::Clock;
+using std::chrono::milliseconds;
+
+// What a progress line wrote to its file, once it is gone.
+class Written {
+ public:
+  Written() : file_(std::tmpfile()) {}
+  ~Written() { std::fclose(file_); }
+  std::FILE* file() { return file_; }
+  std::string text() {
+    std::fflush(file_);
+    std::rewind(file_);
+    std::string s;
+    for (int c; (c = std::fgetc(file_)) != EOF;) s.push_back(static_cast<char>(c));
+    return s;
+  }
+
+ private:
+  std::FILE* file_;
+};
+
+const Clock::time_point t0{};
+
+TEST(ProgressLine, OnATerminalALongFrameIsRedrawnInPlaceAndClearedAtTheEnd) {
+  Written out;
+  {
+    ProgressLine line(ProgressMode::kAuto, out.file(), true, "rendering", t0);
+    line.update(1, 10, "", t0 + milliseconds(500));  // under a second: nothing
+    EXPECT_EQ(out.text(), "");
+    line.update(4, 10, "a 25 %, b 75 %", t0 + milliseconds(2000));
+  }
+  EXPECT_EQ(out.text(), "\r\033[Krendering: 4/10 tiles (40 %), 2.0 s, about 3 s left; a 25 %, b 75 %\r\033[K");
+}
+
+TEST(ProgressLine, OffATerminalOnlyProgressPrintsLinesAtMostOneASecondAndTheLast) {
+  Written automatic;
+  {
+    ProgressLine line(ProgressMode::kAuto, automatic.file(), false, "rendering", t0);
+    line.update(5, 10, "", t0 + milliseconds(3000));
+  }
+  EXPECT_EQ(automatic.text(), "");  // a log is not a terminal
+
+  Written forced;
+  {
+    ProgressLine line(ProgressMode::kForced, forced.file(), false, "frame 2 of 3", t0);
+    line.update(1, 4, "", t0 + milliseconds(100));
+    line.update(2, 4, "", t0 + milliseconds(600));  // within a second of the last line
+    line.update(3, 4, "", t0 + milliseconds(1200));
+    line.update(4, 4, "", t0 + milliseconds(1300));  // the last: always
+  }
+  EXPECT_EQ(forced.text(),
+            "frame 2 of 3: 1/4 tiles (25 %), 0.1 s, about 0 s left\n"
+            "frame 2 of 3: 3/4 tiles (75 %), 1.2 s, about 0 s left\n"
+            "frame 2 of 3: 4/4 tiles (100 %), 1.3 s\n");
+}
+
+TEST(ProgressLine, QuietPrintsNothingAnywhere) {
+  Written out;
+  {
+    ProgressLine terminal(ProgressMode::kQuiet, out.file(), true, "rendering", t0);
+    terminal.update(5, 10, "", t0 + milliseconds(5000));
+    ProgressLine log(ProgressMode::kQuiet, out.file(), false, "rendering", t0);
+    log.update(5, 10, "", t0 + milliseconds(5000));
+  }
+  EXPECT_EQ(out.text(), "");
+}
+
+}  // namespace
+}  // namespace glint
