@@ -26,9 +26,7 @@ struct TracedSet {
   std::vector<TileOutput> outputs;
   std::size_t pixels = 0;
 
-  bool takes(std::uint8_t mark) const {
-    return mark != kRasterPixel && tracedWithDirectLight(mark) == directLight;
-  }
+  bool takes(std::uint8_t mark) const { return mark != kRasterPixel && tracedWithDirectLight(mark) == directLight; }
 };
 
 // Cuts the window into tiles once and gives each set the tiles that hold
@@ -40,8 +38,8 @@ void collectTiles(const std::vector<std::uint8_t>& mask, int w, const TileRect& 
     std::vector<std::size_t> counts(sets.size(), 0);
     for (int y = 0; y < rect.height; ++y) {
       for (int x = 0; x < rect.width; ++x) {
-        const std::uint8_t mark =
-            mask[static_cast<std::size_t>(rect.y + y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(rect.x + x)];
+        const std::uint8_t mark = mask[static_cast<std::size_t>(rect.y + y) * static_cast<std::size_t>(w) +
+                                       static_cast<std::size_t>(rect.x + x)];
         for (std::size_t k = 0; k < sets.size(); ++k) {
           if (!sets[k].takes(mark)) continue;
           setMaskBit(jobs[k].mask, static_cast<std::size_t>(y * rect.width + x));
@@ -79,9 +77,8 @@ void composeTile(const TileJob& job, std::size_t index, const TileOutput& out, c
                  std::vector<std::uint8_t>& rgb) {
   const TileRect& r = job.rect;
   if (out.rgb.size() != countMasked(r, job.mask) * 3) {
-    throw InputError("tile " + std::to_string(index) + ": the tile service returned " +
-                     std::to_string(out.rgb.size()) + " bytes for " + std::to_string(countMasked(r, job.mask)) +
-                     " masked pixels");
+    throw InputError("tile " + std::to_string(index) + ": the tile service returned " + std::to_string(out.rgb.size()) +
+                     " bytes for " + std::to_string(countMasked(r, job.mask)) + " masked pixels");
   }
   std::size_t k = 0;
   for (int y = 0; y < r.height; ++y) {
@@ -97,19 +94,30 @@ void composeTile(const TileJob& job, std::size_t index, const TileOutput& out, c
 }
 
 // Sends a set's jobs to the service (in batches when the frame may be
-// cancelled) and collects their outputs; false when cancelled.
-bool traceTiles(TileService& service, TracedSet& set, const CancelCheck& cancelled, HybridResult& result) {
+// cancelled) and collects their outputs; false when cancelled. `before`
+// tiles of `total` were traced in the sets before it.
+bool traceTiles(TileService& service, TracedSet& set, const HybridControl& control, int before, int total,
+                HybridResult& result) {
+  const CancelCheck& cancelled = control.cancelled;
   const std::vector<TileJob>& jobs = set.jobs;
   std::vector<TileOutput>& outputs = set.outputs;
   constexpr std::size_t kTilesPerThread = 4;  // a batch: enough to keep every thread busy
   const std::size_t batch =
       cancelled ? kTilesPerThread * static_cast<std::size_t>(std::max(1, service.parallelism())) : jobs.size();
+  struct Progress {  // told for as long as this set is traced
+    TileService& service;
+    ~Progress() { service.onTraced({}); }
+  } progress{service};
   outputs.assign(jobs.size(), {});
   double computeMs = 0.0;
   const Clock::time_point traceStart = Clock::now();
   for (std::size_t first = 0; first < jobs.size(); first += batch) {
     if (cancelled && cancelled()) return false;
     const std::span<const TileJob> part(jobs.data() + first, std::min(batch, jobs.size() - first));
+    if (control.progress) {
+      const int base = before + static_cast<int>(first);
+      service.onTraced([&, base](std::size_t n) { control.progress(base + static_cast<int>(n), total); });
+    }
     service.render(set.frame, part, [&](std::size_t i, TileOutput&& out) {
       result.rays += out.rays;
       computeMs += out.computeMs;
@@ -156,7 +164,7 @@ double medianOf(const std::vector<HybridTimes>& frames, double HybridTimes::*ste
 
 bool renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& service, const FrameSettings& frame,
                   const MaskSettings& mask, int tileSize, HybridResult& result, const std::optional<TileRect>& crop,
-                  const CancelCheck& cancelled) {
+                  const HybridControl& control) {
   const Clock::time_point start = Clock::now();
   const TileRect window = crop.value_or(TileRect{0, 0, frame.width, frame.height});
   result.rays = RayStats{};
@@ -179,13 +187,16 @@ bool renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
   countEdges(window, frame.width, result);
   result.maskedPixels = sets[0].pixels + sets[1].pixels;
   result.tiles = static_cast<int>(sets[0].jobs.size() + sets[1].jobs.size());
+  int before = 0;
   for (TracedSet& set : sets) {
-    if (!traceTiles(service, set, cancelled, result)) return false;
+    if (!traceTiles(service, set, control, before, result.tiles, result)) return false;
+    before += static_cast<int>(set.jobs.size());
   }
 
   const Clock::time_point composeStart = Clock::now();
   for (const TracedSet& set : sets) {
-    for (std::size_t j = 0; j < set.jobs.size(); ++j) composeTile(set.jobs[j], j, set.outputs[j], window, result.colour);
+    for (std::size_t j = 0; j < set.jobs.size(); ++j)
+      composeTile(set.jobs[j], j, set.outputs[j], window, result.colour);
   }
   result.image.width = window.width;
   result.image.height = window.height;

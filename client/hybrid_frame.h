@@ -14,12 +14,12 @@ namespace glint {
 
 // Milliseconds spent in each step of a hybrid frame.
 struct HybridTimes {
-  double rasterMs = 0.0;    // OpenGL draws the scene and marks each pixel
-  double shadowMapMs = 0.0; // of rasterMs, drawing the shadow maps (the first frame that needs them)
-  double readbackMs = 0.0;  // glReadPixels of the marks, depth and colour, and the edges found
-  double traceMs = 0.0;     // the tile service fills the traced pixels
-  double networkMs = 0.0;   // of traceMs, not spent tracing: traceMs - compute / parallelism
-  double composeMs = 0.0;   // the traced pixels laid over OpenGL's
+  double rasterMs = 0.0;     // OpenGL draws the scene and marks each pixel
+  double shadowMapMs = 0.0;  // of rasterMs, drawing the shadow maps (the first frame that needs them)
+  double readbackMs = 0.0;   // glReadPixels of the marks, depth and colour, and the edges found
+  double traceMs = 0.0;      // the tile service fills the traced pixels
+  double networkMs = 0.0;    // of traceMs, not spent tracing: traceMs - compute / parallelism
+  double composeMs = 0.0;    // the traced pixels laid over OpenGL's
   double totalMs = 0.0;
 };
 
@@ -27,12 +27,12 @@ struct HybridTimes {
 double medianOf(const std::vector<HybridTimes>& frames, double HybridTimes::*step);
 
 struct HybridResult {
-  FrameImage image;                // the frame, or the crop window of it
-  std::vector<std::uint8_t> mask;  // one PixelMark per pixel, row 0 at the top: 0 OpenGL, else traced
-  std::size_t maskedPixels = 0;    // traced pixels, all sets together
+  FrameImage image;                  // the frame, or the crop window of it
+  std::vector<std::uint8_t> mask;    // one PixelMark per pixel, row 0 at the top: 0 OpenGL, else traced
+  std::size_t maskedPixels = 0;      // traced pixels, all sets together
   std::size_t shadowEdgePixels = 0;  // traced because the shadow maps could not decide
   std::size_t rasterEdgePixels = 0;  // traced because they straddle an edge of what OpenGL draws
-  int tiles = 0;  // tiles sent to the tile service (each traced set apart)
+  int tiles = 0;                     // tiles sent to the tile service (each traced set apart)
   RayStats rays;
   HybridTimes times;
   // Scratch kept between frames: the raster's surface, depth and colour.
@@ -45,6 +45,14 @@ struct HybridResult {
 // moved on).
 using CancelCheck = std::function<bool()>;
 
+// What the caller of a hybrid frame may ask of it: `cancelled` (see
+// renderHybrid), and `progress`, told (tiles traced, tiles in all) as the
+// frame's traced tiles come in, never concurrently.
+struct HybridControl {
+  CancelCheck cancelled;
+  std::function<void(int, int)> progress;
+};
+
 // The thesis's frame: OpenGL rasterizes the scene at one sample a pixel and
 // marks the pixels the tracer fills (masked objects, undecided shadows, and
 // the edges of what it draws, its anti-aliasing: client/raster_edges.h);
@@ -56,12 +64,12 @@ using CancelCheck = std::function<bool()>;
 // buffers (fresh megabyte buffers per frame cost more in page faults than
 // the reads themselves). With `crop`, only that window's pixels are traced
 // and the image is the window (the mask stays the whole frame's). With
-// `cancelled`, the tiles go to the service in batches of a few per thread it
-// traces with, and the frame is abandoned when cancelled() says so between
-// two: renderHybrid returns false, result.image still holds the previous
+// `control.cancelled`, the tiles go to the service in batches of a few per
+// thread it traces with, and the frame is abandoned when cancelled() says so
+// between two: renderHybrid returns false, result.image still holds the previous
 // frame and the rest of result is the abandoned frame's.
 bool renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& service, const FrameSettings& frame,
                   const MaskSettings& mask, int tileSize, HybridResult& result,
-                  const std::optional<TileRect>& crop = std::nullopt, const CancelCheck& cancelled = {});
+                  const std::optional<TileRect>& crop = std::nullopt, const HybridControl& control = {});
 
 }  // namespace glint

@@ -2,32 +2,32 @@
 
 #include <unistd.h>
 
-#include <chrono>
-#include <filesystem>
-#include <cstdio>
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 
+#include "client/distributed_tile_service.h"
 #include "client/hybrid_frame.h"
 #include "client/offscreen_context.h"
 #include "client/output_file.h"
 #include "client/progress.h"
 #include "client/provenance.h"
-#include "client/distributed_tile_service.h"
 #include "client/raster_scene.h"
 #include "client/scene_warnings.h"
 #include "client/stats_json.h"
 #include "client/tile_backend.h"
-#include "common/image/encoding.h"
 #include "common/base/error.h"
-#include "common/render/frame.h"
+#include "common/base/timing.h"
+#include "common/image/encoding.h"
 #include "common/image/image_write.h"
+#include "common/render/frame.h"
 #include "common/render/linear_frame.h"
 #include "common/scene/frame_limits.h"
 #include "common/scene/load_limits.h"
 #include "common/scene/scene_load.h"
-#include "common/base/timing.h"
 #include "proto/scene_bundle.h"
 
 namespace glint {
@@ -36,7 +36,8 @@ namespace {
 // The mask as the thesis's figures show it: white where the tracer fills.
 void writeMaskPng(const std::string& path, const std::vector<std::uint8_t>& mask, int width, int height) {
   FrameImage image{width, height, std::vector<std::uint8_t>(mask.size() * 3)};
-  for (std::size_t i = 0; i < mask.size(); ++i) image.rgb[3 * i] = image.rgb[3 * i + 1] = image.rgb[3 * i + 2] = mask[i] ? 255 : 0;
+  for (std::size_t i = 0; i < mask.size(); ++i)
+    image.rgb[3 * i] = image.rgb[3 * i + 1] = image.rgb[3 * i + 2] = mask[i] ? 255 : 0;
   writePng(path, image);
 }
 
@@ -61,10 +62,25 @@ struct FrameProgress {
 };
 
 FrameProgress frameProgress(const RenderOptions& options, int frame) {
-  const ProgressMode mode =
-      options.quiet ? ProgressMode::kQuiet : options.progress ? ProgressMode::kForced : ProgressMode::kAuto;
+  const ProgressMode mode = options.quiet      ? ProgressMode::kQuiet
+                            : options.progress ? ProgressMode::kForced
+                                               : ProgressMode::kAuto;
   if (options.frames == 1) return {mode, "rendering"};
   return {mode, "frame " + std::to_string(frame + 1) + " of " + std::to_string(options.frames)};
+}
+
+// A hybrid frame, its traced tiles' progress shown.
+void renderHybridFrame(TileBackend& backend, gl::OffscreenContext& context, gl::RasterScene& raster,
+                       const FrameSettings& frame, const FrameProgress& shown, const RenderOptions& options,
+                       HybridResult& r) {
+  ProgressLine progress = stderrProgress(shown.mode, shown.label);
+  const HybridControl control{.cancelled = {}, .progress = [&](int done, int total) {
+                                progress.update(done, total,
+                                                backend.distributed() ? backend.distributed()->tracedShares() : "",
+                                                ProgressLine::Clock::now());
+                              }};
+  renderHybrid(context.api(), raster, backend.service(), frame, backend.scene().mask, options.frame.tileSize, r,
+               options.crop, control);
 }
 
 // --mask all: every pixel (of the crop window) through the tile service, no
@@ -92,9 +108,7 @@ LinearImage renderFullTraceLinear(TileBackend& backend, const FrameSettings& fra
                                   const FrameProgress& shown, HybridResult& r) {
   const Clock::time_point start = Clock::now();
   ProgressLine progress = stderrProgress(shown.mode, shown.label);
-  frameOptions.progress = [&](int done, int total) {
-    progress.update(done, total, "", ProgressLine::Clock::now());
-  };
+  frameOptions.progress = [&](int done, int total) { progress.update(done, total, "", ProgressLine::Clock::now()); };
   const Renderer renderer(*backend.prepared(), frame);
   r.rays = RayStats{};
   LinearImage image = renderLinear(renderer, *backend.pool(), r.rays, LinearRange::kUnbounded, frameOptions);
@@ -126,8 +140,8 @@ void printSummary(const RenderOptions& options, const FrameSettings& frame, cons
 void printServers(const DistributionReport& report, bool legend) {
   for (const ServerReport& s : report.servers) {
     std::fprintf(stderr, "  server %-24s %-11s %5zu tiles %9zu pixels  busy %8.1f ms  rtt %6.2f ms%s%s\n",
-                 s.address.c_str(), std::string(enumWord(s.state)).c_str(), s.tiles, s.maskedPixels, s.busyMs,
-                 s.rttMs, s.why.empty() ? "" : "  ", s.why.c_str());
+                 s.address.c_str(), std::string(enumWord(s.state)).c_str(), s.tiles, s.maskedPixels, s.busyMs, s.rttMs,
+                 s.why.empty() ? "" : "  ", s.why.c_str());
   }
   if (report.reissuedTiles + report.duplicatedTiles > 0) {
     std::fprintf(stderr, "  %zu tiles re-issued from lost servers, %zu duplicated at the end\n", report.reissuedTiles,
@@ -229,8 +243,7 @@ std::optional<LinearImage> renderFrames(const RenderRun& run, TileBackend& backe
   const FrameOptions frameOptions{.tileSize = options.frame.tileSize, .window = options.crop, .progress = {}};
   for (int f = 0; f < options.frames; ++f) {
     if (hybridPath) {
-      renderHybrid(context->api(), *raster, backend.service(), frame, scene.mask, options.frame.tileSize, r,
-                   options.crop);
+      renderHybridFrame(backend, *context, *raster, frame, frameProgress(options, f), options, r);
     } else if (linear) {
       image = renderFullTraceLinear(backend, frame, frameOptions, frameProgress(options, f), r);
     } else {
@@ -272,8 +285,10 @@ void writeOutputs(const RenderRun& run, TileBackend& backend, const HybridResult
   if (holdsFloats(format) && !linear) {
     writeOutput(options.output, format, r.image, fromBytes(r.image));
     if (!options.quiet) {
-      std::fprintf(stderr, "note: %s holds the 8-bit frame's values (a hybrid frame or tiles from servers); "
-                   "--mask all in process writes the tracer's own floats\n", options.output.c_str());
+      std::fprintf(stderr,
+                   "note: %s holds the 8-bit frame's values (a hybrid frame or tiles from servers); "
+                   "--mask all in process writes the tracer's own floats\n",
+                   options.output.c_str());
     }
   } else {
     writeOutput(options.output, format, r.image, linear ? *linear : LinearImage{});
@@ -299,7 +314,8 @@ void runRender(const RenderOptions& options) {
   // In process (the default) or through a glintd: the same tiles either way.
   const Clock::time_point prepareStart = Clock::now();
   if (!options.provenanceOut.empty() && options.remote.servers.empty()) {
-    throw InputError("--provenance-out " + options.provenanceOut + ": shows which server traced each tile; give --server");
+    throw InputError("--provenance-out " + options.provenanceOut +
+                     ": shows which server traced each tile; give --server");
   }
   if (!options.provenanceOut.empty() && options.crop) {
     throw InputError("--provenance-out " + options.provenanceOut + ": shows the whole frame; it cannot go with --crop");

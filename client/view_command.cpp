@@ -11,9 +11,9 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "client/distributed_tile_service.h"
 #include "client/gl_api.h"
 #include "client/hybrid_frame.h"
-#include "client/distributed_tile_service.h"
 #include "client/image_rows.h"
 #include "client/provenance.h"
 #include "client/raster_scene.h"
@@ -70,7 +70,9 @@ void pan(CameraSpec& c, float dx, float dy) {
   c.lookAt += move;
 }
 
-Controls& controlsOf(GLFWwindow* window) { return *static_cast<Controls*>(glfwGetWindowUserPointer(window)); }
+Controls& controlsOf(GLFWwindow* window) {
+  return *static_cast<Controls*>(glfwGetWindowUserPointer(window));
+}
 
 void installCallbacks(GLFWwindow* window) {
   glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) {
@@ -98,7 +100,9 @@ void installCallbacks(GLFWwindow* window) {
     Controls& c = controlsOf(w);
     if (key == GLFW_KEY_Q || key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(w, GLFW_TRUE);
     if (key == GLFW_KEY_M) {
-      c.rule = c.rule == MaskRule::kAuto ? MaskRule::kAll : c.rule == MaskRule::kAll ? MaskRule::kNone : MaskRule::kAuto;
+      c.rule = c.rule == MaskRule::kAuto  ? MaskRule::kAll
+               : c.rule == MaskRule::kAll ? MaskRule::kNone
+                                          : MaskRule::kAuto;
     }
     if (key == GLFW_KEY_O) c.overlay = !c.overlay;
     if (key == GLFW_KEY_P) c.provenance = !c.provenance;
@@ -168,7 +172,7 @@ Shown showFrame(GLFWwindow* window, const gl::Api& api, gl::RasterScene& raster,
   };
   try {
     if (!renderHybrid(api, raster, backend.service(), frame, mask, tileSize, last, std::nullopt,
-                      preview ? CancelCheck{} : cameraMoved)) {
+                      {.cancelled = preview ? CancelCheck{} : cameraMoved, .progress = {}})) {
       return Shown::kAbandoned;
     }
     reported.clear();
@@ -190,9 +194,8 @@ Shown showFrame(GLFWwindow* window, const gl::Api& api, gl::RasterScene& raster,
   std::snprintf(title, sizeof title,
                 "glint view  |  mask %s%s  |  %s %.0f ms: raster %.0f, read %.0f, RT %.0f, compose %.0f  |  %s",
                 std::string(enumWord(controls.rule)).c_str(), controls.overlay ? " (shown)" : "",
-                preview ? "preview, 1 spp" : "frame", last.times.totalMs,
-                last.times.rasterMs, last.times.readbackMs, last.times.traceMs, last.times.composeMs,
-                whereLabel(backend, missing).c_str());
+                preview ? "preview, 1 spp" : "frame", last.times.totalMs, last.times.rasterMs, last.times.readbackMs,
+                last.times.traceMs, last.times.composeMs, whereLabel(backend, missing).c_str());
   glfwSetWindowTitle(window, title);
   return missing ? Shown::kMissingTiles : Shown::kFrame;
 }
@@ -205,7 +208,8 @@ void runView(const ViewOptions& options) {
   applyFrameOverrides(options.frame, loaded.scene);
 
   if (!glfwInit()) {
-    throw InputError("glint view needs a display: cannot initialise GLFW (is DISPLAY set? glint render works headless)");
+    throw InputError(
+        "glint view needs a display: cannot initialise GLFW (is DISPLAY set? glint render works headless)");
   }
   struct Terminate {
     ~Terminate() { glfwTerminate(); }
@@ -214,7 +218,8 @@ void runView(const ViewOptions& options) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_COMPAT_PROFILE);
   glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
-  GLFWwindow* window = glfwCreateWindow(loaded.scene.frame.width, loaded.scene.frame.height, "glint view", nullptr, nullptr);
+  GLFWwindow* window =
+      glfwCreateWindow(loaded.scene.frame.width, loaded.scene.frame.height, "glint view", nullptr, nullptr);
   if (!window) throw InputError("glint view: cannot open an OpenGL 3.3 compatibility window");
   glfwMakeContextCurrent(window);
   glfwSwapInterval(0);
@@ -243,8 +248,8 @@ void runView(const ViewOptions& options) {
     if (moved || refine || options.frames > 0 || (retryAt > 0.0 && glfwGetTime() >= retryAt)) {
       controls.changed = false;
       const bool preview = progressive && moved;
-      const Shown shown = showFrame(window, api, raster, backend, controls, options.frame.tileSize, preview, last,
-                                     reported);
+      const Shown shown =
+          showFrame(window, api, raster, backend, controls, options.frame.tileSize, preview, last, reported);
       refine = preview;
       retryAt = shown == Shown::kMissingTiles ? glfwGetTime() + kRetrySeconds : 0.0;
       if (options.frames > 0 && ++frames >= options.frames) break;

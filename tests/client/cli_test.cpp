@@ -116,6 +116,11 @@ TEST_F(Cli, ProgressLinesWhenAskedAndNothingWhenQuiet) {
   ASSERT_EQ(quiet.status, 0) << quiet.output;
   EXPECT_EQ(quiet.output, "");
   EXPECT_EQ(decodePng(path("shown.png")).rgb, decodePng(path("quiet.png")).rgb);
+
+  const Result hybrid = glint("render " + scene("room.json") + " --size 160x120 --progress -o " + path("h.png"));
+  ASSERT_EQ(hybrid.status, 0) << hybrid.output;
+  EXPECT_NE(hybrid.output.find("rendering: "), std::string::npos) << hybrid.output;  // the traced tiles'
+  EXPECT_NE(hybrid.output.find("tiles (100 %)"), std::string::npos) << hybrid.output;
 }
 
 TEST_F(Cli, HybridRenderWritesImageMaskAndStepTimes) {

@@ -4,24 +4,24 @@
 #include <cmath>
 #include <thread>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
+#include "client/distributed_tile_service.h"
 #include "client/hybrid_frame.h"
 #include "client/image_rows.h"
 #include "client/offscreen_context.h"
 #include "client/pixel_mark.h"
 #include "client/provenance.h"
 #include "client/raster_scene.h"
-#include "client/distributed_tile_service.h"
-#include "common/image/encoding.h"
 #include "common/base/file_source.h"
+#include "common/image/encoding.h"
 #include "common/render/mask_rule.h"
-#include "common/scene/scene_load.h"
 #include "common/render/renderer.h"
+#include "common/scene/scene_load.h"
 #include "proto/scene_bundle.h"
-#include "server/log.h"
 #include "server/background_server.h"
+#include "server/log.h"
 #include "tests/support/test_support.h"
 
 namespace glint {
@@ -141,8 +141,8 @@ TEST(Hybrid, RasterOfAnAnalyticSphere) {
   int compared = 0;
   for (int y = 0; y < 64; ++y) {
     for (int x = 0; x < 64; ++x) {
-      const glm::dvec3 d = glm::normalize(glm::dvec3((2.0 * (x + 0.5) / 64 - 1.0) * tanHalf,
-                                                     (1.0 - 2.0 * (y + 0.5) / 64) * tanHalf, -1.0));
+      const glm::dvec3 d = glm::normalize(
+          glm::dvec3((2.0 * (x + 0.5) / 64 - 1.0) * tanHalf, (1.0 - 2.0 * (y + 0.5) / 64) * tanHalf, -1.0));
       const double b = glm::dot(eye, d);
       const double disc = b * b - (glm::dot(eye, eye) - 1.0);
       if (std::abs(disc) < 0.02) continue;  // the silhouette
@@ -195,8 +195,9 @@ int channelDifference(const FrameImage& a, const FrameImage& b, std::size_t pixe
 // hardest: a light 0.25 above a floor 60 wide (long shadows, the floor lit
 // at grazing angles) and the room 1000 times larger, 1e5 from the origin.
 TEST(Hybrid, RasterSurfacesReceiveShadows) {
-  for (const char* sceneFile : {"scenes/room-gl-floor.json", "scenes/room.json", "scenes/glass.json",
-                                "scenes/bunny.json", "scenes/hard/grazing-shadow.json", "scenes/hard/shadow-far.json"}) {
+  for (const char* sceneFile :
+       {"scenes/room-gl-floor.json", "scenes/room.json", "scenes/glass.json", "scenes/bunny.json",
+        "scenes/hard/grazing-shadow.json", "scenes/hard/shadow-far.json"}) {
     SceneSetup s = load(sceneFile);
     s.frame.sampling = {SamplePattern::kRegular, 1, FilterType::kBox, 0};
     const PreparedScene prepared(s.loaded.scene, BvhSettings{});
@@ -223,8 +224,8 @@ TEST(Hybrid, RasterSurfacesReceiveShadows) {
         litWithoutMaps += channelDifference(noMaps.image, shadowed, i) > 8 ? 1 : 0;
       }
     }
-    std::printf("%s: %d GL pixels compared, %d in shadow, %zu traced for shadow edges\n", sceneFile, compared,
-                inShadow, maps.shadowEdgePixels);
+    std::printf("%s: %d GL pixels compared, %d in shadow, %zu traced for shadow edges\n", sceneFile, compared, inShadow,
+                maps.shadowEdgePixels);
     EXPECT_EQ(bad, 0) << sceneFile;
     EXPECT_GT(compared, static_cast<int>(covered.size()) / 3) << sceneFile;
     EXPECT_EQ(litWithoutMaps, inShadow) << sceneFile;
@@ -247,8 +248,8 @@ TEST(Hybrid, DenseMeshHasNoStrayAmbientPixels) {
   for (int y = 0; y <= n; ++y) {
     for (int x = 0; x <= n; ++x) {
       const double X = x * 4.0 / n - 2.0, Z = y * 4.0 / n - 2.0;
-      const double h = 0.3 * std::sin(3 * X) * std::cos(2 * Z) + 0.1 * std::sin(13 * X + 7 * Z) +
-                       0.05 * std::cos(29 * Z - 17 * X);
+      const double h =
+          0.3 * std::sin(3 * X) * std::cos(2 * Z) + 0.1 * std::sin(13 * X + 7 * Z) + 0.05 * std::cos(29 * Z - 17 * X);
       obj += "v " + std::to_string(X) + " " + std::to_string(h) + " " + std::to_string(Z) + "\n";
     }
   }
@@ -469,10 +470,13 @@ TEST(Hybrid, CancelledFrameStopsTracing) {
 
   int checks = 0;
   counting.tiles = 0;
-  ASSERT_TRUE(renderHybrid(context.api(), raster, counting, s.frame, mask, 16, checked, std::nullopt, [&] {
-    ++checks;
-    return false;
-  }));
+  const HybridControl neverCancelled{.cancelled =
+                                         [&] {
+                                           ++checks;
+                                           return false;
+                                         },
+                                     .progress = {}};
+  ASSERT_TRUE(renderHybrid(context.api(), raster, counting, s.frame, mask, 16, checked, std::nullopt, neverCancelled));
   EXPECT_EQ(checked.image.rgb, plain.image.rgb);
   EXPECT_EQ(counting.tiles, all);
   EXPECT_GT(checks, 2);
@@ -481,11 +485,36 @@ TEST(Hybrid, CancelledFrameStopsTracing) {
   moved.camera.eye.x += 0.5f;
   counting.tiles = 0;
   checks = 0;
-  const bool finished = renderHybrid(context.api(), raster, counting, moved, mask, 16, checked, std::nullopt,
-                                     [&] { return ++checks > 1; });  // the camera moves during the first batch
+  const HybridControl movesDuringTheFirstBatch{.cancelled = [&] { return ++checks > 1; }, .progress = {}};
+  const bool finished =
+      renderHybrid(context.api(), raster, counting, moved, mask, 16, checked, std::nullopt, movesDuringTheFirstBatch);
   EXPECT_FALSE(finished);
   EXPECT_EQ(counting.tiles, 4 * 2u);
   EXPECT_EQ(checked.image.rgb, plain.image.rgb);
+}
+
+// Progress counts the frame's traced tiles across its traced sets, never
+// backwards, up to the tiles it sent, and changes nothing in the image.
+TEST(Hybrid, ProgressCountsEveryTracedTileOnce) {
+  SceneSetup s = load("scenes/room.json", 320, 240);
+  const PreparedScene prepared(s.loaded.scene, BvhSettings{});
+  ThreadPool pool(2);
+  LocalTileService local(prepared, pool);
+  gl::OffscreenContext context(s.frame.width, s.frame.height);
+  gl::RasterScene raster(context.api(), prepared.scene());
+  HybridResult plain, shown;
+  ASSERT_TRUE(renderHybrid(context.api(), raster, local, s.frame, prepared.scene().mask, 32, plain));
+  std::vector<std::pair<int, int>> told;
+  const HybridControl control{.cancelled = {},
+                              .progress = [&](int done, int total) { told.emplace_back(done, total); }};
+  ASSERT_TRUE(
+      renderHybrid(context.api(), raster, local, s.frame, prepared.scene().mask, 32, shown, std::nullopt, control));
+  EXPECT_EQ(shown.image.rgb, plain.image.rgb);
+  ASSERT_EQ(told.size(), static_cast<std::size_t>(shown.tiles));  // once per tile
+  for (std::size_t i = 0; i < told.size(); ++i) {
+    EXPECT_EQ(told[i].first, static_cast<int>(i) + 1);
+    EXPECT_EQ(told[i].second, shown.tiles);
+  }
 }
 
 // A result passed back frame after frame (to keep its buffers) holds each
@@ -525,7 +554,6 @@ TEST(Hybrid, ReusedResultEqualsAFreshOne) {
   EXPECT_LT(reused.maskedPixels, static_cast<std::size_t>(s.frame.width * s.frame.height));
 }
 
-
 // The share of pixels where two images differ by at most `tolerance` in
 // every channel.
 double shareWithin(const FrameImage& a, const FrameImage& b, int tolerance) {
@@ -559,7 +587,8 @@ TEST(Hybrid, NearGeometryIsDrawnInScenesOfLargeExtent) {
                   "red": {"color": [0.9, 0.2, 0.2], "ambient": 0.1, "diffuse": 0.7, "specular": 0.3, "shininess": 30},
                   "mirror": {"color": [0.8, 0.8, 0.8], "ambient": 0.02, "diffuse": 0.1, "reflectivity": 0.8}},)";
   expectHybridNearFullTrace(R"({"glint": 1, "image": {"width": 160, "height": 120},
-    "camera": {"eye": [0, 2, 6], "look_at": [0, 1, 0], "fov_y": 50}, )" + lights + R"(
+    "camera": {"eye": [0, 2, 6], "look_at": [0, 1, 0], "fov_y": 50}, )" +
+                                lights + R"(
     "objects": [
       {"type": "quad", "corners": [[-5000, 0, 5000], [5000, 0, 5000], [5000, 0, -5000], [-5000, 0, -5000]],
        "material": "ground"},
@@ -567,7 +596,8 @@ TEST(Hybrid, NearGeometryIsDrawnInScenesOfLargeExtent) {
       {"type": "sphere", "center": [1.5, 0.7, 1], "radius": 0.7, "material": "mirror"}]})",
                             "ground 10 km wide");
   expectHybridNearFullTrace(R"({"glint": 1, "image": {"width": 160, "height": 120},
-    "camera": {"eye": [0.3, 1.6, 5.2], "look_at": [0, 1.2, 0], "fov_y": 50}, )" + lights + R"(
+    "camera": {"eye": [0.3, 1.6, 5.2], "look_at": [0, 1.2, 0], "fov_y": 50}, )" +
+                                lights + R"(
     "objects": [
       {"type": "quad", "corners": [[-3, 0, 6], [3, 0, 6], [3, 0, -3], [-3, 0, -3]], "material": "ground"},
       {"type": "quad", "corners": [[-3, 0, -3], [3, 0, -3], [3, 3, -3], [-3, 3, -3]], "material": "ground"},
@@ -586,15 +616,15 @@ TEST(Hybrid, ManyMaterialsAndTextures) {
     const std::string n = std::to_string(i);
     const double r = 0.2 + 0.7 * (i % 7) / 6.0, g = 0.2 + 0.7 * (i % 5) / 4.0, b = 0.2 + 0.7 * (i % 3) / 2.0;
     if (i < 40) {
-      textures += std::string(textures.empty() ? "" : ",") + "\"t" + n + "\": {\"type\": \"checker\", \"scale\": " +
-                  std::to_string(2 + i % 5) + ", \"colors\": [[" + std::to_string(r) + ", 0.2, 0.2], [0.1, 0.1, " +
-                  std::to_string(b) + "]]}";
+      textures += std::string(textures.empty() ? "" : ",") + "\"t" + n +
+                  "\": {\"type\": \"checker\", \"scale\": " + std::to_string(2 + i % 5) + ", \"colors\": [[" +
+                  std::to_string(r) + ", 0.2, 0.2], [0.1, 0.1, " + std::to_string(b) + "]]}";
     }
-    materials += std::string(materials.empty() ? "" : ",") + "\"m" + n + "\": {" +
-                 (i < 40 ? "\"texture\": \"t" + n + "\"" :
-                           "\"color\": [" + std::to_string(r) + ", " + std::to_string(g) + ", " + std::to_string(b) + "]") +
-                 ", \"ambient\": 0.1, \"diffuse\": 0.8, \"specular\": " + std::to_string((i % 4) * 0.1) +
-                 ", \"shininess\": 20}";
+    materials +=
+        std::string(materials.empty() ? "" : ",") + "\"m" + n + "\": {" +
+        (i < 40 ? "\"texture\": \"t" + n + "\""
+                : "\"color\": [" + std::to_string(r) + ", " + std::to_string(g) + ", " + std::to_string(b) + "]") +
+        ", \"ambient\": 0.1, \"diffuse\": 0.8, \"specular\": " + std::to_string((i % 4) * 0.1) + ", \"shininess\": 20}";
     const double x = -3.0 + 0.3 * (i % 20), y = 0.3 * (i / 20);
     objects += std::string(objects.empty() ? "" : ",") + "{\"type\": \"quad\", \"corners\": [[" + std::to_string(x) +
                ", " + std::to_string(y) + ", 0], [" + std::to_string(x + 0.3) + ", " + std::to_string(y) + ", 0], [" +
@@ -605,7 +635,8 @@ TEST(Hybrid, ManyMaterialsAndTextures) {
     "camera": {"eye": [0, 2.25, 5], "look_at": [0, 2.25, 0], "fov_y": 60},
     "sampling": {"pattern": "regular", "samples": 1, "filter": "box"},
     "lights": [{"type": "point", "position": [1, 3, 4]}],
-    "textures": {)" + textures + R"(}, "materials": {)" + materials + R"(}, "objects": [)" + objects + "]}");
+    "textures": {)" + textures + R"(}, "materials": {)" +
+                                          materials + R"(}, "objects": [)" + objects + "]}");
   ASSERT_EQ(scene.materials.size(), 300u);
   const PreparedScene prepared(scene, BvhSettings{});
   ThreadPool pool(2);
