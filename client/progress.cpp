@@ -5,20 +5,19 @@
 namespace glint {
 namespace {
 
-constexpr double kQuietSeconds = 1.0;  // kAuto: a frame shorter than this shows nothing
+constexpr double kQuietSeconds = 1.0;          // kAuto: a frame shorter than this shows nothing
 constexpr std::chrono::seconds kLineEvery{1};  // kForced, not a terminal: at most a line a second
 
 }  // namespace
 
-ProgressLine::ProgressLine(ProgressMode mode, std::FILE* out, bool terminal, std::string label,
-                           Clock::time_point start)
+ProgressLine::ProgressLine(ProgressMode mode, std::FILE* out, bool terminal, std::string label, Clock::time_point start)
     : mode_(mode), out_(out), terminal_(terminal), label_(std::move(label)), start_(start) {}
 
 ProgressLine::~ProgressLine() {
   if (drawn_) std::fputs("\r\033[K", out_);
 }
 
-std::string ProgressLine::text(int done, int total, const std::string& shares, double seconds) const {
+std::string ProgressLine::text(int done, int total, const Shares& shares, double seconds) const {
   char numbers[128];
   std::snprintf(numbers, sizeof numbers, ": %d/%d tiles (%d %%), %.1f s", done, total, done * 100 / total, seconds);
   std::string line = label_ + numbers;
@@ -26,11 +25,12 @@ std::string ProgressLine::text(int done, int total, const std::string& shares, d
     std::snprintf(numbers, sizeof numbers, ", about %.0f s left", seconds * (total - done) / done);
     line += numbers;
   }
-  if (!shares.empty()) line += "; " + shares;
+  const std::string who = shares ? shares() : "";
+  if (!who.empty()) line += "; " + who;
   return line;
 }
 
-void ProgressLine::update(int done, int total, const std::string& shares, Clock::time_point now) {
+void ProgressLine::update(int done, int total, const Shares& shares, Clock::time_point now) {
   if (mode_ == ProgressMode::kQuiet || total <= 0) return;
   const double seconds = std::chrono::duration<double>(now - start_).count();
   if (terminal_) {

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <functional>
 #include <string>
 
 namespace glint {
@@ -27,11 +28,13 @@ class ProgressLine {
   ProgressLine(const ProgressLine&) = delete;
   ProgressLine& operator=(const ProgressLine&) = delete;
 
-  // `shares`: who traced what, in words ("a 40 %, b 60 %"); may be empty.
-  void update(int done, int total, const std::string& shares, Clock::time_point now);
+  // `shares` says who traced what, in words ("a 40 %, b 60 %"); asked only
+  // when a line is printed, and may be empty.
+  using Shares = std::function<std::string()>;
+  void update(int done, int total, const Shares& shares, Clock::time_point now);
 
  private:
-  std::string text(int done, int total, const std::string& shares, double seconds) const;
+  std::string text(int done, int total, const Shares& shares, double seconds) const;
 
   ProgressMode mode_;
   std::FILE* out_;

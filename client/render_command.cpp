@@ -69,16 +69,19 @@ FrameProgress frameProgress(const RenderOptions& options, int frame) {
   return {mode, "frame " + std::to_string(frame + 1) + " of " + std::to_string(options.frames)};
 }
 
+// Shows a frame's traced tiles on `line`, with each server's share.
+std::function<void(int, int)> showOn(ProgressLine& line, TileBackend& backend) {
+  ProgressLine::Shares shares;
+  if (const DistributedTileService* farm = backend.distributed()) shares = [farm] { return farm->tracedShares(); };
+  return [&line, shares](int done, int total) { line.update(done, total, shares, ProgressLine::Clock::now()); };
+}
+
 // A hybrid frame, its traced tiles' progress shown.
 void renderHybridFrame(TileBackend& backend, gl::OffscreenContext& context, gl::RasterScene& raster,
                        const FrameSettings& frame, const FrameProgress& shown, const RenderOptions& options,
                        HybridResult& r) {
   ProgressLine progress = stderrProgress(shown.mode, shown.label);
-  const HybridControl control{.cancelled = {}, .progress = [&](int done, int total) {
-                                progress.update(done, total,
-                                                backend.distributed() ? backend.distributed()->tracedShares() : "",
-                                                ProgressLine::Clock::now());
-                              }};
+  const HybridControl control{.cancelled = {}, .progress = showOn(progress, backend)};
   renderHybrid(context.api(), raster, backend.service(), frame, backend.scene().mask, options.frame.tileSize, r,
                options.crop, control);
 }
@@ -89,10 +92,7 @@ void renderFullTrace(TileBackend& backend, const FrameSettings& frame, FrameOpti
                      const FrameProgress& shown, HybridResult& r) {
   const Clock::time_point start = Clock::now();
   ProgressLine progress = stderrProgress(shown.mode, shown.label);
-  frameOptions.progress = [&](int done, int total) {
-    progress.update(done, total, backend.distributed() ? backend.distributed()->tracedShares() : "",
-                    ProgressLine::Clock::now());
-  };
+  frameOptions.progress = showOn(progress, backend);
   FrameResult full = renderFrame(backend.service(), frame, frameOptions);
   r.image = std::move(full.image);
   r.rays = full.stats;
@@ -108,7 +108,7 @@ LinearImage renderFullTraceLinear(TileBackend& backend, const FrameSettings& fra
                                   const FrameProgress& shown, HybridResult& r) {
   const Clock::time_point start = Clock::now();
   ProgressLine progress = stderrProgress(shown.mode, shown.label);
-  frameOptions.progress = [&](int done, int total) { progress.update(done, total, "", ProgressLine::Clock::now()); };
+  frameOptions.progress = showOn(progress, backend);
   const Renderer renderer(*backend.prepared(), frame);
   r.rays = RayStats{};
   LinearImage image = renderLinear(renderer, *backend.pool(), r.rays, LinearRange::kUnbounded, frameOptions);

@@ -48,7 +48,7 @@ void Connection::armTimer(std::chrono::milliseconds timeout, const char* what) {
 // What a silent client holds is freed: a message started and not finished,
 // a connection with nothing to do, a client that stopped reading its results.
 void Connection::onTimer(const char* what) {
-  if (midMessage_) {
+  if (reader_.midMessage()) {
     close(greeted() ? "read timeout: a message was not finished" : "handshake timeout: no Hello");
   } else if (pending_ > 0) {
     armTimer(context_.options.idleTimeout, what);  // our own work is not idleness
@@ -73,16 +73,18 @@ void Connection::read() {
       self->close(error == asio::error::eof ? (mid ? "disconnected mid-message" : "disconnected") : error.message());
       return;
     }
+    const bool wasMid = self->reader_.midMessage();
     self->reader_.filled(n);
-    self->takeMessages();
+    self->takeMessages(wasMid);
   });
 }
 
-// Hands every whole message that arrived to the session, then reads on. A
-// message started arms the read timeout once (before Hello the handshake's
+// Hands every whole message that arrived to the session, then reads on
+// (`wasMid`: part of a message was held before these bytes). A message
+// started arms the read timeout once (before Hello the handshake's
 // deadline stands: a header does not buy a connection more time); a
 // connection between messages waits under the idle or handshake timeout.
-void Connection::takeMessages() {
+void Connection::takeMessages(bool wasMid) {
   bool took = false;
   while (!closed_ && !closeAfterWrites_) {
     const std::size_t limit = greeted() ? context_.options.maxMessageBytes : ServerOptions::kMaxHandshakeMessageBytes;
@@ -98,9 +100,8 @@ void Connection::takeMessages() {
   }
   if (closed_ || closeAfterWrites_) return;
   const bool mid = reader_.midMessage();
-  if (mid && (took || !midMessage_) && greeted()) armTimer(context_.options.readTimeout, "read");
+  if (mid && (took || !wasMid) && greeted()) armTimer(context_.options.readTimeout, "read");
   if (!mid && took) waitForMessage();
-  midMessage_ = mid;
   read();
 }
 

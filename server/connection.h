@@ -47,7 +47,7 @@ class Connection : public std::enable_shared_from_this<Connection>, public Conne
   void cancel(std::uint32_t frameId, std::span<const std::uint32_t> tileIds) override;
 
   void read();
-  void takeMessages();
+  void takeMessages(bool wasMid);
   void waitForMessage();
   void armTimer(std::chrono::milliseconds timeout, const char* what);
   void onTimer(const char* what);
@@ -65,7 +65,6 @@ class Connection : public std::enable_shared_from_this<Connection>, public Conne
   proto::WriteQueue writes_;
   bool closeAfterWrites_ = false;
   bool closed_ = false;
-  bool midMessage_ = false;  // part of a message arrived, not all of it
   std::chrono::steady_clock::time_point lastWrite_;
   int pending_ = 0;  // tiles and scene builds queued or running for this client
 };

@@ -34,9 +34,10 @@ TEST(ProgressLine, OnATerminalALongFrameIsRedrawnInPlaceAndClearedAtTheEnd) {
   Written out;
   {
     ProgressLine line(ProgressMode::kAuto, out.file(), true, "rendering", t0);
-    line.update(1, 10, "", t0 + milliseconds(500));  // under a second: nothing
+    line.update(1, 10, {}, t0 + milliseconds(500));  // under a second: nothing
     EXPECT_EQ(out.text(), "");
-    line.update(4, 10, "a 25 %, b 75 %", t0 + milliseconds(2000));
+    line.update(
+        4, 10, [] { return std::string("a 25 %, b 75 %"); }, t0 + milliseconds(2000));
   }
   EXPECT_EQ(out.text(), "\r\033[Krendering: 4/10 tiles (40 %), 2.0 s, about 3 s left; a 25 %, b 75 %\r\033[K");
 }
@@ -45,17 +46,17 @@ TEST(ProgressLine, OffATerminalOnlyProgressPrintsLinesAtMostOneASecondAndTheLast
   Written automatic;
   {
     ProgressLine line(ProgressMode::kAuto, automatic.file(), false, "rendering", t0);
-    line.update(5, 10, "", t0 + milliseconds(3000));
+    line.update(5, 10, {}, t0 + milliseconds(3000));
   }
   EXPECT_EQ(automatic.text(), "");  // a log is not a terminal
 
   Written forced;
   {
     ProgressLine line(ProgressMode::kForced, forced.file(), false, "frame 2 of 3", t0);
-    line.update(1, 4, "", t0 + milliseconds(100));
-    line.update(2, 4, "", t0 + milliseconds(600));  // within a second of the last line
-    line.update(3, 4, "", t0 + milliseconds(1200));
-    line.update(4, 4, "", t0 + milliseconds(1300));  // the last: always
+    line.update(1, 4, {}, t0 + milliseconds(100));
+    line.update(2, 4, {}, t0 + milliseconds(600));  // within a second of the last line
+    line.update(3, 4, {}, t0 + milliseconds(1200));
+    line.update(4, 4, {}, t0 + milliseconds(1300));  // the last: always
   }
   EXPECT_EQ(forced.text(),
             "frame 2 of 3: 1/4 tiles (25 %), 0.1 s, about 0 s left\n"
@@ -67,9 +68,9 @@ TEST(ProgressLine, QuietPrintsNothingAnywhere) {
   Written out;
   {
     ProgressLine terminal(ProgressMode::kQuiet, out.file(), true, "rendering", t0);
-    terminal.update(5, 10, "", t0 + milliseconds(5000));
+    terminal.update(5, 10, {}, t0 + milliseconds(5000));
     ProgressLine log(ProgressMode::kQuiet, out.file(), false, "rendering", t0);
-    log.update(5, 10, "", t0 + milliseconds(5000));
+    log.update(5, 10, {}, t0 + milliseconds(5000));
   }
   EXPECT_EQ(out.text(), "");
 }
