@@ -158,7 +158,7 @@ void runAccuracy(const AccuracyOptions& o) {
   const PreparedScene prepared(scene, BvhSettings{});
   ThreadPool pool(resolveThreadCount(o.threads));
   std::unique_ptr<DistributedTileService> remote;
-  if (!o.remote.servers.empty()) remote = connectServers(o.remote, loaded.bundle);
+  if (o.remote.any()) remote = connectServers(o.remote, loaded.bundle);
   Sweep sweep{prepared, pool, o.frames, o.frame.tileSize, remote.get(), nullptr, nullptr};
   LinearImage reference;
   const AccuracyReference ref = renderReference(sweep, scene.frame, o.referenceSamples, dir, reference);

@@ -16,6 +16,7 @@
 
 #include "client/accuracy_command.h"
 #include "client/render_command.h"
+#include "client/server_source.h"
 #include "client/view_command.h"
 #include "common/base/build_identity.h"
 #include "common/base/error.h"
@@ -123,8 +124,8 @@ CLI::Option* addEnumOption(CLI::App* app, const std::string& name, std::optional
       ->check(CLI::IsMember(enumWordList<Enum>()));
 }
 
-// --server (repeatable, comma-separated), --stall-timeout, --scene-timeout and TLS, for render
-// and view.
+// --server (repeatable, comma-separated), --server-file, --stall-timeout, --scene-timeout and
+// TLS, for render, view and accuracy.
 void addServerOptions(CLI::App* app, RemoteOptions& remote) {
   app->add_option("--server", remote.servers,
                   "Trace through the glintd at HOST:PORT (e.g. 127.0.0.1:7878); several: A:P,B:P or the option "
@@ -133,6 +134,12 @@ void addServerOptions(CLI::App* app, RemoteOptions& remote) {
       ->type_name("HOST:PORT[,...]")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  app->add_option("--server-file", remote.serverFile,
+                  "Trace through the glintd listed in FILE (one HOST:PORT a line, # comments), besides any --server; "
+                  "FILE is read again between frames: a server added joins, a server removed is dropped. Names "
+                  "(here and in --server) are resolved again every " +
+                      std::to_string(ServerSource::kResolveEvery.count()) + " s")
+      ->type_name("FILE");
   app->add_option("--stall-timeout", remote.stallTimeoutS,
                   "Seconds a server with tiles outstanding may deliver nothing before its tiles go to the others")
       ->type_name("SECONDS")

@@ -1,6 +1,7 @@
 #include "client/distributed_tile_service.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <numeric>
 
 #include "common/base/error.h"
@@ -32,12 +33,13 @@ struct DistributedTileService::Frame {
   std::vector<std::size_t> tracedBy{};  // per server: results held from it
 };
 
-DistributedTileService::DistributedTileService(std::vector<ServerAddress> servers, const proto::SceneBundle& bundle,
+DistributedTileService::DistributedTileService(ServerSource servers, const proto::SceneBundle& bundle,
                                                const DistributedSettings& settings)
-    : paces_(servers.size()),
+    : source_(std::move(servers)),
       digest_(proto::digest(bundle)),
       settings_(settings),
-      servers_(io_, std::move(servers), bundle, digest_, settings.timeouts, settings.tls, *this) {
+      servers_(io_, source_.addresses(), bundle, digest_, settings.timeouts, settings.tls, *this) {
+  paces_.resize(servers_.size());
   while (settings.awaitOne && serversUp() == 0) {
     if (sceneError_) throw InputError(*sceneError_);
     throwIfHopeless();
@@ -57,6 +59,22 @@ void DistributedTileService::awaitServers(std::chrono::milliseconds limit) {
     if (io_.stopped()) io_.restart();
     io_.run_one_until(deadline);
   }
+}
+
+void DistributedTileService::refresh() {
+  adoptChanges(reportFrame_ + 1);
+  if (io_.stopped()) io_.restart();
+  io_.poll();
+}
+
+void DistributedTileService::adoptChanges(int frame) {
+  const bool changed = source_.refresh(std::chrono::steady_clock::now());
+  if (source_.warning() != warned_ && !source_.warning().empty()) {
+    std::fprintf(stderr, "glint: warning: %s\n", source_.warning().c_str());
+  }
+  warned_ = source_.warning();
+  if (!changed || !servers_.adopt(source_.addresses(), frame)) return;
+  paces_.resize(servers_.size());
 }
 
 double DistributedTileService::nowMs() const {
@@ -129,7 +147,7 @@ void DistributedTileService::deliverFrame(Frame& frame) {
     r.maskedPixels += out.rgb.size() / 3;
     r.rays += out.rays;
     r.busyMs += out.computeMs;
-    report_.deliveredBy[frame.reportBase + job] = static_cast<int>(frame.from[tile]);
+    report_.deliveredBy[frame.reportBase + job] = rowOf_[frame.from[tile]];
     costs_.record(frame.jobs[job], frame.costs[tile], out.computeMs);
     frame.done(job, std::move(out));
   }
@@ -162,7 +180,7 @@ void DistributedTileService::render(const FrameSettings& settings, std::span<con
   startReport(frame);
   try {
     for (std::size_t i = 0; i < servers_.size(); ++i) {
-      if (servers_[i].link->ready()) joinFrame(i);
+      if (servers_.serving(i)) joinFrame(i);
     }
     while (!frame.dispatcher.done()) {
       if (sceneError_) throw InputError(*sceneError_);
@@ -195,13 +213,30 @@ void DistributedTileService::step() {
 
 void DistributedTileService::beginFrame() {
   report_ = {};
-  for (ServerPool::Server& s : servers_.all()) {
-    s.report = {s.address.name, s.report.state, s.report.why, 0, 0, {}, 0.0, 0.0, 0, 0};
-  }
+  adoptChanges(++reportFrame_);
+  startRows();
   costs_.nextFrame();
 }
 
+// Each server's report starts empty; a member, or one that left for this
+// frame, gets a row.
+void DistributedTileService::startRows() {
+  rowOf_.assign(servers_.size(), -1);
+  int rows = 0;
+  for (std::size_t i = 0; i < servers_.size(); ++i) {
+    ServerPool::Server& s = servers_[i];
+    ServerReport fresh;
+    fresh.address = s.address.name;
+    fresh.state = s.report.state;
+    fresh.why = s.report.why;
+    fresh.joined = s.joinedFrame == reportFrame_;
+    s.report = std::move(fresh);
+    if (s.member || s.leftFrame == reportFrame_) rowOf_[i] = rows++;
+  }
+}
+
 void DistributedTileService::startReport(Frame& frame) {
+  if (rowOf_.size() != servers_.size()) startRows();  // render() without beginFrame(), or servers changed since
   frame.reportBase = report_.rects.size();
   for (const TileJob& job : frame.jobs) {
     report_.rects.push_back(job.rect);
@@ -224,7 +259,8 @@ void DistributedTileService::finishReport(const Frame& frame) {
   report_.servers.clear();
   for (std::size_t i = 0; i < servers_.size(); ++i) {
     ServerPool::Server& s = servers_[i];
-    if (!s.link->ready() && !s.link->failed()) {
+    if (rowOf_[i] < 0) continue;
+    if (s.member && !s.link->ready() && !s.link->failed()) {
       s.report.state = ServerState::kUnreachable;
       s.report.why = "not ready yet (connecting, or receiving and building the scene)";
     }

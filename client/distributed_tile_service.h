@@ -13,6 +13,7 @@
 #include "client/server_link.h"
 #include "client/server_list.h"
 #include "client/server_pool.h"
+#include "client/server_source.h"
 #include "client/tile_cost_model.h"
 #include "client/tile_dispatcher.h"
 #include "common/render/tile_service.h"
@@ -38,13 +39,16 @@ struct DistributedSettings {
 // held until the frame is whole, and done() called then); it is
 // tried again on later frames, with backoff. All sockets run on one Asio
 // io_context, driven by the thread that calls render(), which is also the
-// thread that calls `done`.
+// thread that calls `done`. The farm may change between frames: the source
+// is asked at each frame's start (and by refresh()), servers that join are
+// connected, and used as soon as they hold the scene; servers that leave
+// are told Goodbye (a frame in flight never loses one this way).
 class DistributedTileService : public TileService, private LinkListener {
  public:
   // Connects to every server at once and returns when one is ready to
   // serve (settings.awaitOne). Throws InputError when none can: one line per
   // server saying why, or the scene's error (the same on every server).
-  DistributedTileService(std::vector<ServerAddress> servers, const proto::SceneBundle& bundle,
+  DistributedTileService(ServerSource servers, const proto::SceneBundle& bundle,
                          const DistributedSettings& settings = {});
   ~DistributedTileService() override;
 
@@ -56,6 +60,9 @@ class DistributedTileService : public TileService, private LinkListener {
   // Waits until no server is still connecting or receiving the scene, or
   // `limit` passes (render does not: a frame starts on the servers ready).
   void awaitServers(std::chrono::milliseconds limit);
+  // Between frames (glint view, idle): asks the source for changes, and lets
+  // the links connect and upload meanwhile; the next frame reports them.
+  void refresh();
 
   const DistributionReport& lastFrame() const { return report_; }
   std::size_t serversUp() const;
@@ -63,7 +70,8 @@ class DistributedTileService : public TileService, private LinkListener {
   // results so far each server traced ("10.0.0.2:7878 40 %, ..."); "" when
   // none came yet.
   std::string tracedShares() const;
-  std::size_t serverCount() const { return servers_.size(); }
+  // Members of the farm now.
+  std::size_t serverCount() const { return servers_.members(); }
   // Sent the scene to at least one server (it did not hold it).
   bool uploaded() const;
 
@@ -76,16 +84,21 @@ class DistributedTileService : public TileService, private LinkListener {
   void linkFailed(ServerLink& link, const LinkFailure& failure) override;
 
   void joinFrame(std::size_t index);
+  // The source's changes to the pool; `frame`, the report that shows them.
+  void adoptChanges(int frame);
   // Runs the I/O context for a moment, then loses stalled servers and sends
   // what the dispatcher assigns.
   void step();
   void throwIfHopeless() const;
   void deliverFrame(Frame& frame);
+  void startRows();
   void startReport(Frame& frame);
   void finishReport(const Frame& frame);
   double nowMs() const;
 
   asio::io_context io_;
+  ServerSource source_;
+  std::string warned_;  // the source's warning last printed
   std::vector<ServerPace> paces_;
   proto::BundleDigest digest_;
   DistributedSettings settings_;
@@ -96,6 +109,8 @@ class DistributedTileService : public TileService, private LinkListener {
   std::optional<std::string> sceneError_;
   TileCostModel costs_;
   DistributionReport report_;  // the frame since beginFrame(), every render() in it
+  int reportFrame_ = 0;        // beginFrame() calls so far
+  std::vector<int> rowOf_;     // per server: its row in report_.servers, -1 for none
 };
 
 }  // namespace glint

@@ -18,19 +18,24 @@ enum class ServerState {
   kOk,           // served the frame (or was ready to)
   kLost,         // was serving, and closed, failed or stalled
   kUnreachable,  // never became ready: no connection, refused, another build
+  kLeft,         // no longer listed (--server-file, a name's addresses): told Goodbye
 };
 
 template <>
 struct EnumWords<ServerState> {
-  static constexpr std::array<std::pair<ServerState, std::string_view>, 3> kWords{
-      {{ServerState::kOk, "ok"}, {ServerState::kLost, "lost"}, {ServerState::kUnreachable, "unreachable"}}};
+  static constexpr std::array<std::pair<ServerState, std::string_view>, 4> kWords{{{ServerState::kOk, "ok"},
+                                                                                   {ServerState::kLost, "lost"},
+                                                                                   {ServerState::kUnreachable, "unreachable"},
+                                                                                   {ServerState::kLeft, "left"}}};
 };
 
-// One server's part in a frame (the --stats "servers" objects, docs/stats.md).
+// One server's part in a frame (the --stats "servers" objects, docs/stats.md):
+// every member of the farm, and one that left for this frame.
 struct ServerReport {
   std::string address;
   ServerState state = ServerState::kOk;
   std::string why;  // what went wrong, when it did
+  bool joined = false;  // listed since the frame before (it serves once it holds the scene)
   std::size_t tiles = 0;         // results the frame took from it
   std::size_t maskedPixels = 0;  // in those tiles
   RayStats rays;
@@ -48,7 +53,7 @@ struct DistributionReport {
   std::size_t duplicatedTiles = 0;  // copies of the last bucket sent to an idle server
   std::vector<TileRect> rects;      // the frame's tiles
   std::vector<std::vector<std::uint8_t>> masks;  // per tile: its traced pixels (common/render/tile.h bits; empty: all)
-  std::vector<int> deliveredBy;     // per tile: the server's index, -1 when nothing was traced
+  std::vector<int> deliveredBy;     // per tile: the index in `servers`, -1 when nothing was traced
   std::vector<bool> reissued;       // per tile
 };
 

@@ -139,8 +139,9 @@ void printSummary(const RenderOptions& options, const FrameSettings& frame, cons
 // Each server's share of the last frame, and the provenance image's legend.
 void printServers(const DistributionReport& report, bool legend) {
   for (const ServerReport& s : report.servers) {
+    const std::string state = std::string(enumWord(s.state)) + (s.joined ? ", new" : "");
     std::fprintf(stderr, "  server %-24s %-11s %5zu tiles %9zu pixels  busy %8.1f ms  rtt %6.2f ms%s%s\n",
-                 s.address.c_str(), std::string(enumWord(s.state)).c_str(), s.tiles, s.maskedPixels, s.busyMs, s.rttMs,
+                 s.address.c_str(), state.c_str(), s.tiles, s.maskedPixels, s.busyMs, s.rttMs,
                  s.why.empty() ? "" : "  ", s.why.c_str());
   }
   if (report.reissuedTiles + report.duplicatedTiles > 0) {
@@ -262,7 +263,7 @@ std::optional<LinearImage> renderFrames(const RenderRun& run, TileBackend& backe
                     .rays = r.rays,
                     .plan = &run.plan,
                     .droppedTriangles = run.dropped,
-                    .remote = !options.remote.servers.empty(),
+                    .remote = options.remote.any(),
                     .loadMs = run.loadMs,
                     .prepareMs = run.prepareMs,
                     .traceMs = r.times.traceMs,
@@ -313,7 +314,7 @@ void runRender(const RenderOptions& options) {
 
   // In process (the default) or through a glintd: the same tiles either way.
   const Clock::time_point prepareStart = Clock::now();
-  if (!options.provenanceOut.empty() && options.remote.servers.empty()) {
+  if (!options.provenanceOut.empty() && !options.remote.any()) {
     throw InputError("--provenance-out " + options.provenanceOut +
                      ": shows which server traced each tile; give --server");
   }

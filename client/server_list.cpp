@@ -11,14 +11,14 @@ namespace glint {
 namespace {
 
 // "HOST:PORT", "[V6]:PORT" -> host and port, or InputError.
-std::pair<std::string, std::string> splitHostPort(const std::string& value) {
+std::pair<std::string, std::string> splitHostPort(const std::string& value, const std::string& origin) {
   const auto colon = value.rfind(':');
   const std::string port = colon == std::string::npos ? "" : value.substr(colon + 1);
   std::string host = colon == std::string::npos ? "" : value.substr(0, colon);
   if (host.size() >= 2 && host.front() == '[' && host.back() == ']') host = host.substr(1, host.size() - 2);
   const bool digits = !port.empty() && port.size() <= 5 && std::all_of(port.begin(), port.end(), ::isdigit);
   if (host.empty() || !digits || std::stoi(port) > 65535) {
-    throw InputError("--server " + value + ": expected HOST:PORT, e.g. 127.0.0.1:7878 (several: A:P,B:P)");
+    throw InputError(origin + " " + value + ": expected HOST:PORT, e.g. 127.0.0.1:7878 (several: A:P,B:P)");
   }
   return {host, port};
 }
@@ -26,12 +26,13 @@ std::pair<std::string, std::string> splitHostPort(const std::string& value) {
 // The addresses of one HOST:PORT: its IPv4 addresses where it has any (so
 // that "localhost" is one server, not also a ::1 that glintd may not listen
 // on), else its IPv6 ones.
-std::vector<ServerAddress> resolveOne(asio::ip::tcp::resolver& resolver, const std::string& value) {
-  const auto [host, port] = splitHostPort(value);
+std::vector<ServerAddress> resolveOne(asio::ip::tcp::resolver& resolver, const std::string& value,
+                                      const std::string& origin) {
+  const auto [host, port] = splitHostPort(value, origin);
   asio::error_code error;
   auto results = resolver.resolve(asio::ip::tcp::v4(), host, port, error);
   if (error) results = resolver.resolve(host, port, error);
-  if (error) throw InputError("--server " + value + ": cannot resolve '" + host + "' (" + error.message() + ")");
+  if (error) throw InputError(origin + " " + value + ": cannot resolve '" + host + "' (" + error.message() + ")");
   std::vector<ServerAddress> out;
   for (const auto& entry : results) out.push_back({value, host, entry.endpoint()});
   if (out.size() > 1) {
@@ -42,24 +43,45 @@ std::vector<ServerAddress> resolveOne(asio::ip::tcp::resolver& resolver, const s
 
 }  // namespace
 
-std::vector<ServerAddress> resolveServers(const std::vector<std::string>& values) {
+std::vector<ServerAddress> resolveEntries(const std::vector<ServerEntry>& entries) {
   asio::io_context io;
   asio::ip::tcp::resolver resolver(io);
   std::vector<ServerAddress> servers;
-  for (const std::string& value : values) {
-    std::stringstream list(value);
+  for (const ServerEntry& entry : entries) {
+    std::stringstream list(entry.value);
     std::string item;
     while (std::getline(list, item, ',')) {
       if (item.empty()) continue;
-      for (ServerAddress& a : resolveOne(resolver, item)) {
+      for (ServerAddress& a : resolveOne(resolver, item, entry.origin)) {
         const bool seen = std::any_of(servers.begin(), servers.end(),
                                       [&a](const ServerAddress& s) { return s.endpoint == a.endpoint; });
         if (!seen) servers.push_back(std::move(a));
       }
     }
   }
+  return servers;
+}
+
+std::vector<ServerAddress> resolveServers(const std::vector<std::string>& values) {
+  std::vector<ServerEntry> entries;
+  for (const std::string& value : values) entries.push_back({value, "--server"});
+  std::vector<ServerAddress> servers = resolveEntries(entries);
   if (servers.empty()) throw InputError("--server: no address given");
   return servers;
+}
+
+std::vector<ServerEntry> parseServerFile(const std::string& text, const std::string& path) {
+  std::vector<ServerEntry> entries;
+  std::stringstream lines(text);
+  std::string line;
+  for (int number = 1; std::getline(lines, line); ++number) {
+    line = line.substr(0, line.find('#'));
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos) continue;
+    const auto last = line.find_last_not_of(" \t\r");
+    entries.push_back({line.substr(first, last - first + 1), path + ":" + std::to_string(number)});
+  }
+  return entries;
 }
 
 }  // namespace glint

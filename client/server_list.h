@@ -14,10 +14,25 @@ struct ServerAddress {
   asio::ip::tcp::endpoint endpoint;
 };
 
-// --server values (each HOST:PORT[,HOST:PORT...], the option repeated) ->
-// one server per address: a host name that resolves to several (a
-// Kubernetes headless Service, DNS round robin) gives several. Duplicates
-// are merged. Throws InputError naming the value that cannot be used.
+// Servers as the user wrote them: HOST:PORT[,HOST:PORT...], and where, for
+// errors ("--server", "farm.txt:3").
+struct ServerEntry {
+  std::string value;
+  std::string origin;
+};
+
+// The entries -> one server per address: a host name that resolves to
+// several (a Kubernetes headless Service, DNS round robin) gives several.
+// Duplicates are merged. Throws InputError naming the entry that cannot be
+// used; an empty result is not an error here.
+std::vector<ServerAddress> resolveEntries(const std::vector<ServerEntry>& entries);
+
+// --server values (the option repeated) -> servers, as resolveEntries; none is an
+// InputError.
 std::vector<ServerAddress> resolveServers(const std::vector<std::string>& values);
+
+// A --server-file's text -> its entries: one HOST:PORT a line; blank lines
+// and what follows a '#' are ignored.
+std::vector<ServerEntry> parseServerFile(const std::string& text, const std::string& path);
 
 }  // namespace glint

@@ -22,8 +22,39 @@ ServerPool::ServerPool(asio::io_context& io, std::vector<ServerAddress> addresse
     }
     tls_.emplace(proto::clientTlsContext(tls));
   }
-  for (ServerAddress& address : addresses) servers_.push_back({std::move(address), nullptr, false, 0, {}, {}});
-  for (std::size_t i = 0; i < servers_.size(); ++i) connect(i);
+  adopt(addresses, 0);
+}
+
+bool ServerPool::adopt(const std::vector<ServerAddress>& wanted, int frame) {
+  bool changed = false;
+  for (const ServerAddress& address : wanted) {
+    auto it = std::find_if(servers_.begin(), servers_.end(),
+                           [&](const Server& s) { return s.address.endpoint == address.endpoint; });
+    if (it != servers_.end() && it->member) continue;
+    if (it == servers_.end()) {
+      Server fresh;
+      fresh.address = address;
+      it = servers_.insert(servers_.end(), std::move(fresh));
+    }
+    it->member = true;
+    it->joinedFrame = frame;
+    it->failures = 0;
+    it->report = {};
+    connect(static_cast<std::size_t>(it - servers_.begin()));
+    changed = true;
+  }
+  for (Server& s : servers_) {
+    const bool wantedStill = std::any_of(wanted.begin(), wanted.end(),
+                                         [&](const ServerAddress& a) { return a.endpoint == s.address.endpoint; });
+    if (!s.member || wantedStill) continue;
+    s.member = false;
+    s.leftFrame = frame;
+    s.link->close();
+    s.report.state = ServerState::kLeft;
+    s.report.why = "no longer listed: sent Goodbye";
+    changed = true;
+  }
+  return changed;
 }
 
 void ServerPool::connect(std::size_t index) {
@@ -39,14 +70,14 @@ void ServerPool::connect(std::size_t index) {
 
 void ServerPool::closeAll() {
   for (Server& s : servers_) {
-    if (s.link) s.link->close();
+    if (s.member) s.link->close();
   }
 }
 
 void ServerPool::retryLost() {
   const auto now = std::chrono::steady_clock::now();
   for (std::size_t i = 0; i < servers_.size(); ++i) {
-    if (servers_[i].link->failed() && now >= servers_[i].retryAt) connect(i);
+    if (servers_[i].member && servers_[i].link->failed() && now >= servers_[i].retryAt) connect(i);
   }
 }
 
@@ -60,6 +91,7 @@ void ServerPool::ready(std::size_t index) {
 
 void ServerPool::failed(std::size_t index, const LinkFailure& failure) {
   Server& s = servers_[index];
+  if (!s.member) return;
   s.report.state = s.everReady ? ServerState::kLost : ServerState::kUnreachable;
   s.report.why = failure.what;
   ++s.failures;
@@ -67,14 +99,18 @@ void ServerPool::failed(std::size_t index, const LinkFailure& failure) {
   s.retryAt = std::chrono::steady_clock::now() + backoff;
 }
 
+std::size_t ServerPool::members() const {
+  return static_cast<std::size_t>(std::count_if(servers_.begin(), servers_.end(), [](const Server& s) { return s.member; }));
+}
+
 std::size_t ServerPool::up() const {
   return static_cast<std::size_t>(
-      std::count_if(servers_.begin(), servers_.end(), [](const Server& s) { return s.link->ready(); }));
+      std::count_if(servers_.begin(), servers_.end(), [](const Server& s) { return s.member && s.link->ready(); }));
 }
 
 bool ServerPool::anyConnecting() const {
   return std::any_of(servers_.begin(), servers_.end(),
-                     [](const Server& s) { return !s.link->ready() && !s.link->failed(); });
+                     [](const Server& s) { return s.member && !s.link->ready() && !s.link->failed(); });
 }
 
 bool ServerPool::anyUploaded() const {
@@ -83,13 +119,14 @@ bool ServerPool::anyUploaded() const {
 
 int ServerPool::threadsUp() const {
   int threads = 0;
-  for (const Server& s : servers_) threads += s.link->ready() ? s.link->threads() : 0;
+  for (const Server& s : servers_) threads += s.member && s.link->ready() ? s.link->threads() : 0;
   return threads;
 }
 
 std::string ServerPool::states() const {
   std::string lines;
   for (const Server& s : servers_) {
+    if (!s.member) continue;
     lines += "\n  server " + s.address.name + ": " + std::string(enumWord(s.report.state)) + ", " + s.report.why;
   }
   return lines;

@@ -21,7 +21,10 @@ namespace glint {
 // The servers a client renders through and a link to each, on one
 // io_context: all connected at once (over TLS where `tls` names files), each
 // lost one tried again after a backoff of 1, 2, 4 ... at most 30 s, each
-// with its report for the frame. Its links tell `listener`, which tells the
+// with its report for the frame. Between frames the set may change
+// (adopt()): a server that leaves is told Goodbye and never tried again, but
+// keeps its index (the links' and the reports' key) and its place, which it
+// takes again if it comes back. Its links tell `listener`, which tells the
 // pool (ready(), failed()) before it does anything else.
 class ServerPool {
  public:
@@ -32,6 +35,9 @@ class ServerPool {
     int failures = 0;        // in a row, for the backoff
     std::chrono::steady_clock::time_point retryAt;
     ServerReport report;  // this frame's
+    bool member = true;   // false once it left the farm
+    int joinedFrame = 0;  // the report (frame) that says it joined; 0: one of the first
+    int leftFrame = -1;   // the report that says it left
   };
 
   // Throws InputError for TLS files that cannot be used.
@@ -43,6 +49,10 @@ class ServerPool {
 
   // Each server's link says Goodbye (the io_context then writes them).
   void closeAll();
+  // Between frames: the servers of `wanted` not members join (connected
+  // now), the members not in it leave (Goodbye); `frame` is the report
+  // that says so. True when anything changed.
+  bool adopt(const std::vector<ServerAddress>& wanted, int frame);
   // Servers lost earlier whose backoff has ended are connected again.
   void retryLost();
   void ready(std::size_t index);
@@ -53,6 +63,9 @@ class ServerPool {
   const Server& operator[](std::size_t index) const { return servers_[index]; }
   std::vector<Server>& all() { return servers_; }
   const std::vector<Server>& all() const { return servers_; }
+  // Ready and a member: gets tiles.
+  bool serving(std::size_t index) const { return servers_[index].member && servers_[index].link->ready(); }
+  std::size_t members() const;
   std::size_t up() const;
   bool anyConnecting() const;
   bool anyUploaded() const;

@@ -22,7 +22,8 @@ nlohmann::json toJson(const ServerReport& s) {
                       {"busy_ms", s.busyMs},
                       {"rtt_ms", s.rttMs},
                       {"bytes_in", s.bytesIn},
-                      {"bytes_out", s.bytesOut}};
+                      {"bytes_out", s.bytesOut},
+                      {"joined", s.joined}};
   if (!s.why.empty()) j["why"] = s.why;
   return j;
 }

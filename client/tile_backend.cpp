@@ -12,15 +12,16 @@ std::unique_ptr<DistributedTileService> connectServers(const RemoteOptions& remo
   settings.timeouts.scene = std::chrono::milliseconds(static_cast<long>(remote.sceneTimeoutS * 1000.0));
   settings.awaitOne = awaitServer;
   settings.tls = remote.tls;
-  return std::make_unique<DistributedTileService>(resolveServers(remote.servers), bundle, settings);
+  ServerSource source(remote.servers, remote.serverFile, ServerSource::Clock::now());
+  return std::make_unique<DistributedTileService>(std::move(source), bundle, settings);
 }
 
 TileBackend::TileBackend(const Options& options, proto::LoadedBundle loaded) : loaded_(std::move(loaded)) {
   const RemoteOptions& remote = options.remote;
-  if (remote.servers.empty() && remote.tls.any()) {
+  if (!remote.any() && remote.tls.any()) {
     throw InputError("--tls-ca, --tls-cert and --tls-key secure the connections to glintd; give --server");
   }
-  if (!remote.servers.empty()) {
+  if (remote.any()) {
     if (options.bvh) {
       throw InputError("--bvh: a glintd builds the BVH of the scenes it holds itself (SAH); --bvh applies to "
                        "in-process rendering");

@@ -22,10 +22,14 @@ class DistributedTileService;
 // Owns what the service needs; the scene stays readable for the raster pass.
 // The options that send tiles to glintd (render and view share them).
 struct RemoteOptions {
-  std::vector<std::string> servers;  // --server values (HOST:PORT[,...]); none: in process
+  std::vector<std::string> servers;  // --server values (HOST:PORT[,...])
+  std::string serverFile;            // --server-file: more servers, read again when it changes
   double stallTimeoutS = 2.0;        // --stall-timeout
   double sceneTimeoutS = 120.0;      // --scene-timeout
   proto::TlsFiles tls;               // --tls-ca, --tls-cert, --tls-key
+
+  // Through servers; neither option: in process.
+  bool any() const { return !servers.empty() || !serverFile.empty(); }
 };
 
 // The service over the servers the options name (resolved, TLS as given),

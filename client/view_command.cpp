@@ -4,9 +4,11 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <string>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -150,6 +152,28 @@ std::string whereLabel(TileBackend& backend, bool missing) {
   return "servers " + std::to_string(d->serversUp()) + "/" + std::to_string(d->serverCount()) + " up";
 }
 
+// The window's title: what the last frame was (`frame`), and where its
+// tiles go, kept up to date between frames as servers come and go.
+struct Title {
+  std::string frame;
+  std::string where;
+  void show(GLFWwindow* window) const { glfwSetWindowTitle(window, ("glint view  |  " + frame + "  |  " + where).c_str()); }
+};
+
+// A traced frame's progress, told from the tile service's threads and shown
+// in the title from the window's thread (GLFW's calls are the main thread's).
+struct TitleProgress {
+  std::atomic<int> done{0};
+  std::atomic<int> total{0};
+  int shown = -1;
+  void show(GLFWwindow* window, const std::string& where) {
+    const int now = done;
+    if (now == shown) return;
+    shown = now;
+    Title{"tracing " + std::to_string(now) + " of " + std::to_string(total) + " tiles", where}.show(window);
+  }
+};
+
 // One frame of the view: the hybrid frame through the backend's service
 // or, when no server is left, the raster frame with the traced pixels
 // marked (`reported`: the last error printed, so that a retry that fails the
@@ -158,7 +182,8 @@ std::string whereLabel(TileBackend& backend, bool missing) {
 // its tiles are traced.
 enum class Shown { kFrame, kMissingTiles, kAbandoned };
 Shown showFrame(GLFWwindow* window, const gl::Api& api, gl::RasterScene& raster, TileBackend& backend,
-                Controls& controls, int tileSize, bool preview, HybridResult& last, std::string& reported) {
+                Controls& controls, int tileSize, bool preview, HybridResult& last, std::string& reported,
+                Title& title) {
   FrameSettings frame = backend.scene().frame;
   glfwGetFramebufferSize(window, &frame.width, &frame.height);
   frame.camera = controls.camera;
@@ -166,13 +191,19 @@ Shown showFrame(GLFWwindow* window, const gl::Api& api, gl::RasterScene& raster,
   MaskSettings mask = backend.scene().mask;
   mask.rule = controls.rule;
   bool missing = false;
+  TitleProgress progress;
   const CancelCheck cameraMoved = [&] {
     glfwPollEvents();
+    progress.show(window, title.where);
     return controls.changed;
+  };
+  const auto told = [&progress](int done, int total) {
+    progress.total = total;
+    progress.done = done;
   };
   try {
     if (!renderHybrid(api, raster, backend.service(), frame, mask, tileSize, last, std::nullopt,
-                      {.cancelled = preview ? CancelCheck{} : cameraMoved, .progress = {}})) {
+                      {.cancelled = preview ? CancelCheck{} : cameraMoved, .progress = told})) {
       return Shown::kAbandoned;
     }
     reported.clear();
@@ -190,14 +221,26 @@ Shown showFrame(GLFWwindow* window, const gl::Api& api, gl::RasterScene& raster,
   }
   drawImage(api, std::move(shown), frame.width, frame.height);
   glfwSwapBuffers(window);
-  char title[320];
-  std::snprintf(title, sizeof title,
-                "glint view  |  mask %s%s  |  %s %.0f ms: raster %.0f, read %.0f, RT %.0f, compose %.0f  |  %s",
+  char text[256];
+  std::snprintf(text, sizeof text, "mask %s%s  |  %s %.0f ms: raster %.0f, read %.0f, RT %.0f, compose %.0f",
                 std::string(enumWord(controls.rule)).c_str(), controls.overlay ? " (shown)" : "",
                 preview ? "preview, 1 spp" : "frame", last.times.totalMs, last.times.rasterMs, last.times.readbackMs,
-                last.times.traceMs, last.times.composeMs, whereLabel(backend, missing).c_str());
-  glfwSetWindowTitle(window, title);
+                last.times.traceMs, last.times.composeMs);
+  title = {text, whereLabel(backend, missing)};
+  title.show(window);
   return missing ? Shown::kMissingTiles : Shown::kFrame;
+}
+
+// Between frames: servers that joined connect and upload, servers that left
+// go, and the title says how many are up.
+void refreshFarm(GLFWwindow* window, TileBackend& backend, bool missing, Title& title) {
+  DistributedTileService* farm = backend.distributed();
+  if (!farm) return;
+  farm->refresh();
+  const std::string where = whereLabel(backend, missing);
+  if (where == title.where || title.frame.empty()) return;
+  title.where = where;
+  title.show(window);
 }
 
 }  // namespace
@@ -243,13 +286,14 @@ void runView(const ViewOptions& options) {
   bool refine = false;  // a preview is shown; the full frame is owed once the camera rests
   HybridResult last;    // the latest frame; reused by the next
   std::string reported;
+  Title title;
   while (!glfwWindowShouldClose(window)) {
     const bool moved = controls.changed;
     if (moved || refine || options.frames > 0 || (retryAt > 0.0 && glfwGetTime() >= retryAt)) {
       controls.changed = false;
       const bool preview = progressive && moved;
       const Shown shown =
-          showFrame(window, api, raster, backend, controls, options.frame.tileSize, preview, last, reported);
+          showFrame(window, api, raster, backend, controls, options.frame.tileSize, preview, last, reported, title);
       refine = preview;
       retryAt = shown == Shown::kMissingTiles ? glfwGetTime() + kRetrySeconds : 0.0;
       if (options.frames > 0 && ++frames >= options.frames) break;
@@ -258,6 +302,7 @@ void runView(const ViewOptions& options) {
       glfwPollEvents();  // the full frame comes next unless the camera moved meanwhile
     } else {
       glfwWaitEventsTimeout(0.1);
+      refreshFarm(window, backend, retryAt > 0.0, title);
     }
   }
   if (!options.screenshot.empty()) writePng(options.screenshot, last.image);

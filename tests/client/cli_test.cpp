@@ -1,8 +1,5 @@
 // Runs the real `glint` program as a user would and checks what it prints,
 // its exit status and the files it leaves behind.
-#include <sys/wait.h>
-
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -13,8 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "common/image/encoding.h"
-#include "common/scene/image_decode.h"
-#include "common/scene/scene_budget.h"
+#include "tests/support/glint_run.h"
 #include "tests/support/glintd_process.h"
 
 namespace {
@@ -22,30 +18,9 @@ namespace {
 namespace fs = std::filesystem;
 using glint::Image;
 
-// A PNG the program wrote, decoded.
-Image decodePng(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  glint::SceneBudget budget;
-  return glint::decodeImage(bytes, path, budget);
-}
-
-struct Result {
-  int status;
-  std::string output;
-};
-
-Result glint(const std::string& args, const std::string& prefix = "") {
-  const std::string command = prefix + std::string(GLINT_BIN) + " " + args + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  Result run{-1, ""};
-  if (!pipe) return run;
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), buffer.size(), pipe)) run.output += buffer.data();
-  const int raw = pclose(pipe);
-  run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return run;
-}
+using Result = glint::test::GlintRun;
+Result glint(const std::string& args, const std::string& prefix = "") { return glint::test::runGlint(args, prefix); }
+Image decodePng(const std::string& path) { return glint::test::decodePngFile(path); }
 
 class Cli : public ::testing::Test {
  protected:

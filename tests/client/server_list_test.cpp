@@ -46,5 +46,14 @@ TEST(ServerList, WhatCannotBeAServerIsNamed) {
   EXPECT_NE(errorOf({","}).find("--server: no address given"), std::string::npos);
 }
 
+TEST(ServerList, AServerFileIsOneEntryALineNamedByItsLine) {
+  const auto entries = parseServerFile("# farm\n\n a:1 \nb:2,c:3 # rack 2\r\n#d:4\n", "farm.txt");
+  ASSERT_EQ(entries.size(), 2u);
+  EXPECT_EQ(entries[0].value, "a:1");
+  EXPECT_EQ(entries[0].origin, "farm.txt:3");
+  EXPECT_EQ(entries[1].value, "b:2,c:3");
+  EXPECT_EQ(entries[1].origin, "farm.txt:4");
+}
+
 }  // namespace
 }  // namespace glint

@@ -1,0 +1,22 @@
+#pragma once
+
+#include <string>
+
+#include "common/image/encoding.h"
+
+namespace glint::test {
+
+// What the real `glint` program did: its exit status (-1 when it did not
+// exit normally) and what it printed, stdout and stderr together.
+struct GlintRun {
+  int status = -1;
+  std::string output;
+};
+
+// Runs `glint ARGS` as a user would, with `prefix` before it ("xvfb-run -a ").
+GlintRun runGlint(const std::string& args, const std::string& prefix = "");
+
+// A PNG the program wrote, decoded.
+Image decodePngFile(const std::string& path);
+
+}  // namespace glint::test
