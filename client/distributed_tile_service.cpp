@@ -252,6 +252,7 @@ void DistributedTileService::startReport(Frame& frame) {
 void DistributedTileService::finishReport(const Frame& frame) {
   report_.reissuedTiles += frame.dispatcher.reissued();
   report_.duplicatedTiles += frame.dispatcher.duplicated();
+  report_.hedgedTiles += frame.dispatcher.hedged();
   report_.reissued.resize(report_.rects.size(), false);
   for (std::size_t t = 0; t < frame.sent.size(); ++t) {
     report_.reissued[frame.reportBase + frame.sent[t]] = frame.dispatcher.wasReissued(t);

@@ -50,7 +50,8 @@ struct ServerReport {
 struct DistributionReport {
   std::vector<ServerReport> servers;
   std::size_t reissuedTiles = 0;    // taken again from a lost server
-  std::size_t duplicatedTiles = 0;  // copies of the last bucket sent to an idle server
+  std::size_t duplicatedTiles = 0;  // copies sent to a second server: the last bucket to an idle one, or hedged
+  std::size_t hedgedTiles = 0;      // of those, copies of a tile outstanding past the frame's p95 latency
   std::vector<TileRect> rects;      // the frame's tiles
   std::vector<std::vector<std::uint8_t>> masks;  // per tile: its traced pixels (common/render/tile.h bits; empty: all)
   std::vector<int> deliveredBy;     // per tile: the index in `servers`, -1 when nothing was traced

@@ -145,8 +145,8 @@ void printServers(const DistributionReport& report, bool legend) {
                  s.why.empty() ? "" : "  ", s.why.c_str());
   }
   if (report.reissuedTiles + report.duplicatedTiles > 0) {
-    std::fprintf(stderr, "  %zu tiles re-issued from lost servers, %zu duplicated at the end\n", report.reissuedTiles,
-                 report.duplicatedTiles);
+    std::fprintf(stderr, "  %zu tiles re-issued from lost servers, %zu copied to a second server (%zu of them hedged)\n",
+                 report.reissuedTiles, report.duplicatedTiles, report.hedgedTiles);
   }
   if (legend) std::fprintf(stderr, "provenance: %s\n", provenanceLegend(report).c_str());
 }

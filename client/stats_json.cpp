@@ -63,6 +63,7 @@ nlohmann::json toJson(const FrameRecord& r) {
     j["servers"] = std::move(servers);
     j["reissued_tiles"] = r.distribution->reissuedTiles;
     j["duplicated_tiles"] = r.distribution->duplicatedTiles;
+    j["hedged_tiles"] = r.distribution->hedgedTiles;
   }
   return j;
 }

@@ -36,6 +36,11 @@ std::size_t TileDispatcher::liveServers() const {
       std::count_if(servers_.begin(), servers_.end(), [](const Server& s) { return s.joined && !s.lost; }));
 }
 
+double TileDispatcher::finishEstimate(std::size_t server) const {
+  const double r = rate(server);
+  return servers_[server].outstandingCost / (r > 0.0 ? r : std::max(1, paces_[server].threads));
+}
+
 double TileDispatcher::rate(std::size_t server) const {
   const Server& s = servers_[server];
   if (s.tracedMs <= 0.0) return paces_[server].costPerMs;
@@ -66,14 +71,13 @@ void TileDispatcher::send(std::size_t server, std::size_t tile, double now, std:
 // server with room that would finish its outstanding work soonest.
 std::vector<TileDispatcher::Assignment> TileDispatcher::assign(double now) {
   std::vector<Assignment> out;
+  hedge(now, out);
   while (!queue_.empty()) {
     std::size_t best = servers_.size();
     double soonest = std::numeric_limits<double>::max();
     for (std::size_t s = 0; s < servers_.size(); ++s) {
-      if (!servers_[s].joined || servers_[s].lost || !hasRoom(s)) continue;
-      const double r = rate(s);
-      const double speed = r > 0.0 ? r : std::max(1, paces_[s].threads);
-      const double finish = servers_[s].outstandingCost / speed;
+      if (!live(s) || !hasRoom(s)) continue;
+      const double finish = finishEstimate(s);
       if (finish < soonest) {
         soonest = finish;
         best = s;
@@ -96,6 +100,55 @@ std::vector<TileDispatcher::Assignment> TileDispatcher::assign(double now) {
     }
   }
   return out;
+}
+
+double TileDispatcher::hedgeAfterMs() {
+  if (latencies_.size() < settings_.hedgeMinSamples) return -1.0;
+  if (latenciesUsed_ != latencies_.size()) {
+    std::vector<double> sorted = latencies_;
+    const auto rank = static_cast<std::size_t>(settings_.hedgePercentile * static_cast<double>(sorted.size() - 1));
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(rank), sorted.end());
+    hedgeAfterMs_ = std::max(settings_.hedgeMinMs, sorted[rank]);
+    latenciesUsed_ = latencies_.size();
+  }
+  return hedgeAfterMs_;
+}
+
+bool TileDispatcher::straggling(std::size_t server, double now, double after) const {
+  const Server& s = servers_[server];
+  return !s.outstanding.empty() && now - s.outstanding.front().at > after;
+}
+
+// Each tile whose every holder is straggling gets a copy on the least
+// loaded server that is not: a copy sent to a server that then stops too
+// is copied again.
+void TileDispatcher::hedge(double now, std::vector<Assignment>& out) {
+  if (!settings_.hedge) return;
+  const double after = hedgeAfterMs();
+  if (after < 0.0) return;
+  const auto leastLoaded = [&] {
+    std::size_t target = servers_.size();
+    for (std::size_t s = 0; s < servers_.size(); ++s) {
+      if (!live(s) || straggling(s, now, after)) continue;
+      if (target == servers_.size() || finishEstimate(s) < finishEstimate(target)) target = s;
+    }
+    return target;
+  };
+  for (std::size_t s = 0; s < servers_.size(); ++s) {
+    if (!live(s)) continue;
+    for (const Sent& sent : servers_[s].outstanding) {
+      if (now - sent.at <= after) break;  // sent in order: the rest are younger
+      const std::vector<std::size_t>& holders = tiles_[sent.tile].holders;
+      const bool stuck = std::all_of(holders.begin(), holders.end(),
+                                     [&](std::size_t h) { return straggling(h, now, after); });
+      if (!stuck) continue;
+      const std::size_t target = leastLoaded();
+      if (target == servers_.size()) return;
+      send(target, sent.tile, now, out);
+      ++duplicated_;
+      ++hedged_;
+    }
+  }
 }
 
 bool TileDispatcher::pickDuplicate(std::size_t except, std::size_t& tile) const {
@@ -137,6 +190,7 @@ TileDispatcher::Delivery TileDispatcher::deliver(std::size_t server, std::size_t
     pace.rttMs = pace.rttMs < 0.0 ? overhead : std::min(pace.rttMs, overhead);
     s.tracedCost += costs_[tile];
     s.tracedMs += computeMs;
+    latencies_.push_back(now - sent->at);
   }
   s.lastProgress = now;
   removeOutstanding(server, tile);

@@ -15,11 +15,21 @@ struct ServerPace {
   double rttMs = -1.0;     // smallest seen (latency - compute) of a tile; < 0 unknown
 };
 
-// When a server counts as stalled, and how far ahead of it to keep work.
+// When a server counts as stalled, how far ahead of it to keep work, and
+// when a straggling tile is copied.
 struct DispatchSettings {
   double stallTimeoutMs = 2000.0;  // tiles outstanding, nothing delivered for this long: lost
   double leadMs = 10.0;            // work queued beyond one round trip (chosen in docs/distributed.md)
   int initialTilesPerThread = 2;   // window before the server's pace is known
+  // Hedging ("The Tail at Scale", Dean and Barroso, CACM 2013): a tile
+  // outstanding longer than this percentile of the frame's tile latencies
+  // so far (sent to delivered), and at least hedgeMinMs, is copied to the
+  // least loaded server that is not straggling itself; after
+  // hedgeMinSamples results.
+  bool hedge = true;
+  double hedgePercentile = 0.95;
+  double hedgeMinMs = 20.0;
+  std::size_t hedgeMinSamples = 8;
 };
 
 // Which server traces which tile of one frame: pure logic, no sockets, no
@@ -34,8 +44,10 @@ struct DispatchSettings {
 //   A lone server gets the whole frame at once: there is nothing to balance,
 //   and glintd then writes results back in few large batches.
 // - With no unassigned tile left, a server with idle threads takes a copy of
-//   the oldest outstanding tile of the server that will finish last; the
-//   first result wins and the other copy is to be cancelled.
+//   the oldest outstanding tile of the server that will finish last; and at
+//   any time a tile outstanding past the frame's p95 latency is copied to the
+//   least loaded server (a paused or slow server's tiles). The first result
+//   wins and the other copy is to be cancelled.
 // - A lost server's tiles that no other server holds go back to the queue;
 //   a distrusted one's delivered tiles too.
 class TileDispatcher {
@@ -74,7 +86,8 @@ class TileDispatcher {
   bool lost(std::size_t server) const { return servers_[server].lost; }
   std::size_t outstanding(std::size_t server) const { return servers_[server].outstanding.size(); }
   std::size_t reissued() const { return reissued_; }
-  std::size_t duplicated() const { return duplicated_; }
+  std::size_t duplicated() const { return duplicated_; }  // copies sent, hedged ones included
+  std::size_t hedged() const { return hedged_; }
   bool wasReissued(std::size_t tile) const { return tiles_[tile].reissued; }
   // At the frame's end: folds this frame's measured pace into the paces.
   void finish();
@@ -107,7 +120,10 @@ class TileDispatcher {
     }
   };
 
+  bool live(std::size_t server) const { return servers_[server].joined && !servers_[server].lost; }
   bool hasRoom(std::size_t server) const;
+  // When the server's outstanding work ends, in cost over its speed.
+  double finishEstimate(std::size_t server) const;
   // Cost traced per ms: from this frame's results (their reported tracing
   // time, so that time a server waited is not counted against it), else
   // what earlier frames measured; 0 when nothing is known.
@@ -116,6 +132,12 @@ class TileDispatcher {
   // oldest tile with one copy; false when there is none.
   bool pickDuplicate(std::size_t except, std::size_t& tile) const;
   void send(std::size_t server, std::size_t tile, double now, std::vector<Assignment>& out);
+  // Its oldest outstanding tile was sent more than `after` ms ago.
+  bool straggling(std::size_t server, double now, double after) const;
+  // Copies of the tiles outstanding past the hedging threshold.
+  void hedge(double now, std::vector<Assignment>& out);
+  // The hedging threshold from this frame's latencies; < 0 while too few.
+  double hedgeAfterMs();
   void removeOutstanding(std::size_t server, std::size_t tile);
 
   std::vector<double> costs_;
@@ -127,6 +149,10 @@ class TileDispatcher {
   std::size_t delivered_ = 0;
   std::size_t reissued_ = 0;
   std::size_t duplicated_ = 0;
+  std::size_t hedged_ = 0;
+  std::vector<double> latencies_;  // this frame's tiles, sent to delivered
+  std::size_t latenciesUsed_ = 0;  // how many the cached threshold saw
+  double hedgeAfterMs_ = -1.0;
 };
 
 }  // namespace glint

@@ -66,6 +66,48 @@ TEST(TileDispatcher, AnIdleServerCopiesTheLastBucketAndTheLoserIsCancelled) {
   EXPECT_FALSE(d.deliver(0, 0, 3.0, 3.0).first);  // the cancelled copy, had it run
 }
 
+// A tile held past the frame's p95 latency (and the minimum) is copied to
+// a server that answers, while fresh tiles remain, and only once; the copy's
+// result wins and the stuck server's copy is to be cancelled.
+TEST(TileDispatcher, ATileHeldPastTheP95IsHedgedToAnotherServer) {
+  auto pace = paces(3, 1);
+  DispatchSettings settings;
+  settings.initialTilesPerThread = 1;
+  settings.hedgeMinSamples = 4;
+  settings.hedgeMinMs = 5.0;
+  TileDispatcher d(std::vector<double>(40, 1.0), pace, settings);
+  for (std::size_t s = 0; s < 3; ++s) d.join(s, 0.0);
+  std::vector<std::vector<std::size_t>> held(3);
+  const auto take = [&](const Assignments& sent) {
+    for (const auto& a : sent) held[a.server].push_back(a.tile);
+  };
+  take(d.assign(0.0));
+  const std::size_t stuck = held[2].front();  // server 2 never answers
+  // Servers 0 and 1 answer each tile 2 ms after it was sent.
+  std::size_t copiedTo = 3;
+  for (double now = 2.0; now <= 12.0; now += 2.0) {
+    for (std::size_t s = 0; s < 2; ++s) {
+      for (const std::size_t tile : held[s]) {
+        const TileDispatcher::Delivery won = d.deliver(s, tile, now, 2.0);
+        if (tile == stuck) {
+          EXPECT_TRUE(won.first);
+          EXPECT_EQ(won.cancelOn, (std::vector<std::size_t>{2}));
+        }
+      }
+      held[s].clear();
+    }
+    const Assignments sent = d.assign(now);
+    take(sent);
+    // Until 6 ms the stuck tile is younger than the 5 ms minimum (the p95 is 2 ms).
+    EXPECT_EQ(d.hedged(), now < 6.0 ? 0u : 1u) << now << " ms";
+    for (const auto& a : sent) {
+      if (a.tile == stuck) copiedTo = a.server;
+    }
+  }
+  EXPECT_LT(copiedTo, 2u);
+  EXPECT_EQ(d.duplicated(), 1u);
+}
+
 TEST(TileDispatcher, ALostServersTilesAreReissuedAndAStalledOneIsNamed) {
   auto pace = paces(2, 1);
   DispatchSettings settings;
@@ -185,6 +227,66 @@ TEST(TileDispatcher, ThousandFramesWithRandomLosses) {
   }
   EXPECT_GT(completed, 900);
   EXPECT_GT(hopeless, 0);  // the run did meet frames with every server lost
+}
+
+// One farm over 1000 frames that changes between frames (servers join and
+// leave, as with --server-file; paces carry over), with servers that join a
+// frame late, slow ones, and ones stopped (SIGSTOP) for 2 s mid-frame: every
+// tile reaches each frame exactly once, a server not in the farm never
+// traces, and no frame waits for a stopped server while another is up (the
+// 2 s stall timeout is never reached: its tiles are copied).
+TEST(TileDispatcher, ThousandFramesOfAFarmThatChanges) {
+  std::mt19937 rng(36);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<sim::SimServer> farm(8);
+  for (sim::SimServer& s : farm) {
+    s.threads = 1 + static_cast<int>(rng() % 4);
+    s.speed = unit(rng) < 0.2 ? 0.25 : 0.5 + unit(rng);
+    s.rttMs = 0.1 + unit(rng);
+  }
+  std::vector<bool> member{true, true, true, false, false, false, false, false};
+  std::vector<ServerPace> pace(farm.size());
+  std::size_t hedged = 0;
+  std::size_t paused = 0;
+  for (int frame = 0; frame < 1000; ++frame) {
+    for (std::size_t s = 0; s < farm.size(); ++s) {
+      if (unit(rng) < 0.1) member[s] = !member[s];
+    }
+    member[rng() % farm.size()] = true;
+    std::vector<sim::SimTile> tiles(10 + rng() % 150);
+    std::vector<double> estimates;
+    for (sim::SimTile& t : tiles) {
+      t.ms = 0.2 + 4.0 * unit(rng);
+      estimates.push_back(t.ms * (0.5 + unit(rng)));
+    }
+    std::vector<sim::SimServer> servers = farm;
+    std::size_t running = 0;
+    for (std::size_t s = 0; s < servers.size(); ++s) {
+      servers[s].joinAtMs = !member[s] ? -1.0 : unit(rng) < 0.1 ? 20.0 * unit(rng) : 0.0;
+      if (member[s] && unit(rng) < 0.15) {
+        servers[s].pauseAtMs = 30.0 * unit(rng);
+        servers[s].pauseForMs = 2000.0;
+        ++paused;
+      } else if (member[s]) {
+        ++running;
+      }
+    }
+    for (std::size_t s = 0; s < servers.size(); ++s) pace[s].threads = servers[s].threads;
+    const sim::SimResult r = sim::simulateFrame(tiles, estimates, servers, sim::Policy::kDispatcher, {}, pace);
+    ASSERT_TRUE(r.completed) << "frame " << frame;
+    for (std::size_t t = 0; t < tiles.size(); ++t) ASSERT_EQ(r.firstDeliveries[t], 1) << "frame " << frame;
+    for (std::size_t s = 0; s < servers.size(); ++s) {
+      if (!member[s]) {
+        ASSERT_EQ(r.busyMs[s], 0.0) << "frame " << frame << " server " << s;
+      }
+    }
+    if (running > 0) {
+      EXPECT_LT(r.frameMs, 2000.0) << "frame " << frame;
+    }
+    hedged += r.hedged;
+  }
+  EXPECT_GT(paused, 100u);  // the run did stop servers mid-frame
+  EXPECT_GT(hedged, 0u);
 }
 
 }  // namespace

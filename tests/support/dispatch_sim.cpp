@@ -39,6 +39,10 @@ class Simulation {
     result_.busyMs.assign(servers.size(), 0.0);
     for (std::size_t s = 0; s < servers.size(); ++s) {
       state_[s].freeThreads = servers[s].threads;
+      if (servers[s].joinAtMs < 0.0) {
+        ++joinsSeen_;  // not a member: never joins
+        continue;
+      }
       push(servers[s].joinAtMs, Kind::kJoin, s);
       if (servers[s].lossAtMs >= 0.0 && !servers[s].silentLoss) {
         push(servers[s].lossAtMs + servers[s].rttMs / 2, Kind::kClosed, s);
@@ -59,6 +63,7 @@ class Simulation {
     }
     result_.reissued = dispatcher_.reissued();
     result_.duplicated = dispatcher_.duplicated();
+    result_.hedged = dispatcher_.hedged();
     return result_;
   }
 
@@ -68,7 +73,19 @@ class Simulation {
   }
   bool dead(std::size_t s, double t) const { return servers_[s].lossAtMs >= 0.0 && t >= servers_[s].lossAtMs; }
 
+  // A stopped server does nothing until it continues: what reaches it
+  // waits, and a tile it was tracing ends as much later as the pause.
+  bool deferredByPause(const Event& e) {
+    const SimServer& s = servers_[e.server];
+    const bool onServer = e.kind == Kind::kRequest || e.kind == Kind::kFinish || e.kind == Kind::kCancel;
+    if (!onServer || s.pauseAtMs < 0.0 || e.at < s.pauseAtMs || e.at >= s.pauseAtMs + s.pauseForMs) return false;
+    const double resume = s.pauseAtMs + s.pauseForMs;
+    push(e.kind == Kind::kFinish ? resume + (e.at - s.pauseAtMs) : resume, e.kind, e.server, e.tile);
+    return true;
+  }
+
   void handle(const Event& e) {
+    if (deferredByPause(e)) return;
     switch (e.kind) {
       case Kind::kJoin:
         return join(e.server, e.at);

@@ -16,7 +16,9 @@ struct SimServer {
   double bytesPerMs = 125000;   // 1 Gbit/s
   double lossAtMs = -1.0;       // < 0: never lost
   bool silentLoss = false;      // lost as SIGSTOP (stalls) rather than as SIGKILL (closes)
-  double joinAtMs = 0.0;        // when its scene is ready
+  double joinAtMs = 0.0;        // when its scene is ready; < 0: not in the farm this frame
+  double pauseAtMs = -1.0;      // stopped (SIGSTOP) at this moment, < 0: never ...
+  double pauseForMs = 0.0;      // ... and continued (SIGCONT) this much later
 };
 
 struct SimTile {
@@ -35,6 +37,7 @@ struct SimResult {
   std::vector<int> firstDeliveries;  // per tile: results the frame took (must be 1)
   std::size_t reissued = 0;
   std::size_t duplicated = 0;
+  std::size_t hedged = 0;
   std::size_t cancelledQueued = 0;   // copies a Cancel removed before they ran
   std::vector<double> busyMs;        // per server: thread time spent tracing
 };
