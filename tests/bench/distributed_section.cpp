@@ -46,23 +46,23 @@ struct Room {
 };
 
 // Hybrid frames of the room through `service`; their times.
-std::vector<double> hybridFrames(const Room& room, TileService& service, int frames) {
+std::vector<HybridTimes> hybridFrames(const Room& room, TileService& service, int frames) {
   gl::OffscreenContext context(room.frame.width, room.frame.height);
   gl::RasterScene raster(context.api(), room.loaded.scene);
-  std::vector<double> times;
+  std::vector<HybridTimes> times;
   HybridResult r;
   for (int f = 0; f < frames; ++f) {
     renderHybrid(context.api(), raster, service, room.frame, room.loaded.scene.mask, 64, r);
-    times.push_back(r.times.totalMs);
+    times.push_back(r.times);
   }
   return times;
 }
 
 // The median frame, the first (shader compilation, scene upload) left out.
 double medianFrameMs(const Room& room, TileService& service, int frames) {
-  std::vector<double> times = hybridFrames(room, service, frames + 1);
+  std::vector<HybridTimes> times = hybridFrames(room, service, frames + 1);
   times.erase(times.begin());
-  return median(times);
+  return medianOf(times, &HybridTimes::totalMs);
 }
 
 void hostSection(const Room& room, int frames) {
@@ -91,13 +91,15 @@ void hostSection(const Room& room, int frames) {
 
 // One frame after a warm-up frame (the paces learnt, as in view and --frames).
 sim::SimResult steadyFrame(const std::vector<sim::SimTile>& tiles, const std::vector<sim::SimServer>& servers,
-                           sim::Policy policy, const sim::SimClient& client) {
+                           sim::Policy policy, const sim::SimClient& client, const DispatchSettings& settings = {}) {
   std::vector<double> estimates;
   for (const sim::SimTile& t : tiles) estimates.push_back(t.ms);
   std::vector<ServerPace> paces(servers.size());
-  DispatchSettings settings;
   std::vector<sim::SimServer> healthy = servers;
-  for (sim::SimServer& s : healthy) s.lossAtMs = -1.0;
+  for (sim::SimServer& s : healthy) {
+    s.lossAtMs = -1.0;
+    s.pauseAtMs = -1.0;
+  }
   sim::simulateFrame(tiles, estimates, healthy, policy, settings, paces, client);
   return sim::simulateFrame(tiles, estimates, servers, policy, settings, paces, client);
 }
@@ -156,6 +158,70 @@ void slowAndLostTable(const std::vector<sim::SimTile>& tiles) {
   }
 }
 
+double busyMs(const sim::SimResult& r) {
+  double sum = 0.0;
+  for (const double ms : r.busyMs) sum += ms;
+  return sum;
+}
+
+// "97 ms / 1.05x, 3 % copied, 1 % wasted": a frame with and without
+// hedging, against `reference`.
+std::string hedgedCell(const std::vector<sim::SimTile>& tiles, const std::vector<sim::SimServer>& servers,
+                       const sim::SimClient& client, double reference, bool extra) {
+  std::string cell;
+  for (const bool hedge : {true, false}) {
+    const sim::SimResult r = steadyFrame(tiles, servers, sim::Policy::kDispatcher, client, {.hedge = hedge});
+    char text[96];
+    if (extra) {
+      std::snprintf(text, sizeof text, "%+.0f ms", r.frameMs - reference);
+    } else {
+      std::snprintf(text, sizeof text, "%.2fx", r.frameMs / reference);
+    }
+    cell += text;
+    if (hedge) {
+      std::snprintf(text, sizeof text, " (%.1f %% hedged, %.1f %% copied in all, %.1f %% wasted) / ",
+                    100.0 * static_cast<double>(r.hedged) / static_cast<double>(tiles.size()),
+                    100.0 * static_cast<double>(r.duplicated) / static_cast<double>(tiles.size()),
+                    100.0 * r.wastedMs / busyMs(r));
+      cell += text;
+    }
+  }
+  return cell;
+}
+
+// What a user sees: the client's own GL pass (raster, read-back, compose)
+// is the serial part of every frame, however many servers trace; and a
+// straggler, hedged and not.
+void userEfficiencyTable(const std::vector<sim::SimTile>& tiles, double glMs) {
+  const sim::SimClient client{125000.0};
+  std::printf("\n### As a user sees it: the frame with the client's GL pass (%.1f ms, measured here), and stragglers "
+              "(1 Gbit)\n\n", glMs);
+  std::printf("Efficiency = speed-up over one server / servers. Stragglers: the frame with hedging (copies "
+              "hedged past the p95, copies in all with the last bucket's, thread time spent on copies that came "
+              "second) / without hedging.\n\n");
+  std::printf("| servers | frame ms | efficiency, traced part | efficiency, whole frame | one 4x slow: frame / ideal | "
+              "one stopped 2 s a quarter in: ms over the healthy frame | two stopped so: ms over the healthy frame |\n"
+              "|---|---|---|---|---|---|---|\n");
+  const double oneMs = glMs + steadyFrame(tiles, farm(1, client.bytesPerMs), sim::Policy::kDispatcher, client).frameMs;
+  for (int n : {4, 8, 16}) {
+    const auto healthy = farm(n, client.bytesPerMs);
+    const double tracedMs = steadyFrame(tiles, healthy, sim::Policy::kDispatcher, client).frameMs;
+    auto slow = healthy;
+    slow.back().speed = 0.25;
+    auto stopped = healthy;
+    stopped.back().pauseAtMs = tracedMs / 4;
+    stopped.back().pauseForMs = 2000.0;
+    auto twoStopped = stopped;
+    twoStopped.front().pauseAtMs = tracedMs / 4;
+    twoStopped.front().pauseForMs = 2000.0;
+    std::printf("| %d | %.1f | %.0f %% | %.0f %% | %s | %s | %s |\n", n, glMs + tracedMs,
+                100.0 * sim::idealMs(tiles, healthy, client) / tracedMs, 100.0 * oneMs / (n * (glMs + tracedMs)),
+                hedgedCell(tiles, slow, client, sim::idealMs(tiles, slow, client), false).c_str(),
+                hedgedCell(tiles, stopped, client, tracedMs, true).c_str(),
+                hedgedCell(tiles, twoStopped, client, tracedMs, true).c_str());
+  }
+}
+
 void simulationSection(const std::string& scenes, bool quick) {
   Room room{proto::loadSceneBundle(std::filesystem::path(scenes) / "room.json"), {}};
   room.frame = room.loaded.scene.frame;
@@ -166,6 +232,8 @@ void simulationSection(const std::string& scenes, bool quick) {
   LocalTileService local(prepared, pool);
   RecordingService recording(local);
   hybridFrames(room, recording, 1);
+  std::vector<HybridTimes> times = hybridFrames(room, local, quick ? 2 : 6);
+  times.erase(times.begin());  // shader compilation
   double total = 0.0;
   for (const sim::SimTile& t : recording.tiles) total += t.ms;
   std::printf("\n## The scheduler simulated: scene 1's hybrid frame at %dx%d (%zu traced 64-pixel tiles, %.0f ms on one "
@@ -174,6 +242,9 @@ void simulationSection(const std::string& scenes, bool quick) {
   std::printf("\nEach server is one thread at this machine's speed. Frames after a warm-up frame (paces learnt).\n");
   efficiencyTable(recording.tiles);
   slowAndLostTable(recording.tiles);
+  std::vector<double> glMs;
+  for (const HybridTimes& t : times) glMs.push_back(t.totalMs - t.traceMs);
+  userEfficiencyTable(recording.tiles, median(glMs));
 }
 
 }  // namespace

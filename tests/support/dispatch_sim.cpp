@@ -152,7 +152,10 @@ class Simulation {
       return;
     }
     const TileDispatcher::Delivery d = dispatcher_.deliver(s, tile, t, tiles_[tile].ms / servers_[s].speed);
-    if (!d.first) return;
+    if (!d.first) {
+      result_.wastedMs += tiles_[tile].ms / servers_[s].speed;
+      return;
+    }
     ++result_.firstDeliveries[tile];
     ++delivered_;
     for (const std::size_t other : d.cancelOn) push(t + servers_[other].rttMs / 2, Kind::kCancel, other, tile);

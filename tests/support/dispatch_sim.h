@@ -38,6 +38,7 @@ struct SimResult {
   std::size_t reissued = 0;
   std::size_t duplicated = 0;
   std::size_t hedged = 0;
+  double wastedMs = 0.0;             // thread time spent on copies whose result came second
   std::size_t cancelledQueued = 0;   // copies a Cancel removed before they ran
   std::vector<double> busyMs;        // per server: thread time spent tracing
 };
