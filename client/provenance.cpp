@@ -62,10 +62,15 @@ std::string provenanceLegend(const DistributionReport& report) {
     const ServerReport& s = report.servers[i];
     if (!legend.empty()) legend += ", ";
     legend += std::string(serverColourName(i)) + " = " + s.address + " (" + std::to_string(s.tiles) + " tiles";
+    if (s.joined) legend += ", new";
     if (s.state != ServerState::kOk) legend += ", " + std::string(enumWord(s.state));
     legend += ")";
   }
   if (report.reissuedTiles > 0) legend += "; outlined: " + std::to_string(report.reissuedTiles) + " tiles re-issued";
+  if (report.duplicatedTiles > 0) {
+    legend += "; " + std::to_string(report.duplicatedTiles) + " tiles copied to a second server (" +
+              std::to_string(report.hedgedTiles) + " hedged), each tinted by the server whose copy came first";
+  }
   return legend;
 }
 

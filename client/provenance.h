@@ -20,7 +20,8 @@ const char* serverColourName(std::size_t index);
 // OpenGL drew are left as drawn.
 FrameImage provenanceImage(const FrameImage& frame, const DistributionReport& report);
 
-// "red = 127.0.0.1:7001 (41 tiles), green = ..." with lost servers named.
+// "red = 127.0.0.1:7001 (41 tiles), green = ..." with servers that joined,
+// left or were lost named, and the tiles re-issued and copied.
 std::string provenanceLegend(const DistributionReport& report);
 
 }  // namespace glint
