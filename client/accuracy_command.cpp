@@ -11,6 +11,7 @@
 #include "client/offscreen_context.h"
 #include "client/raster_scene.h"
 #include "client/scene_warnings.h"
+#include "client/usage_error.h"
 #include "common/base/error.h"
 #include "common/scene/frame_limits.h"
 #include "common/image/image_write.h"
@@ -136,7 +137,7 @@ std::vector<Series> sweepOf(const AccuracyOptions& o, const Scene& scene) {
     }
   }
   if (o.referenceSamples % 2 != 0) {
-    throw InputError("--reference-samples " + std::to_string(o.referenceSamples) +
+    throw UsageError("--reference-samples " + std::to_string(o.referenceSamples) +
                      ": must be even (two half-sample references estimate its own error)");
   }
   return series;

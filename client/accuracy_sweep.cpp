@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "client/usage_error.h"
 #include "common/base/error.h"
 #include "common/scene/frame_limits.h"
 
@@ -72,18 +73,18 @@ Series parseVary(const std::string& text) {
   const std::string keyWord = text.substr(0, equals);
   const auto key = enumFromWord<AccuracyKey>(keyWord);
   if (equals == std::string::npos || !key) {
-    throw InputError("--vary " + text + ": expected KEY=V1,V2,... with KEY one of " + enumWordsJoined<AccuracyKey>());
+    throw UsageError("--vary " + text + ": expected KEY=V1,V2,... with KEY one of " + enumWordsJoined<AccuracyKey>());
   }
   Series series{*key, {}};
   std::stringstream list(text.substr(equals + 1));
   std::string value;
   while (std::getline(list, value, ',')) {
     if (!takes(*key, value)) {
-      throw InputError("--vary " + text + ": " + keyWord + " does not take '" + value + "'; it takes " + allowed(*key));
+      throw UsageError("--vary " + text + ": " + keyWord + " does not take '" + value + "'; it takes " + allowed(*key));
     }
     series.values.push_back(value);
   }
-  if (series.values.empty()) throw InputError("--vary " + text + ": no values; " + keyWord + " takes " + allowed(*key));
+  if (series.values.empty()) throw UsageError("--vary " + text + ": no values; " + keyWord + " takes " + allowed(*key));
   return series;
 }
 

@@ -18,6 +18,7 @@
 #include "client/render_command.h"
 #include "client/server_source.h"
 #include "client/view_command.h"
+#include "client/usage_error.h"
 #include "common/base/build_identity.h"
 #include "common/base/error.h"
 #include "common/scene/frame_limits.h"
@@ -38,7 +39,7 @@ void parseSize(const std::string& text, std::optional<int>& width, std::optional
   static const std::regex pattern(R"((\d+)x(\d+))");
   std::smatch m;
   if (!std::regex_match(text, m, pattern)) {
-    throw InputError("--size " + text + ": expected WIDTHxHEIGHT, e.g. 640x480");
+    throw UsageError("--size " + text + ": expected WIDTHxHEIGHT, e.g. 640x480");
   }
   // Digits beyond what an edge can be are out of range, not malformed.
   const auto edge = [](const std::string& digits) {
@@ -47,7 +48,7 @@ void parseSize(const std::string& text, std::optional<int>& width, std::optional
   const int w = edge(m[1]);
   const int h = edge(m[2]);
   if (w < 1 || h < 1 || w > FrameLimits::kMaxEdge || h > FrameLimits::kMaxEdge) {
-    throw InputError("--size " + text + ": width and height must be in [1, " + std::to_string(FrameLimits::kMaxEdge) +
+    throw UsageError("--size " + text + ": width and height must be in [1, " + std::to_string(FrameLimits::kMaxEdge) +
                      "]");
   }
   width = w;
@@ -59,10 +60,10 @@ TileRect parseCrop(const std::string& text) {
   static const std::regex pattern(R"((\d{1,6}),(\d{1,6}),(\d{1,6}),(\d{1,6}))");
   std::smatch m;
   if (!std::regex_match(text, m, pattern)) {
-    throw InputError("--crop " + text + ": expected X0,Y0,X1,Y1 (pixels, y from the top), e.g. 100,50,300,200");
+    throw UsageError("--crop " + text + ": expected X0,Y0,X1,Y1 (pixels, y from the top), e.g. 100,50,300,200");
   }
   const int x0 = std::stoi(m[1]), y0 = std::stoi(m[2]), x1 = std::stoi(m[3]), y1 = std::stoi(m[4]);
-  if (x1 <= x0 || y1 <= y0) throw InputError("--crop " + text + ": X1 must be above X0 and Y1 above Y0");
+  if (x1 <= x0 || y1 <= y0) throw UsageError("--crop " + text + ": X1 must be above X0 and Y1 above Y0");
   return {x0, y0, x1 - x0, y1 - y0};
 }
 
@@ -82,7 +83,7 @@ glm::vec3 parseVec3(const std::string& option, const std::string& text) {
     values.push_back(v);
   }
   if (values.size() != 3 || !std::isfinite(values[0]) || !std::isfinite(values[1]) || !std::isfinite(values[2])) {
-    throw InputError(option + " " + text + ": expected X,Y,Z, e.g. 0,1.6,5");
+    throw UsageError(option + " " + text + ": expected X,Y,Z, e.g. 0,1.6,5");
   }
   return {values[0], values[1], values[2]};
 }
@@ -347,6 +348,12 @@ void suggestOptions(CLI::App& app, int argc, char** argv) {
   }
 }
 
+// Where the options are listed: "glint render --help" for the command given.
+std::string helpHint(const CLI::App& app) {
+  for (const CLI::App* sub : app.get_subcommands()) return "the options: glint " + sub->get_name() + " --help";
+  return "the commands: glint --help";
+}
+
 int runCli(int argc, char** argv) {
   CLI::App app{"glint: a hybrid OpenGL / ray-tracing renderer", "glint"};
   app.require_subcommand(1);
@@ -360,16 +367,20 @@ int runCli(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     // --help and --version are not errors; a usage error exits with 2, as
-    // shells expect.
+    // shells expect, in the same words as every other error.
+    if (e.get_exit_code() == 0) return app.exit(e);
     if (dynamic_cast<const CLI::ExtrasError*>(&e)) suggestOptions(app, argc, argv);
-    const int printed = app.exit(e);
-    return printed == 0 ? 0 : kUsageError;
+    std::fprintf(stderr, "glint: error: %s\n%s\n", e.what(), helpHint(app).c_str());
+    return kUsageError;
   }
   try {
     for (const auto& [sub, run] : commands) {
       if (sub->parsed()) run();
     }
     return 0;
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "glint: error: %s\n%s\n", e.what(), helpHint(app).c_str());
+    return kUsageError;
   } catch (const InputError& e) {
     std::fprintf(stderr, "glint: error: %s\n", e.what());
     return 1;

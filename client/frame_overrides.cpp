@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "client/usage_error.h"
 #include "common/scene/load_limits.h"
 
 namespace glint {
@@ -23,16 +24,22 @@ void applyFrameOverrides(const FrameOverrides& o, Scene& scene) {
   if (o.minWeight) f.tracing.minWeight = *o.minWeight;
   if (o.encoding) f.output.encoding = *o.encoding;
   if (o.exposure) f.output.exposure = *o.exposure;
+  // The scene file's frame was checked when it was loaded: a problem now
+  // comes from the options.
   const std::string samples = "--samples " + std::to_string(f.sampling.samples);
-  checkFrame(f, LoadLimits{}.maxImagePixels,
-             {.size = "--size",
-              .camera = "camera.",
-              .samples = samples.c_str(),
-              .seed = "--seed",
-              .maxDepth = "--max-depth",
-              .minWeight = "--min-weight",
-              .adaptiveThreshold = "--adaptive-threshold",
-              .exposure = "--exposure"});
+  try {
+    checkFrame(f, LoadLimits{}.maxImagePixels,
+               {.size = "--size",
+                .camera = "camera.",
+                .samples = samples.c_str(),
+                .seed = "--seed",
+                .maxDepth = "--max-depth",
+                .minWeight = "--min-weight",
+                .adaptiveThreshold = "--adaptive-threshold",
+                .exposure = "--exposure"});
+  } catch (const InputError& e) {
+    throw UsageError(e.what());
+  }
   if (o.mask) scene.mask.rule = *o.mask;
   if (o.maskThreshold) scene.mask.minReflectivity = *o.maskThreshold;
   if (o.shadowMap) scene.mask.shadowMap = *o.shadowMap;

@@ -11,6 +11,7 @@
 #include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfOutputFile.h>
 
+#include "client/usage_error.h"
 #include "common/base/error.h"
 #include "common/image/image_write.h"
 
@@ -43,7 +44,7 @@ OutputFormat outputFormat(const std::string& option, const std::filesystem::path
   std::string extension = path.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
   if (const std::optional<OutputFormat> format = enumFromWord<OutputFormat>(extension)) return *format;
-  throw InputError(option + " " + path.string() + ": glint writes " + enumWordsJoined<OutputFormat>() +
+  throw UsageError(option + " " + path.string() + ": glint writes " + enumWordsJoined<OutputFormat>() +
                    " (8-bit PNG; linear half-float OpenEXR; linear float PFM); give a file name ending in one");
 }
 

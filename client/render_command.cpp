@@ -19,6 +19,7 @@
 #include "client/scene_warnings.h"
 #include "client/stats_json.h"
 #include "client/tile_backend.h"
+#include "client/usage_error.h"
 #include "common/base/error.h"
 #include "common/base/timing.h"
 #include "common/image/encoding.h"
@@ -158,7 +159,7 @@ void checkOutput(const char* option, const std::string& path, bool image, bool p
   if (path.empty() || path == "-") return;
   const std::filesystem::path p(path);
   if (image && outputFormat(option, p) != OutputFormat::kPng && png) {
-    throw InputError(std::string(option) + " " + path + ": this image is 8-bit; give a file name ending in .png");
+    throw UsageError(std::string(option) + " " + path + ": this image is 8-bit; give a file name ending in .png");
   }
   const std::filesystem::path folder = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
   std::error_code ec;
@@ -178,7 +179,7 @@ OutputFormat checkOutputs(const RenderOptions& o) {
   checkOutput("--stats", o.statsPath, false, false);
   const OutputFormat format = outputFormat("-o", o.output);
   if (holdsFloats(format) && o.frame.encoding == Encoding::kSrgb) {
-    throw InputError("--encoding srgb: applies to 8-bit output; " + o.output +
+    throw UsageError("--encoding srgb: applies to 8-bit output; " + o.output +
                      " holds linear values (give a .png, or drop --encoding)");
   }
   return format;
@@ -187,7 +188,7 @@ OutputFormat checkOutputs(const RenderOptions& o) {
 // The crop window lies inside the frame.
 void checkCrop(const TileRect& crop, const FrameSettings& frame) {
   if (crop.x + crop.width > frame.width || crop.y + crop.height > frame.height) {
-    throw InputError("--crop " + std::to_string(crop.x) + "," + std::to_string(crop.y) + "," +
+    throw UsageError("--crop " + std::to_string(crop.x) + "," + std::to_string(crop.y) + "," +
                      std::to_string(crop.x + crop.width) + "," + std::to_string(crop.y + crop.height) +
                      ": the window must lie inside the " + std::to_string(frame.width) + "x" +
                      std::to_string(frame.height) + " frame");
@@ -315,11 +316,11 @@ void runRender(const RenderOptions& options) {
   // In process (the default) or through a glintd: the same tiles either way.
   const Clock::time_point prepareStart = Clock::now();
   if (!options.provenanceOut.empty() && !options.remote.any()) {
-    throw InputError("--provenance-out " + options.provenanceOut +
+    throw UsageError("--provenance-out " + options.provenanceOut +
                      ": shows which server traced each tile; give --server");
   }
   if (!options.provenanceOut.empty() && options.crop) {
-    throw InputError("--provenance-out " + options.provenanceOut + ": shows the whole frame; it cannot go with --crop");
+    throw UsageError("--provenance-out " + options.provenanceOut + ": shows the whole frame; it cannot go with --crop");
   }
   TileBackend backend({options.remote, options.threads, options.bvh, true}, std::move(loaded));
   run.prepareMs = msSince(prepareStart);

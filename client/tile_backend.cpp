@@ -1,7 +1,7 @@
 #include "client/tile_backend.h"
 
 #include "client/distributed_tile_service.h"
-#include "common/base/error.h"
+#include "client/usage_error.h"
 
 namespace glint {
 
@@ -19,11 +19,11 @@ std::unique_ptr<DistributedTileService> connectServers(const RemoteOptions& remo
 TileBackend::TileBackend(const Options& options, proto::LoadedBundle loaded) : loaded_(std::move(loaded)) {
   const RemoteOptions& remote = options.remote;
   if (!remote.any() && remote.tls.any()) {
-    throw InputError("--tls-ca, --tls-cert and --tls-key secure the connections to glintd; give --server");
+    throw UsageError("--tls-ca, --tls-cert and --tls-key secure the connections to glintd; give --server");
   }
   if (remote.any()) {
     if (options.bvh) {
-      throw InputError("--bvh: a glintd builds the BVH of the scenes it holds itself (SAH); --bvh applies to "
+      throw UsageError("--bvh: a glintd builds the BVH of the scenes it holds itself (SAH); --bvh applies to "
                        "in-process rendering");
     }
     auto service = connectServers(remote, loaded_.bundle, options.awaitServer);

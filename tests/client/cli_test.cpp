@@ -251,7 +251,21 @@ TEST_F(Cli, UsageErrorsExitWithTwo) {
   EXPECT_NE(misspelt.output.find("--smaples: did you mean --samples?"), std::string::npos) << misspelt.output;
   EXPECT_EQ(glint("render " + scene("room.json") + " -o " + path("x.png") + " --eye 1,2").status, 2);
   EXPECT_EQ(glint("render " + path("missing.json") + " -o " + path("x.png")).status, 2);  // CLI11's file check
-  EXPECT_EQ(glint("render " + scene("room.json") + " -o " + path("x.jpg")).status, 1);
+  // A value glint cannot use, or options that do not go together, are usage errors too; every message in
+  // one style, with where the options are listed.
+  for (const char* options : {"-o x.jpg", "-o x.png --size 640", "-o x.png --size -5x10",
+                              "-o x.png --samples 5 --pattern regular", "-o x.png --adaptive-threshold 0",
+                              "-o x.png --mask bogus", "-o x.png --crop 0,0,700,10", "-o x.exr --encoding srgb",
+                              "-o x.png --provenance-out p.png", "-o x.png --tls-ca ca.pem"}) {
+    const Result run = glint("render " + scene("room.json") + " " + options);
+    EXPECT_EQ(run.status, 2) << options << "\n" << run.output;
+    EXPECT_EQ(run.output.rfind("glint: error: ", 0), 0u) << options << "\n" << run.output;
+    EXPECT_NE(run.output.find("the options: glint render --help"), std::string::npos) << run.output;
+  }
+  // Everything else is 1: a scene, a file, a server.
+  EXPECT_EQ(glint("render " + writeScene("bad.json", R"({"glint": 1, "objects": 3})") + " -o " + path("x.png")).status,
+            1);
+  EXPECT_EQ(glint("render " + scene("room.json") + " -o " + path("x.png") + " --server 127.0.0.1:1").status, 1);
   const Result version = glint("--version");
   EXPECT_EQ(version.status, 0);
   EXPECT_NE(version.output.find("glint 0.1.0 (pixels-"), std::string::npos) << version.output;
