@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <sstream>
 #include <vector>
 
@@ -38,6 +39,10 @@ class PathTracker {
         break;
       case Event::key:
         levels_.back().key = parsed.get<std::string>();
+        if (!levels_.back().keys.insert(levels_.back().key).second && duplicate_.empty()) {
+          duplicate_ = levels_.back().key;
+          duplicatePath_ = parentPath();
+        }
         break;
       case Event::object_end:
       case Event::array_end:
@@ -52,24 +57,34 @@ class PathTracker {
   }
 
   // The path of the value being parsed: "objects[0].radius".
-  std::string path() const {
-    std::string out;
-    for (const Level& l : levels_) {
-      out += l.array ? "[" + std::to_string(l.index) + "]" : (out.empty() ? "" : ".") + l.key;
-    }
-    return out.empty() ? "(top level)" : out;
-  }
+  std::string path() const { return pathOf(levels_.size()); }
+  // The first key written twice in one object, and that object's path; ""
+  // when none was.
+  const std::string& duplicate() const { return duplicate_; }
+  const std::string& duplicatePath() const { return duplicatePath_; }
 
  private:
   struct Level {
     bool array;
     std::string key;    // objects: the key being read
     std::size_t index;  // arrays: the element being read
+    std::set<std::string> keys{};  // objects: the keys read so far
   };
+  std::string pathOf(std::size_t levels) const {
+    std::string out;
+    for (std::size_t i = 0; i < levels; ++i) {
+      const Level& l = levels_[i];
+      out += l.array ? "[" + std::to_string(l.index) + "]" : (out.empty() ? "" : ".") + l.key;
+    }
+    return out.empty() ? "(top level)" : out;
+  }
+  std::string parentPath() const { return pathOf(levels_.size() - 1); }
   void nextElement() {
     if (!levels_.empty() && levels_.back().array) ++levels_.back().index;
   }
   std::vector<Level> levels_;
+  std::string duplicate_;
+  std::string duplicatePath_;
 };
 
 // Scene files may carry // and /* */ comments (docs/scene-format.md).
@@ -91,6 +106,35 @@ std::string pathOfBadValue(std::string_view text) {
     return tracker.path();
   }
   return "(top level)";
+}
+
+// The members of every object in a parsed document (a key written twice in
+// one object is kept once).
+std::size_t memberCount(const nlohmann::json& doc) {
+  std::size_t members = 0;
+  std::vector<const nlohmann::json*> open{&doc};
+  while (!open.empty()) {
+    const nlohmann::json* v = open.back();
+    open.pop_back();
+    if (v->is_object()) members += v->size();
+    if (!v->is_structured()) continue;
+    for (const nlohmann::json& child : *v) open.push_back(&child);
+  }
+  return members;
+}
+
+// The first key the text writes twice in one object, as an error naming the
+// object (the text parsed again with a PathTracker, only then).
+std::string duplicateKeyError(std::string_view text) {
+  PathTracker tracker;
+  const nlohmann::json unused = nlohmann::json::parse(
+      text,
+      [&tracker](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+        return tracker.event(event, parsed);
+      },
+      true, kIgnoreComments);
+  return tracker.duplicatePath() + ": the key '" + tracker.duplicate() +
+         "' is written twice (a later one would silently replace the first)";
 }
 
 // The index just past the string that opens at text[i] (a '"').
@@ -154,7 +198,9 @@ JsonShape measureJson(std::string_view text) {
 
 nlohmann::json parseJson(std::string_view text) {
   try {
-    return nlohmann::json::parse(text, nullptr, true, kIgnoreComments);
+    nlohmann::json doc = nlohmann::json::parse(text, nullptr, true, kIgnoreComments);
+    if (memberCount(doc) != measureJson(text).members) throw InputError(duplicateKeyError(text));
+    return doc;
   } catch (const nlohmann::json::parse_error& e) {
     // e.what() reads "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
     const std::string what = e.what();

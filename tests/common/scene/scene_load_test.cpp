@@ -330,6 +330,27 @@ TEST(SceneLoad, SharedGaugeIsDrawnAndGivenBack) {
   EXPECT_EQ(gauge.used(), 0u);
 }
 
+// A key written twice in one object is an error naming the object and the
+// key: a second "objects": [] rendered an empty scene with exit 0 when the
+// last one won. The same key in different objects, or inside strings and
+// comments, is fine.
+TEST(SceneLoad, AKeyWrittenTwiceIsAnError) {
+  std::string text = minimalScene().dump();
+  text.insert(text.rfind('}'), ",\"objects\": []");
+  EXPECT_NE(loadError(text).find("(top level): the key 'objects' is written twice"), std::string::npos)
+      << loadError(text);
+  text = minimalScene().dump();
+  const std::string radius = "\"radius\":1";
+  text.replace(text.find(radius), radius.size(), "\"radius\":1, /* \"radius\": 3 */ \"radius\":2");
+  EXPECT_NE(loadError(text).find("objects[0]: the key 'radius' is written twice"), std::string::npos)
+      << loadError(text);
+  json j = minimalScene();
+  j["materials"]["second"] = {{"color", {1, 0, 0}}};  // "color" in two materials
+  text = j.dump();
+  text.insert(1, "// \"glint\": 1,\n");
+  EXPECT_EQ(loadError(text), "(loaded without error)");
+}
+
 // A number beyond a double is an error at its path, like every other scene
 // error (it used to reach the user as "internal error: [json.exception...").
 TEST(SceneLoad, NumberOutOfRangeNamesItsPath) {
