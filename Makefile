@@ -7,7 +7,7 @@ DEPS := cmake g++ make pkg-config libglm-dev nlohmann-json3-dev libtinyobjloader
         libstb-dev libcli11-dev libgtest-dev libgmock-dev \
         libflatbuffers-dev flatbuffers-compiler libssl-dev libasio-dev libosmesa6-dev \
         libglfw3-dev libgl1-mesa-dri xvfb xauth x11-utils openssl iproute2 \
-        libopenexr-dev libassimp-dev assimp-testmodels
+        libopenexr-dev libassimp-dev libjpeg-dev assimp-testmodels
 # The benchmark also compares against POV-Ray 3.7 and Embree 3.
 BENCH_DEPS := povray libembree-dev
 # `make accuracy` plots with gnuplot.
@@ -55,9 +55,11 @@ demo: configure
 	deploy/local-demo.sh $(BUILD) out
 
 # glint, glintd, glint-certs and deploy/glintd@.service under /usr/local
-# (PREFIX=... elsewhere; the unit expects /usr/local/bin/glintd).
+# (PREFIX=... elsewhere: the installed unit then names PREFIX/bin/glintd).
+# Builds only the two programs.
 PREFIX ?= /usr/local
-install: build
+install: configure
+	cmake --build $(BUILD) -j$(JOBS) --target glint glintd
 	$(SUDO) cmake --install $(BUILD) --prefix $(PREFIX)
 
 bench: bench-deps build

@@ -108,7 +108,7 @@ int readTexture(const aiScene& scene, const aiMaterial& m, FileSource& files, co
   const std::string texPlace = place + " (texture " + uri.C_Str() + ")";
   std::string bytes;
   if (const aiTexture* embedded = scene.GetEmbeddedTexture(uri.C_Str())) {
-    if (embedded->mHeight != 0) throw InputError(texPlace + ": embedded texture is not a PNG or BMP file");
+    if (embedded->mHeight != 0) throw InputError(texPlace + ": an embedded texture must be an image file's bytes");
     bytes.assign(reinterpret_cast<const char*>(embedded->pcData), embedded->mWidth);
   } else {
     const std::string texPath = siblingPath(path, uri.C_Str());

@@ -1,12 +1,16 @@
 #include "common/scene/image_decode.h"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <stb_image.h>
 
 #include "common/base/error.h"
+#include "common/scene/jpeg_decode.h"
 
 namespace glint {
 namespace {
@@ -60,9 +64,60 @@ void checkBmpRows(std::string_view bytes, int width, int height, const std::stri
   const std::size_t needed = offset + rowBytes * static_cast<std::size_t>(height);
   if (bytes.size() < needed) {
     throw InputError(place + ": BMP of " + std::to_string(width) + "x" + std::to_string(height) + " needs " +
-                     std::to_string(needed) + " bytes, the file has " + std::to_string(bytes.size()) +
-                     " (truncated)");
+                     std::to_string(needed) + " bytes, the file has " + std::to_string(bytes.size()) + " (truncated)");
   }
+}
+
+// The formats textures are read in, told apart by their first bytes. TGA
+// has no signature: its header's colour-map type (0 or 1), image type and
+// bits per pixel must be ones TGA defines, which no other format's first
+// bytes are.
+enum class ImageFormat { kPng, kBmp, kJpeg, kTga, kHdr };
+constexpr const char* kFormats = "PNG, BMP, JPEG, TGA or Radiance HDR";
+
+bool looksLikeTga(std::string_view b) {
+  constexpr std::size_t kHeaderBytes = 18;
+  if (b.size() < kHeaderBytes) return false;
+  const auto byte = [&b](std::size_t i) { return static_cast<unsigned char>(b[i]); };
+  const bool colourMap = byte(1) <= 1;
+  const bool imageType = byte(2) == 1 || byte(2) == 2 || byte(2) == 3 || byte(2) == 9 || byte(2) == 10 || byte(2) == 11;
+  const unsigned bits = byte(16);
+  return colourMap && imageType && (bits == 8 || bits == 15 || bits == 16 || bits == 24 || bits == 32);
+}
+
+std::optional<ImageFormat> imageFormat(std::string_view b) {
+  if (b.starts_with("\x89PNG\r\n\x1a\n")) return ImageFormat::kPng;
+  if (b.starts_with("BM")) return ImageFormat::kBmp;
+  if (b.starts_with("\xff\xd8\xff")) return ImageFormat::kJpeg;
+  if (b.starts_with("#?RADIANCE") || b.starts_with("#?RGBE")) return ImageFormat::kHdr;
+  if (looksLikeTga(b)) return ImageFormat::kTga;
+  return std::nullopt;
+}
+
+using StbPixels = std::unique_ptr<void, void (*)(void*)>;
+
+// 8-bit RGB as the file holds it.
+Image decode8Bit(const stbi_uc* data, int size, const std::string& place) {
+  int w = 0, h = 0, channels = 0;
+  const StbPixels pixels(stbi_load_from_memory(data, size, &w, &h, &channels, 3), stbi_image_free);
+  if (!pixels) throw InputError(place + ": cannot decode image (" + stbi_failure_reason() + ")");
+  const auto* rgb = static_cast<const std::uint8_t*>(pixels.get());
+  return {w, h, std::vector<std::uint8_t>(rgb, rgb + static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3)};
+}
+
+// Radiance HDR's linear floats as 8-bit texels (byte / 255, as every
+// texture reads): values above 1 are clamped, since textures are 8-bit.
+Image decodeHdr(const stbi_uc* data, int size, const std::string& place) {
+  int w = 0, h = 0, channels = 0;
+  const StbPixels pixels(stbi_loadf_from_memory(data, size, &w, &h, &channels, 3), stbi_image_free);
+  if (!pixels) throw InputError(place + ": cannot decode image (" + stbi_failure_reason() + ")");
+  const auto* linear = static_cast<const float*>(pixels.get());
+  Image image{w, h, std::vector<std::uint8_t>(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3)};
+  for (std::size_t i = 0; i < image.rgb.size(); ++i) {
+    const float v = std::isfinite(linear[i]) ? std::clamp(linear[i], 0.0f, 1.0f) : 0.0f;
+    image.rgb[i] = static_cast<std::uint8_t>(std::lround(v * 255.0f));
+  }
+  return image;
 }
 
 }  // namespace
@@ -72,35 +127,30 @@ Image decodeImage(std::string_view bytes, const std::string& place, SceneBudget&
   if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
     throw InputError(place + ": image file is too large");
   }
-  // Only the formats the scene format names reach stb_image: it would try a
-  // dozen others (JPEG, GIF, PSD ...) on bytes a client sent.
-  const bool png = bytes.starts_with("\x89PNG\r\n\x1a\n");
-  if (!png && !bytes.starts_with("BM")) throw InputError(place + ": not a PNG or BMP image");
+  // Only the formats read here reach a decoder (stb_image would try others:
+  // GIF, PSD, PIC, PNM); JPEG goes to libjpeg-turbo (jpeg_decode.h).
+  const std::optional<ImageFormat> format = imageFormat(bytes);
+  if (!format) throw InputError(place + ": not a " + kFormats + " image");
+  // The size a header gives, checked and charged before anything is decoded.
+  const auto admit = [&](int w, int h) {
+    if (w <= 0 || h <= 0 || static_cast<std::size_t>(w) * static_cast<std::size_t>(h) > maxPixels) {
+      throw InputError(place + ": image of " + std::to_string(w) + "x" + std::to_string(h) +
+                       " pixels is over the limit of " + std::to_string(maxPixels) + " pixels");
+    }
+    budget.chargeImage(w, h, place);
+  };
+  if (*format == ImageFormat::kJpeg) return decodeJpeg(bytes, place, admit);
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
   const int size = static_cast<int>(bytes.size());
   int w = 0, h = 0, channels = 0;
   if (!stbi_info_from_memory(data, size, &w, &h, &channels)) {
-    throw InputError(place + ": not a readable PNG or BMP image (" + stbi_failure_reason() + ")");
+    throw InputError(place + ": not a readable " + kFormats + " image (" + stbi_failure_reason() + ")");
   }
-  if (w <= 0 || h <= 0 || static_cast<std::size_t>(w) * static_cast<std::size_t>(h) > maxPixels) {
-    throw InputError(place + ": image of " + std::to_string(w) + "x" + std::to_string(h) +
-                     " pixels is over the limit of " + std::to_string(maxPixels) + " pixels");
-  }
-  budget.chargeImage(w, h, place);
-  if (png) {
-    checkPngChunks(bytes, place);
-  } else {
-    checkBmpRows(bytes, w, h, place);
-  }
-  std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load_from_memory(data, size, &w, &h, &channels, 3),
-                                                   stbi_image_free);
-  if (!pixels) {
-    throw InputError(place + ": cannot decode image (" + stbi_failure_reason() + ")");
-  }
-  Image image;
-  image.width = w;
-  image.height = h;
-  image.rgb.assign(pixels.get(), pixels.get() + static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3);
+  admit(w, h);
+  if (*format == ImageFormat::kPng) checkPngChunks(bytes, place);
+  if (*format == ImageFormat::kBmp) checkBmpRows(bytes, w, h, place);
+  Image image = *format == ImageFormat::kHdr ? decodeHdr(data, size, place) : decode8Bit(data, size, place);
+  if (image.width != w || image.height != h) throw InputError(place + ": the image's size changed while decoding");
   return image;
 }
 

@@ -8,7 +8,8 @@
 
 namespace glint {
 
-// Decodes a PNG or 24-bit BMP held in memory into 8-bit RGB texels. The size
+// Decodes a PNG, BMP, JPEG, TGA or Radiance HDR image held in memory into
+// 8-bit RGB texels (an HDR image's linear values clamped to [0, 1]). The size
 // its header gives is checked against the texture limit and charged to the
 // budget before anything is decoded. Images wider or taller than their data,
 // corrupt, or over a limit are rejected with an InputError that starts with

@@ -99,7 +99,7 @@ void readMaterials(const std::vector<tinyobj::material_t>& materials, FileSource
       model.warnings.push_back("'" + mtlPath + "' names the texture '" + texPath + "' (map_Kd of material " +
                                m.name + "), which is missing; the material's Kd colour is used");
     } else if (!texPath.empty()) {
-      const std::string texPlace = place + " (map_Kd of material " + m.name + ")";
+      const std::string texPlace = place + " (map_Kd of material " + m.name + ", " + texPath + ")";
       Texture tex;
       tex.type = TextureType::kImage;
       tex.image = images.get(texPath, texPlace);

@@ -8,11 +8,12 @@
 #include <sstream>
 
 #include <gtest/gtest.h>
+#include <stb_image_write.h>
 
 #include "common/base/error.h"
 #include "common/render/frame.h"
-#include "common/scene/image_decode.h"
 #include "common/render/prepared_scene.h"
+#include "common/scene/image_decode.h"
 #include "common/scene/scene_load.h"
 #include "tests/support/test_support.h"
 
@@ -70,19 +71,31 @@ TEST(Docs, SceneFormatExampleRenders) {
   fs::remove_all(dir);
 }
 
-// "image (PNG or 24-bit BMP ...)": both load; a JPEG, which the image
-// library could read, is refused by name.
+// "image (PNG, BMP, JPEG, TGA or Radiance HDR ...)": each loads; a GIF,
+// which the image library could read, is refused by name, and so is a
+// JPEG cut inside its header.
 TEST(Docs, TextureFormatsListedAreTheOnesThatLoad) {
   const std::string doc = readText(test::sourcePath("docs/scene-format.md"));
-  EXPECT_NE(doc.find("`image` (PNG or 24-bit BMP"), std::string::npos);
+  EXPECT_NE(doc.find("`image` (PNG, BMP, JPEG, TGA or Radiance HDR"), std::string::npos);
   SceneBudget budget;
   EXPECT_EQ(decodeImage(test::flatPng(3, 2), "png", budget).width, 3);
-  const unsigned char bmp[] = {'B', 'M', 58, 0, 0, 0, 0, 0, 0, 0, 54, 0, 0, 0, 40, 0, 0, 0, 1, 0, 0, 0, 1, 0,
-                               0, 0, 1, 0, 24, 0, 0, 0, 0, 0, 4, 0, 0, 0, 0x13, 0x0b, 0, 0, 0x13, 0x0b, 0,
-                               0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 255, 0, 0};
+  const unsigned char bmp[] = {'B', 'M', 58,   0,    0, 0, 0, 0, 0,  0, 54, 0, 0, 0, 40, 0,   0, 0, 1,    0,
+                               0,   0,   1,    0,    0, 0, 1, 0, 24, 0, 0,  0, 0, 0, 4,  0,   0, 0, 0x13, 0x0b,
+                               0,   0,   0x13, 0x0b, 0, 0, 0, 0, 0,  0, 0,  0, 0, 0, 0,  255, 0, 0};
   EXPECT_EQ(decodeImage(std::string(reinterpret_cast<const char*>(bmp), sizeof bmp), "bmp", budget).width, 1);
-  const std::string jpeg("\xff\xd8\xff\xe0\0\x10JFIF\0", 11);
-  EXPECT_THROW(decodeImage(jpeg, "jpeg", budget), InputError);
+  const std::uint8_t rgb[] = {200, 100, 50, 25, 75, 125};
+  const auto into = [](void* out, void* data, int size) {
+    static_cast<std::string*>(out)->append(static_cast<char*>(data), size);
+  };
+  std::string jpeg, tga, hdr;
+  stbi_write_jpg_to_func(into, &jpeg, 2, 1, 3, rgb, 90);
+  stbi_write_tga_to_func(into, &tga, 2, 1, 3, rgb);
+  const float linear[] = {0.5f, 0.25f, 0.125f, 1.0f, 2.0f, 0.0f};
+  stbi_write_hdr_to_func(into, &hdr, 2, 1, 3, linear);
+  for (const std::string* file : {&jpeg, &tga, &hdr}) EXPECT_EQ(decodeImage(*file, "file", budget).width, 2);
+  const std::string gif("GIF89a\x01\x00\x01\x00\x00\x00\x00;", 14);
+  EXPECT_THROW(decodeImage(gif, "gif", budget), InputError);
+  EXPECT_THROW(decodeImage(jpeg.substr(0, 11), "jpeg", budget), InputError);
 }
 
 // Every relative link ([text](path) or [text](path#anchor)) in README.md

@@ -1,5 +1,6 @@
-// libFuzzer target: image textures (PNG, BMP) decoded from memory, with the
-// texture and scene limits a server would apply.
+// libFuzzer target: image textures (PNG, BMP, JPEG, TGA, Radiance HDR)
+// decoded from memory, with the texture and scene limits a server would
+// apply.
 #include <cstddef>
 #include <cstdint>
 #include <string_view>

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <stb_image_write.h>
+
 #include "common/render/frame.h"
 #include "common/image/image_write.h"
 #include "common/scene/mesh_blob.h"
@@ -154,6 +156,19 @@ void objAndImageSeeds() {
   writePng(png, image);
   write("image", "small.png", readFile(png));
   fs::remove(png);
+  // The other texture formats, as stb_image_write writes them.
+  const auto into = [](void* out, void* data, int size) {
+    static_cast<std::string*>(out)->append(static_cast<char*>(data), static_cast<std::size_t>(size));
+  };
+  std::string jpeg, tga, hdr;
+  stbi_write_jpg_to_func(into, &jpeg, 4, 3, 3, image.rgb.data(), 90);
+  stbi_write_tga_to_func(into, &tga, 4, 3, 3, image.rgb.data());
+  std::vector<float> linear(image.rgb.begin(), image.rgb.end());
+  for (float& v : linear) v /= 64.0f;
+  stbi_write_hdr_to_func(into, &hdr, 4, 3, 3, linear.data());
+  write("image", "small.jpg", jpeg);
+  write("image", "small.tga", tga);
+  write("image", "small.hdr", hdr);
 }
 
 }  // namespace

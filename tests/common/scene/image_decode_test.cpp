@@ -1,6 +1,8 @@
-// Image textures from memory: only PNG and BMP reach the decoder, and memory
-// follows the bytes that arrived: a file that claims more than it holds is
-// refused before the decoder allocates for the claim.
+// Image textures from memory: PNG, BMP, JPEG, TGA and Radiance HDR (written
+// here with stb_image_write) decode to the texels written; no other format
+// reaches the decoder, and memory follows the bytes that arrived: a file
+// that claims more than it holds is refused before the decoder allocates
+// for the claim.
 #include "common/scene/image_decode.h"
 #include "common/image/image_write.h"
 
@@ -9,6 +11,7 @@
 #include <sstream>
 
 #include <gtest/gtest.h>
+#include <stb_image_write.h>
 
 #include "common/base/error.h"
 #include "tests/support/test_support.h"
@@ -54,9 +57,61 @@ TEST(ImageDecode, PngRoundTripKeepsEveryByte) {
   EXPECT_EQ(budget.used(), 45u);
 }
 
-TEST(ImageDecode, OnlyPngAndBmpReachTheDecoder) {
-  EXPECT_NE(decodeError("GIF89a\x01\x00\x01\x00").find("t.png: not a PNG or BMP image"), std::string::npos);
-  EXPECT_NE(decodeError("\xff\xd8\xff\xe0 JFIF").find("not a PNG or BMP image"), std::string::npos);
+// What stb_image_write puts through its callback, as a file's bytes.
+void appendTo(void* out, void* data, int size) {
+  static_cast<std::string*>(out)->append(static_cast<char*>(data), size);
+}
+
+// An 8x6 image of distinct colours, smooth enough for JPEG at quality 100.
+std::vector<std::uint8_t> gradient() {
+  std::vector<std::uint8_t> rgb;
+  for (int y = 0; y < 6; ++y) {
+    for (int x = 0; x < 8; ++x) rgb.insert(rgb.end(), {std::uint8_t(30 * x), std::uint8_t(40 * y), 128});
+  }
+  return rgb;
+}
+
+TEST(ImageDecode, JpegTgaAndHdrDecodeToTheTexelsWritten) {
+  const std::vector<std::uint8_t> rgb = gradient();
+  std::string tga, jpeg, hdr;
+  ASSERT_NE(stbi_write_tga_to_func(appendTo, &tga, 8, 6, 3, rgb.data()), 0);
+  ASSERT_NE(stbi_write_jpg_to_func(appendTo, &jpeg, 8, 6, 3, rgb.data(), 100), 0);
+  std::vector<float> linear;
+  for (const std::uint8_t v : rgb) linear.push_back(v / 255.0f);
+  linear[0] = 7.5f;  // brighter than a texture holds: clamped to 1
+  ASSERT_NE(stbi_write_hdr_to_func(appendTo, &hdr, 8, 6, 3, linear.data()), 0);
+  SceneBudget budget;
+  const Image fromTga = decodeImage(tga, "t.tga", budget);
+  EXPECT_EQ(fromTga.width, 8);
+  EXPECT_EQ(fromTga.height, 6);
+  EXPECT_EQ(fromTga.rgb, rgb);
+  const Image fromJpeg = decodeImage(jpeg, "t.jpg", budget);
+  const Image fromHdr = decodeImage(hdr, "t.hdr", budget);
+  ASSERT_EQ(fromJpeg.rgb.size(), rgb.size());
+  ASSERT_EQ(fromHdr.rgb.size(), rgb.size());
+  for (std::size_t i = 0; i < rgb.size(); ++i) {
+    EXPECT_NEAR(fromJpeg.rgb[i], rgb[i], 6) << "JPEG byte " << i;               // lossy, at its best quality
+    EXPECT_NEAR(fromHdr.rgb[i], i == 0 ? 255 : rgb[i], 1) << "HDR byte " << i;  // RGBE: 8-bit mantissas
+  }
+}
+
+// Found by the image fuzzer (tests/fuzz/corpus/image/regression-jpeg-huffman-counts):
+// a JPEG whose Huffman table counts more than 256 codes made stb_image
+// write past its table. JPEG goes to libjpeg-turbo, which refuses it.
+TEST(ImageDecode, AJpegWithTooManyHuffmanCodesIsRefused) {
+  std::ifstream in(test::sourcePath("tests/fuzz/corpus/image/regression-jpeg-huffman-counts"), std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_TRUE(bytes.starts_with("\xff\xd8\xff"));
+  EXPECT_NE(decodeError(bytes).find("t.png: not a readable JPEG image ("), std::string::npos) << decodeError(bytes);
+}
+
+TEST(ImageDecode, OtherFormatsNeverReachTheDecoder) {
+  const char* expected = "t.png: not a PNG, BMP, JPEG, TGA or Radiance HDR image";
+  EXPECT_NE(decodeError("GIF89a\x01\x00\x01\x00").find(expected), std::string::npos);
+  EXPECT_NE(decodeError(std::string("8BPS\0\1\0\0\0\0\0\0\0\3\0\0\0\1\0\0\0\1", 22)).find(expected),
+            std::string::npos);                                                               // PSD
+  EXPECT_NE(decodeError("P6\n1 1\n255\nabc").find(expected), std::string::npos);              // PNM
+  EXPECT_NE(decodeError("\xff\xd8\xff\xe0 JFIF").find("not a readable"), std::string::npos);  // a JPEG cut short
 }
 
 // Found by the image fuzzer (tests/fuzz/corpus/image/regression-png-idat-claim):
@@ -71,8 +126,7 @@ TEST(ImageDecode, PngChunkLongerThanTheFileIsRefusedBeforeDecoding) {
       85);
   const long before = peakVirtualKb();
   const std::string error = decodeError(png);
-  EXPECT_NE(error.find("t.png: PNG chunk IDAT claims 2075525146 bytes, but only 2 follow"), std::string::npos)
-      << error;
+  EXPECT_NE(error.find("t.png: PNG chunk IDAT claims 2075525146 bytes, but only 2 follow"), std::string::npos) << error;
   EXPECT_LT(peakVirtualKb() - before, 256 * 1024) << "an 85-byte PNG reserved memory for what it claims";
 }
 

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <map>
 
 #include <gtest/gtest.h>
@@ -307,6 +308,26 @@ TEST(ObjLoad, PiecesThatCannotJoinAreReadWhole) {
   }
   EXPECT_NE(error(missing, 1).find("test face 4 refers to a vertex"), std::string::npos)
       << error(missing, 1);
+}
+
+// A real asset whose texture is a JPEG (Debian's assimp-testmodels: the
+// spider's map_Kd files): each material gets its image, decoded.
+TEST(ObjLoad, TheSpidersJpegTexturesAreRead) {
+  const std::filesystem::path folder = "/usr/share/assimp/models/OBJ";
+  if (!std::filesystem::exists(folder / "spider.obj")) GTEST_SKIP() << "assimp-testmodels is not installed";
+  DirectorySource files(folder, std::size_t{64} << 20);
+  SceneBudget budget;
+  const MeshModel spider = loadObj(files, "spider.obj", "spider", budget, true);
+  EXPECT_TRUE(spider.warnings.empty()) << spider.warnings.front();
+  ASSERT_FALSE(spider.textures.empty());
+  for (const Texture& t : spider.textures) {
+    ASSERT_TRUE(t.image);
+    EXPECT_GT(t.image->width, 16);
+    EXPECT_EQ(t.image->rgb.size(), static_cast<std::size_t>(t.image->width) * t.image->height * 3);
+    std::size_t dark = 0;  // a decoded photograph, not a blank buffer
+    for (const std::uint8_t v : t.image->rgb) dark += v < 8 ? 1 : 0;
+    EXPECT_LT(dark, t.image->rgb.size() / 2);
+  }
 }
 
 }  // namespace

@@ -1,0 +1,77 @@
+#include "common/scene/jpeg_decode.h"
+
+#include <csetjmp>
+#include <cstdio>
+
+#include <jpeglib.h>
+
+#include "common/base/error.h"
+
+namespace glint {
+namespace {
+
+// libjpeg reports errors through a callback that must not return: it jumps
+// back to decodeJpeg's setjmp with the message. Warnings (corrupt data that
+// libjpeg would paper over) are errors here too.
+struct ErrorManager {
+  jpeg_error_mgr base;
+  std::jmp_buf jump;
+  char message[JMSG_LENGTH_MAX];
+};
+
+[[noreturn]] void onError(j_common_ptr info) {
+  auto* errors = reinterpret_cast<ErrorManager*>(info->err);
+  (*info->err->format_message)(info, errors->message);
+  std::longjmp(errors->jump, 1);
+}
+
+void onMessage(j_common_ptr info, int level) {
+  if (level < 0) onError(info);  // a warning; trace messages (level >= 0) are dropped
+}
+
+// The decompression from header to last row, on state the caller owns (so
+// that nothing with a destructor lives between the setjmp and a longjmp).
+// False, with the message in `errors`, when libjpeg fails.
+bool decompress(jpeg_decompress_struct& info, ErrorManager& errors, std::string_view bytes, Image& image,
+                const std::function<void(int, int)>& admit) {
+  if (setjmp(errors.jump)) return false;
+  jpeg_mem_src(&info, reinterpret_cast<const unsigned char*>(bytes.data()), static_cast<unsigned long>(bytes.size()));
+  jpeg_read_header(&info, TRUE);
+  admit(static_cast<int>(info.image_width), static_cast<int>(info.image_height));  // may throw: see decodeJpeg
+  info.out_color_space = JCS_RGB;
+  jpeg_start_decompress(&info);
+  image.width = static_cast<int>(info.output_width);
+  image.height = static_cast<int>(info.output_height);
+  image.rgb.resize(static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 3);
+  while (info.output_scanline < info.output_height) {
+    JSAMPROW row =
+        &image.rgb[static_cast<std::size_t>(info.output_scanline) * static_cast<std::size_t>(image.width) * 3];
+    jpeg_read_scanlines(&info, &row, 1);
+  }
+  jpeg_finish_decompress(&info);
+  return true;
+}
+
+}  // namespace
+
+Image decodeJpeg(std::string_view bytes, const std::string& place, const std::function<void(int, int)>& admit) {
+  jpeg_decompress_struct info{};
+  ErrorManager errors{};
+  info.err = jpeg_std_error(&errors.base);
+  errors.base.error_exit = onError;
+  errors.base.emit_message = onMessage;
+  jpeg_create_decompress(&info);
+  Image image;
+  bool decoded = false;
+  try {
+    decoded = decompress(info, errors, bytes, image, admit);
+  } catch (...) {
+    jpeg_destroy_decompress(&info);  // admit() refused the size
+    throw;
+  }
+  jpeg_destroy_decompress(&info);
+  if (!decoded) throw InputError(place + ": not a readable JPEG image (" + errors.message + ")");
+  return image;
+}
+
+}  // namespace glint
