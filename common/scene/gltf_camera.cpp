@@ -10,22 +10,12 @@
 #include <nlohmann/json.hpp>
 
 #include "common/base/error.h"
+#include "common/scene/gltf_json.h"
 
 namespace glint {
 namespace {
 
 using nlohmann::json;
-
-// The JSON of a .glb (its first chunk) or of a .gltf.
-std::string_view jsonText(std::string_view bytes, const std::string& place) {
-  if (bytes.substr(0, 4) != "glTF") return bytes;
-  std::uint32_t length = 0, type = 0;
-  if (bytes.size() < 20) throw InputError(place + ": a .glb file shorter than its header");
-  std::memcpy(&length, bytes.data() + 12, 4);
-  std::memcpy(&type, bytes.data() + 16, 4);
-  if (type != 0x4E4F534Au || length > bytes.size() - 20) throw InputError(place + ": a .glb file without its JSON chunk");
-  return bytes.substr(20, length);
-}
 
 float number(const json& j, std::size_t i, float fallback) {
   return j.is_array() && i < j.size() && j[i].is_number() ? j[i].get<float>() : fallback;
@@ -48,8 +38,7 @@ glm::mat4 localTransform(const json& node) {
 }  // namespace
 
 std::optional<CameraSpec> gltfCamera(std::string_view bytes, const std::string& place) {
-  const json doc = json::parse(jsonText(bytes, place), nullptr, false);
-  if (doc.is_discarded() || !doc.is_object()) throw InputError(place + ": not glTF 2.0 JSON");
+  const json doc = gltfJson(bytes, place);
   const json nodes = doc.value("nodes", json::array()), cameras = doc.value("cameras", json::array());
   std::map<std::size_t, std::size_t> parent;
   for (std::size_t i = 0; i < nodes.size(); ++i) {

@@ -6,6 +6,7 @@
 #include "common/scene/assimp_import.h"
 #include "common/base/error.h"
 #include "common/scene/gltf_camera.h"
+#include "common/scene/gltf_extensions.h"
 #include "common/scene/mesh_blob.h"
 #include "common/scene/obj_load.h"
 
@@ -26,10 +27,14 @@ MeshModel importMeshFile(FileSource& files, const std::string& path, const std::
     model = decodeMeshBlob(files.read(path, place), place, budget);
   } else {
     const std::string bytes = files.readForImport(path, place);  // once, for Assimp and the camera
+    const bool gltf = *format == MeshFormat::kGltf || *format == MeshFormat::kGlb;
+    const std::string extensions = gltf ? unappliedGltfExtensions(bytes, place + ": '" + path + "'") : "";
     model = importWithAssimp(files, path, bytes, place, budget);
-    if (*format == MeshFormat::kGltf || *format == MeshFormat::kGlb) {
-      model.camera = gltfCamera(bytes, place + ": '" + path + "'");
+    if (!extensions.empty()) {
+      model.warnings.push_back("'" + path + "' uses glTF extensions Glint does not apply (" + extensions +
+                               "): rendered without them");
     }
+    if (gltf) model.camera = gltfCamera(bytes, place + ": '" + path + "'");
     files.keepImported(path, encodeMeshBlob(model));  // always with its materials, whoever asks next
   }
   if (!withMaterials) {
