@@ -77,9 +77,29 @@ class SourceIo : public Assimp::IOSystem {
   std::string error_;
 };
 
+// The Phong terms an imported material gets (docs/scene-format.md): scene
+// 1's ambient, so that a shadowed side is not black, the rest diffuse.
+constexpr float kImportedAmbient = 0.1f;
+constexpr float kImportedDiffuse = 0.9f;
+constexpr float kHighlightAtZeroRoughness = 0.5f;  // r_S of a perfectly smooth surface
+constexpr float kMaxShininess = 1000.0f;
+
+// A glTF roughness -> Phong's highlight: r_S fading to 0 at roughness 1,
+// and the Blinn-Phong exponent of the same lobe width, h = 2 / a^2 - 2 with
+// a = roughness^2 (Walter et al., "Microfacet Models for Refraction through
+// Rough Surfaces", EGSR 2007).
+void highlightFromRoughness(float roughness, Material& out) {
+  const float r = std::clamp(roughness, 0.0f, 1.0f);
+  const float a = std::max(r * r, 1e-3f);
+  out.specular = kHighlightAtZeroRoughness * (1.0f - r);
+  out.shininess = std::clamp(2.0f / (a * a) - 2.0f, 1.0f, kMaxShininess);
+}
+
 // Assimp's material -> Glint's.
 Material toMaterial(const aiMaterial& m) {
   Material out;
+  out.ambient = kImportedAmbient;
+  out.diffuse = kImportedDiffuse;
   aiString name;
   if (m.Get(AI_MATKEY_NAME, name) == AI_SUCCESS) out.name = name.C_Str();
   aiColor4D c;
@@ -92,6 +112,7 @@ Material toMaterial(const aiMaterial& m) {
   if (m.Get(AI_MATKEY_METALLIC_FACTOR, metallic) == AI_SUCCESS) {
     m.Get(AI_MATKEY_ROUGHNESS_FACTOR, roughness);
     out.reflectivity = std::clamp(metallic * (1.0f - roughness), 0.0f, 1.0f);
+    highlightFromRoughness(roughness, out);
   }
   return out;
 }

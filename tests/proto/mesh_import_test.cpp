@@ -247,5 +247,25 @@ TEST(MeshImport, GltfExtensionsAreNamedNotDropped) {
   }
 }
 
+// Imported materials get Phong terms of their own (docs/scene-format.md):
+// ambient 0.1 and diffuse 0.9 (a shadowed side is not black), and a
+// highlight from the glTF roughness: r_S = 0.5 (1 - roughness), h = 2 / a^2
+// - 2 with a = roughness^2 (clamped to [1, 1000]).
+TEST(MeshImport, ImportedMaterialsGetAmbientAndAHighlightFromRoughness) {
+  const fs::path rough = kModels / "glTF2/BoxTextured-glTF/BoxTextured.gltf";  // roughness 1 (glTF's default)
+  const fs::path half = kModels / "glTF2/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf";  // 0.5
+  if (!fs::exists(rough) || !fs::exists(half)) GTEST_SKIP() << "assimp-testmodels is not installed";
+  const Material& box = import(rough).materials.at(0);
+  EXPECT_FLOAT_EQ(box.ambient, 0.1f);
+  EXPECT_FLOAT_EQ(box.diffuse, 0.9f);
+  EXPECT_FLOAT_EQ(box.specular, 0.0f);
+  const MeshModel cube = import(half);
+  const Material& m = cube.materials.at(0);
+  EXPECT_FLOAT_EQ(m.ambient, 0.1f);
+  EXPECT_FLOAT_EQ(m.specular, 0.25f);
+  EXPECT_FLOAT_EQ(m.shininess, 30.0f);  // a = 0.25: 2 / 0.0625 - 2
+  EXPECT_NEAR(m.color.r, 0.6038274f, 1e-6);
+}
+
 }  // namespace
 }  // namespace glint
