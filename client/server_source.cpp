@@ -31,7 +31,7 @@ bool sameEndpoints(const std::vector<ServerAddress>& a, const std::vector<Server
 
 }  // namespace
 
-ServerSource::ServerSource(std::vector<ServerAddress> addresses) : fixed_(true), addresses_(std::move(addresses)) {}
+ServerSource::ServerSource(std::vector<ServerAddress> addresses) : addresses_(std::move(addresses)) {}
 
 ServerSource::ServerSource(std::vector<std::string> values, std::string file, Clock::time_point now, Resolve resolve)
     : values_(std::move(values)), file_(std::move(file)), resolve_(std::move(resolve)) {
@@ -54,7 +54,7 @@ std::vector<ServerEntry> ServerSource::entries(const std::string& fileText) cons
 }
 
 bool ServerSource::refresh(Clock::time_point now) {
-  if (fixed_) return false;
+  if (values_.empty() && file_.empty()) return false;  // a fixed set
   std::string text = fileText_;
   try {
     if (!file_.empty()) text = readServerFile(file_);

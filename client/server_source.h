@@ -46,7 +46,6 @@ class ServerSource {
   std::vector<std::string> values_;
   std::string file_;
   Resolve resolve_;
-  bool fixed_ = false;
   std::string fileText_;  // as last read and tried
   Clock::time_point resolvedAt_{};
   std::vector<ServerAddress> addresses_;

@@ -32,8 +32,9 @@ void TileDispatcher::join(std::size_t server, double now) {
 }
 
 std::size_t TileDispatcher::liveServers() const {
-  return static_cast<std::size_t>(
-      std::count_if(servers_.begin(), servers_.end(), [](const Server& s) { return s.joined && !s.lost; }));
+  std::size_t n = 0;
+  for (std::size_t s = 0; s < servers_.size(); ++s) n += live(s) ? 1 : 0;
+  return n;
 }
 
 double TileDispatcher::finishEstimate(std::size_t server) const {
@@ -90,8 +91,7 @@ std::vector<TileDispatcher::Assignment> TileDispatcher::assign(double now) {
   }
   // Nothing fresh: servers with idle threads take copies of the last bucket.
   for (std::size_t s = 0; s < servers_.size(); ++s) {
-    const Server& server = servers_[s];
-    if (!server.joined || server.lost) continue;
+    if (!live(s)) continue;
     const auto threads = static_cast<std::size_t>(std::max(1, paces_[s].threads));
     std::size_t tile = 0;
     while (servers_[s].outstanding.size() < threads && pickDuplicate(s, tile)) {
@@ -156,7 +156,7 @@ bool TileDispatcher::pickDuplicate(std::size_t except, std::size_t& tile) const 
   bool found = false;
   for (std::size_t s = 0; s < servers_.size(); ++s) {
     const Server& server = servers_[s];
-    if (s == except || !server.joined || server.lost) continue;
+    if (s == except || !live(s)) continue;
     const auto candidate = std::find_if(server.outstanding.begin(), server.outstanding.end(), [&](const Sent& sent) {
       return tiles_[sent.tile].holders.size() == 1;
     });
@@ -242,7 +242,7 @@ std::vector<std::size_t> TileDispatcher::stalled(double now) const {
   std::vector<std::size_t> out;
   for (std::size_t s = 0; s < servers_.size(); ++s) {
     const Server& server = servers_[s];
-    if (server.joined && !server.lost && !server.outstanding.empty() &&
+    if (live(s) && !server.outstanding.empty() &&
         now - server.lastProgress > settings_.stallTimeoutMs) {
       out.push_back(s);
     }
@@ -253,7 +253,7 @@ std::vector<std::size_t> TileDispatcher::stalled(double now) const {
 void TileDispatcher::finish() {
   for (std::size_t s = 0; s < servers_.size(); ++s) {
     const Server& server = servers_[s];
-    if (!server.joined || server.lost || server.tracedMs <= 0.0) continue;
+    if (!live(s) || server.tracedMs <= 0.0) continue;
     ServerPace& pace = paces_[s];
     const double measured = rate(s);
     pace.costPerMs = pace.costPerMs > 0.0 ? kPaceWeight * measured + (1.0 - kPaceWeight) * pace.costPerMs : measured;

@@ -196,10 +196,10 @@ JsonShape measureJson(std::string_view text) {
   return shape;
 }
 
-nlohmann::json parseJson(std::string_view text) {
+nlohmann::json parseJson(std::string_view text, const JsonShape& shape) {
   try {
     nlohmann::json doc = nlohmann::json::parse(text, nullptr, true, kIgnoreComments);
-    if (memberCount(doc) != measureJson(text).members) throw InputError(duplicateKeyError(text));
+    if (memberCount(doc) != shape.members) throw InputError(duplicateKeyError(text));
     return doc;
   } catch (const nlohmann::json::parse_error& e) {
     // e.what() reads "[json.exception.parse_error.101] parse error at line 3, column 5: ..."

@@ -28,8 +28,9 @@ JsonShape measureJson(std::string_view text);
 // Parses JSON text. Errors are InputErrors: a syntax error gives its line
 // and column, a number out of range (1e999) the path of the value
 // ("objects[0].radius: number out of range"), a key written twice in one
-// object the object's path and the key.
-nlohmann::json parseJson(std::string_view text);
+// object the object's path and the key. `shape` is measureJson(text), which
+// the caller has measured for its limits.
+nlohmann::json parseJson(std::string_view text, const JsonShape& shape);
 
 // Read access to a parsed JSON value that knows its own path in the document
 // ("objects[3].radius"), so that every error names the place. Each getter

@@ -531,7 +531,7 @@ Scene loadScene(std::string_view text, FileSource& files, SceneBudget& budget) {
   }
   const std::size_t parsed = budget.chargeJson(
       shape.values, shape.members, "the scene's JSON (" + std::to_string(shape.values) + " values)");
-  const nlohmann::json doc = parseJson(text);
+  const nlohmann::json doc = parseJson(text, shape);
   try {
     Scene scene = SceneLoader(files, budget).load(doc);
     budget.refund(parsed);
