@@ -15,7 +15,9 @@
 #include <CLI/CLI.hpp>
 
 #include "client/accuracy_command.h"
+#include "client/info_command.h"
 #include "client/render_command.h"
+#include "client/server_list.h"
 #include "client/server_source.h"
 #include "client/view_command.h"
 #include "client/usage_error.h"
@@ -112,6 +114,9 @@ void addCameraOptions(CLI::App* app, FrameOverrides& o) {
   vec("--look-at", o.lookAt, "The point the camera looks at");
   vec("--up", o.up, "The camera's up direction");
   app->add_option("--fov", o.fovY, "Vertical field of view in degrees")->check(CLI::Range(0.001f, 179.0f));
+  app->add_flag("--fit", o.fit,
+                "Move the camera along its direction to frame every object (after --eye, --look-at; as the "
+                "scene's camera \"fit\": true)");
 }
 
 // An option that takes one of an enum's words (common/base/enum_words.h); the
@@ -133,6 +138,11 @@ void addServerOptions(CLI::App* app, RemoteOptions& remote) {
                   "repeated; a name with several addresses is one server each. The image is byte-identical to the "
                   "in-process one whatever the servers do")
       ->type_name("HOST:PORT[,...]")
+      ->each([](const std::string& value) {
+        if (const std::string problem = hostPortListProblem(value); !problem.empty()) {
+          throw CLI::ValidationError("--server " + problem);
+        }
+      })
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   app->add_option("--server-file", remote.serverFile,
@@ -256,6 +266,22 @@ std::function<void()> declareView(CLI::App* view) {
   return [options] { runView(*options); };
 }
 
+constexpr const char* kInfoHelp =
+    "Print what a scene holds and what rendering it would do: its image and camera, the box around its objects "
+    "(and the camera --fit would give), objects, triangles, materials (which the mask traces), textures, lights, "
+    "the effects the tracer will simulate, and the share of pixels the hybrid frame traces (one raster pass, "
+    "nothing traced). Takes the frame options render takes.";
+
+// Declares `glint info`'s options; returns what runs once they are parsed.
+std::function<void()> declareInfo(CLI::App* info) {
+  auto options = std::make_shared<InfoOptions>();
+  InfoOptions& o = *options;
+  info->add_option("scene", o.scene, "Scene file (.json)")->required()->check(CLI::ExistingFile);
+  addFrameOptions(info, o.frame);
+  info->add_flag("!--no-raster", o.raster, "Skip the raster pass (no OpenGL; no traced-pixel count)");
+  return [options] { runInfo(*options); };
+}
+
 constexpr const char* kAccuracyHelp =
     "Show what accuracy costs in time: render a converged reference of the scene, then the scene with one "
     "setting varied at a time (--vary KEY=V1,V2,...; KEY: samples, pattern, filter, max_depth, min_weight, "
@@ -297,6 +323,7 @@ constexpr CommandSpec kCommands[] = {
     {"render", kRenderHelp, declareRender},
     {"view", kViewHelp, declareView},
     {"accuracy", kAccuracyHelp, declareAccuracy},
+    {"info", kInfoHelp, declareInfo},
 };
 
 }  // namespace

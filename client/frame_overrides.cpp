@@ -40,6 +40,11 @@ void applyFrameOverrides(const FrameOverrides& o, Scene& scene) {
   } catch (const InputError& e) {
     throw UsageError(e.what());
   }
+  if (o.fit) {
+    const Bounds3 bounds = scene.geometry.bounds();
+    if (bounds.empty()) throw InputError("--fit: the scene has no object to frame");
+    f.camera = fitCamera(f.camera, bounds, static_cast<float>(f.width) / static_cast<float>(f.height));
+  }
   if (o.mask) scene.mask.rule = *o.mask;
   if (o.maskThreshold) scene.mask.minReflectivity = *o.maskThreshold;
   if (o.shadowMap) scene.mask.shadowMap = *o.shadowMap;

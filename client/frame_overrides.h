@@ -27,6 +27,7 @@ struct FrameOverrides {
   std::optional<glm::vec3> lookAt;
   std::optional<glm::vec3> up;
   std::optional<float> fovY;  // --fov, degrees
+  bool fit = false;           // --fit: the camera moved to frame every object
   std::optional<int> width;   // --size
   std::optional<int> height;
   std::optional<Encoding> encoding;  // 8-bit outputs

@@ -154,7 +154,41 @@ void traceEverything(const FrameSettings& frame, const TileRect& window, HybridR
   result.colour.assign(window.pixelCount() * 3, 0);
 }
 
+// The raster half: OpenGL draws and marks (or, under "all", every pixel is
+// marked), the marks are read back and the sets given their tiles.
+void markFrame(const gl::Api& gl, gl::RasterScene& raster, const FrameSettings& frame, const MaskSettings& mask,
+               const TileRect& window, int tileSize, std::span<TracedSet> sets, HybridResult& result) {
+  const Clock::time_point start = Clock::now();
+  result.rays = RayStats{};
+  result.times = HybridTimes{};
+  if (mask.rule == MaskRule::kAll) {
+    traceEverything(frame, window, result);
+  } else {
+    result.times.shadowMapMs = raster.draw(frame, mask);
+    gl.Finish();
+    result.times.rasterMs = msSince(start);
+    const Clock::time_point readStart = Clock::now();
+    readRaster(raster, frame, mask, window, result);
+    result.times.readbackMs = msSince(readStart);
+  }
+  collectTiles(result.mask, frame.width, window, tileSize, sets);
+  countEdges(window, frame.width, result);
+  result.maskedPixels = 0;
+  result.tiles = 0;
+  for (const TracedSet& set : sets) {
+    result.maskedPixels += set.pixels;
+    result.tiles += static_cast<int>(set.jobs.size());
+  }
+}
+
 }  // namespace
+
+void markHybrid(const gl::Api& gl, gl::RasterScene& raster, const FrameSettings& frame, const MaskSettings& mask,
+                int tileSize, HybridResult& result) {
+  TracedSet sets[2] = {{false, frame, {}, {}, 0}, {true, directLightOf(frame), {}, {}, 0}};
+  markFrame(gl, raster, frame, mask, TileRect{0, 0, frame.width, frame.height}, tileSize, sets, result);
+  result.times.totalMs = result.times.rasterMs + result.times.readbackMs;
+}
 
 double medianOf(const std::vector<HybridTimes>& frames, double HybridTimes::*step) {
   std::vector<double> values;
@@ -167,26 +201,9 @@ bool renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
                   const HybridControl& control) {
   const Clock::time_point start = Clock::now();
   const TileRect window = crop.value_or(TileRect{0, 0, frame.width, frame.height});
-  result.rays = RayStats{};
-  result.times = HybridTimes{};
-
-  if (mask.rule == MaskRule::kAll) {
-    traceEverything(frame, window, result);
-  } else {
-    result.times.shadowMapMs = raster.draw(frame, mask);
-    gl.Finish();
-    result.times.rasterMs = msSince(start);
-    const Clock::time_point readStart = Clock::now();
-    readRaster(raster, frame, mask, window, result);
-    result.times.readbackMs = msSince(readStart);
-  }
-
   TracedSet sets[2] = {{false, frame, {}, {}, 0}, {true, directLightOf(frame), {}, {}, 0}};
-  collectTiles(result.mask, frame.width, window, tileSize, sets);
+  markFrame(gl, raster, frame, mask, window, tileSize, sets, result);
   service.beginFrame();
-  countEdges(window, frame.width, result);
-  result.maskedPixels = sets[0].pixels + sets[1].pixels;
-  result.tiles = static_cast<int>(sets[0].jobs.size() + sets[1].jobs.size());
   int before = 0;
   for (TracedSet& set : sets) {
     if (!traceTiles(service, set, control, before, result.tiles, result)) return false;

@@ -53,6 +53,13 @@ struct HybridControl {
   std::function<void(int, int)> progress;
 };
 
+// The raster half of a hybrid frame of the whole image, alone: OpenGL draws
+// and marks the pixels the tracer would fill; result's mask, pixel counts,
+// tile count and raster and readback times are a renderHybrid's, and nothing
+// is traced (glint info).
+void markHybrid(const gl::Api& gl, gl::RasterScene& raster, const FrameSettings& frame, const MaskSettings& mask,
+                int tileSize, HybridResult& result);
+
 // The thesis's frame: OpenGL rasterizes the scene at one sample a pixel and
 // marks the pixels the tracer fills (masked objects, undecided shadows, and
 // the edges of what it draws, its anti-aliasing: client/raster_edges.h);

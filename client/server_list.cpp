@@ -1,6 +1,7 @@
 #include "client/server_list.h"
 
 #include <algorithm>
+#include <optional>
 #include <sstream>
 
 #include <asio.hpp>
@@ -10,17 +11,27 @@
 namespace glint {
 namespace {
 
-// "HOST:PORT", "[V6]:PORT" -> host and port, or InputError.
-std::pair<std::string, std::string> splitHostPort(const std::string& value, const std::string& origin) {
+// "HOST:PORT", "[V6]:PORT" -> host and port, or nothing when it is neither.
+std::optional<std::pair<std::string, std::string>> parseHostPort(const std::string& value) {
   const auto colon = value.rfind(':');
-  const std::string port = colon == std::string::npos ? "" : value.substr(colon + 1);
-  std::string host = colon == std::string::npos ? "" : value.substr(0, colon);
+  if (colon == std::string::npos) return std::nullopt;
+  const std::string port = value.substr(colon + 1);
+  std::string host = value.substr(0, colon);
   if (host.size() >= 2 && host.front() == '[' && host.back() == ']') host = host.substr(1, host.size() - 2);
   const bool digits = !port.empty() && port.size() <= 5 && std::all_of(port.begin(), port.end(), ::isdigit);
-  if (host.empty() || !digits || std::stoi(port) > 65535) {
-    throw InputError(origin + " " + value + ": expected HOST:PORT, e.g. 127.0.0.1:7878 (several: A:P,B:P)");
-  }
-  return {host, port};
+  if (host.empty() || !digits || std::stoi(port) > 65535) return std::nullopt;
+  return std::pair{host, port};
+}
+
+std::string notHostPort(const std::string& value) {
+  return value + ": expected HOST:PORT, e.g. 127.0.0.1:7878 (several: A:P,B:P)";
+}
+
+// "HOST:PORT" -> host and port, or InputError naming where it came from.
+std::pair<std::string, std::string> splitHostPort(const std::string& value, const std::string& origin) {
+  std::optional<std::pair<std::string, std::string>> parts = parseHostPort(value);
+  if (!parts) throw InputError(origin + " " + notHostPort(value));
+  return *parts;
 }
 
 // The addresses of one HOST:PORT: its IPv4 addresses where it has any (so
@@ -60,6 +71,15 @@ std::vector<ServerAddress> resolveEntries(const std::vector<ServerEntry>& entrie
     }
   }
   return servers;
+}
+
+std::string hostPortListProblem(const std::string& value) {
+  std::stringstream list(value);
+  std::string item;
+  while (std::getline(list, item, ',')) {
+    if (!item.empty() && !parseHostPort(item)) return notHostPort(item);
+  }
+  return "";
 }
 
 std::vector<ServerAddress> resolveServers(const std::vector<std::string>& values) {

@@ -27,6 +27,10 @@ struct ServerEntry {
 // used; an empty result is not an error here.
 std::vector<ServerAddress> resolveEntries(const std::vector<ServerEntry>& entries);
 
+// Why a HOST:PORT[,HOST:PORT...] value is malformed, or "" when every item
+// is HOST:PORT (checked before any name is resolved: a usage error).
+std::string hostPortListProblem(const std::string& value);
+
 // --server values (the option repeated) -> servers, as resolveEntries; none is an
 // InputError.
 std::vector<ServerAddress> resolveServers(const std::vector<std::string>& values);

@@ -11,27 +11,33 @@
 namespace glint::proto {
 namespace {
 
-// Reads through to the disk and keeps a copy of every file read; of a mesh
-// an importer reads, the imported mesh's blob instead of its files.
+// Reads through to the disk and keeps every file read (the disk source
+// holds them: nothing is copied); of a mesh an importer reads, the imported
+// mesh's blob instead of its files.
 class RecordingSource : public FileSource {
  public:
   RecordingSource(std::filesystem::path folder, std::size_t maxBytes) : disk_(std::move(folder), maxBytes) {}
-  std::string read(const std::string& path, const std::string& place) override {
-    std::string bytes = disk_.read(path, place);
-    files_[normalisePath(path)] = bytes;
-    return bytes;
+  const std::string& read(const std::string& path, const std::string& place) override {
+    return disk_.read(path, place);
   }
   bool has(const std::string& path) override { return disk_.has(path); }
   bool importsMeshes() const override { return true; }
   std::string readForImport(const std::string& path, const std::string& place) override {
-    return disk_.read(path, place);
+    return disk_.readForImport(path, place);
   }
-  void keepImported(const std::string& path, std::string blob) override { files_[normalisePath(path)] = std::move(blob); }
-  std::map<std::string, std::string> take() { return std::move(files_); }
+  void keepImported(const std::string& path, std::string blob) override {
+    imported_[normalisePath(path)] = std::move(blob);
+  }
+  // The files read and the imported meshes' blobs, by path.
+  std::map<std::string, std::string> take() {
+    std::map<std::string, std::string> files = disk_.takeRead();
+    for (auto& [path, blob] : imported_) files.insert_or_assign(path, std::move(blob));
+    return files;
+  }
 
  private:
   DirectorySource disk_;
-  std::map<std::string, std::string> files_;
+  std::map<std::string, std::string> imported_;
 };
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "common/base/error.h"
+#include "common/base/heap_tuning.h"
 
 namespace glint {
 
@@ -22,7 +23,7 @@ std::string siblingPath(const std::string& file, const std::string& name) {
 DirectorySource::DirectorySource(std::filesystem::path folder, std::size_t maxBytes)
     : folder_(std::move(folder)), maxBytes_(maxBytes) {}
 
-std::string DirectorySource::read(const std::string& path, const std::string& place) {
+std::string DirectorySource::readForImport(const std::string& path, const std::string& place) {
   const std::filesystem::path full = folder_ / path;
   std::error_code ec;
   const auto size = std::filesystem::file_size(full, ec);
@@ -35,10 +36,13 @@ std::string DirectorySource::read(const std::string& path, const std::string& pl
   if (!in) {
     throw InputError(place + ": cannot open '" + full.string() + "' (" + std::strerror(errno) + ")");
   }
-  // One read into a buffer of the file's size; a stream copy grew its
-  // buffer step by step, several times slower on a large OBJ
-  // (docs/performance.md).
-  std::string bytes(size, '\0');
+  // One read into a buffer of the file's size, its pages faulted in at
+  // once (a stream copy grew its buffer step by step; page by page, the
+  // faults cost more than the read: docs/performance.md).
+  std::string bytes;
+  bytes.reserve(size);
+  prefault(bytes.data(), size);
+  bytes.resize(size);
   in.read(bytes.data(), static_cast<std::streamsize>(size));
   const auto got = static_cast<std::size_t>(in.gcount());
   if (got != size || in.peek() != std::ifstream::traits_type::eof()) {
@@ -46,6 +50,12 @@ std::string DirectorySource::read(const std::string& path, const std::string& pl
                      std::to_string(size) + " bytes (did it change while it was read?)");
   }
   return bytes;
+}
+
+const std::string& DirectorySource::read(const std::string& path, const std::string& place) {
+  const std::string key = normalisePath(path);
+  if (const auto it = read_.find(key); it != read_.end()) return it->second;
+  return read_.emplace(key, readForImport(path, place)).first->second;
 }
 
 bool DirectorySource::has(const std::string& path) {
@@ -57,7 +67,7 @@ void MemorySource::add(const std::string& path, std::string bytes) {
   files_[normalisePath(path)] = std::move(bytes);
 }
 
-std::string MemorySource::read(const std::string& path, const std::string& place) {
+const std::string& MemorySource::read(const std::string& path, const std::string& place) {
   const auto it = files_.find(normalisePath(path));
   if (it == files_.end()) throw InputError(place + ": file '" + path + "' was not sent with the scene");
   return it->second;

@@ -15,8 +15,10 @@ namespace glint {
 class FileSource {
  public:
   virtual ~FileSource() = default;
-  // The file's bytes; throws InputError starting with `place` if it cannot.
-  virtual std::string read(const std::string& path, const std::string& place) = 0;
+  // The file's bytes, held by the source for as long as it lives (a large
+  // mesh's text is not copied); throws InputError starting with `place` if
+  // it cannot.
+  virtual const std::string& read(const std::string& path, const std::string& place) = 0;
   // Whether the file is there at all (a file an OBJ names may be missing:
   // a warning, not an error).
   virtual bool has(const std::string& path) = 0;
@@ -34,24 +36,30 @@ class FileSource {
   virtual void keepImported(const std::string& /*path*/, std::string /*blob*/) {}
 };
 
-// Files on disk below a folder, each at most maxBytes.
+// Files on disk below a folder, each at most maxBytes. A file read is kept
+// (read again, it is not read twice) until takeRead() hands them all over;
+// readForImport's bytes are not kept.
 class DirectorySource : public FileSource {
  public:
   DirectorySource(std::filesystem::path folder, std::size_t maxBytes);
-  std::string read(const std::string& path, const std::string& place) override;
+  const std::string& read(const std::string& path, const std::string& place) override;
   bool has(const std::string& path) override;
   bool importsMeshes() const override { return true; }
+  std::string readForImport(const std::string& path, const std::string& place) override;
+  // Every file read(), by its normalised path; the source keeps none.
+  std::map<std::string, std::string> takeRead() { return std::move(read_); }
 
  private:
   std::filesystem::path folder_;
   std::size_t maxBytes_;
+  std::map<std::string, std::string> read_;
 };
 
 // Files held in memory, keyed by their normalised relative path.
 class MemorySource : public FileSource {
  public:
   void add(const std::string& path, std::string bytes);
-  std::string read(const std::string& path, const std::string& place) override;
+  const std::string& read(const std::string& path, const std::string& place) override;
   bool has(const std::string& path) override;
 
  private:

@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "common/base/heap_tuning.h"
 #include "common/math/finite.h"
 #include "common/math/float_bits.h"
 
@@ -15,32 +16,50 @@ glm::vec3 faceForward(const glm::vec3& n, const glm::vec3& d) {
   return glm::dot(n, d) > 0.0f ? -n : n;
 }
 
+// Appends a mesh's vertex attribute (or n zero values where it has none) to
+// the scene's: the mesh's storage is taken where the scene's is empty, and
+// the room it grows into is faulted in at once (heap_tuning.h).
+template <typename T>
+void appendAttribute(std::vector<T>& to, std::vector<T>& from, std::size_t n) {
+  if (to.empty() && !from.empty()) {
+    to.swap(from);
+    return;
+  }
+  reservePrefaulted(to, to.size() + n);
+  if (from.empty()) {
+    to.resize(to.size() + n, T(0.0f));
+  } else {
+    to.insert(to.end(), from.begin(), from.end());
+  }
+}
+
 }  // namespace
 
 void Geometry::addMesh(MeshInput mesh) {
   // No normals: zero vectors, which shading replaces by the geometric normal
   // (flat facets, as in OpenGL without per-vertex normals).
-  if (mesh.normals.empty()) mesh.normals.assign(mesh.positions.size(), glm::vec3(0.0f));
-  if (mesh.uvs.empty()) mesh.uvs.assign(mesh.positions.size(), glm::vec2(0.0f));
+  const std::size_t n = mesh.positions.size();
   const auto base = static_cast<std::uint32_t>(positions_.size());
   const auto model = static_cast<std::uint32_t>(models_.size());
   models_.push_back({mesh.material});
-  positions_.insert(positions_.end(), mesh.positions.begin(), mesh.positions.end());
-  normals_.insert(normals_.end(), mesh.normals.begin(), mesh.normals.end());
-  uvs_.insert(uvs_.end(), mesh.uvs.begin(), mesh.uvs.end());
+  appendAttribute(positions_, mesh.positions, n);
+  appendAttribute(normals_, mesh.normals, n);
+  appendAttribute(uvs_, mesh.uvs, n);
+  reservePrefaulted(triangles_, triangles_.size() + mesh.indices.size() / 3);
+  reservePrefaulted(faceNormals_, faceNormals_.size() + mesh.indices.size() / 3);
   for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
-    std::array<std::uint32_t, 3> v = {mesh.indices[i], mesh.indices[i + 1], mesh.indices[i + 2]};
+    std::array<std::uint32_t, 3> v = {mesh.indices[i] + base, mesh.indices[i + 1] + base, mesh.indices[i + 2] + base};
     std::sort(v.begin(), v.end());
-    const glm::vec3& a = mesh.positions[v[0]];
-    const glm::vec3& b = mesh.positions[v[1]];
-    const glm::vec3& c = mesh.positions[v[2]];
-    const glm::vec3 n = glm::cross(b - a, c - a);
-    if (!allFinite(a) || !allFinite(b) || !allFinite(c) || !allFinite(n) || glm::dot(n, n) == 0.0f) {
+    const glm::vec3& a = positions_[v[0]];
+    const glm::vec3& b = positions_[v[1]];
+    const glm::vec3& c = positions_[v[2]];
+    const glm::vec3 nf = glm::cross(b - a, c - a);
+    if (!allFinite(a) || !allFinite(b) || !allFinite(c) || !allFinite(nf) || glm::dot(nf, nf) == 0.0f) {
       ++dropped_;
       continue;
     }
-    triangles_.push_back({{v[0] + base, v[1] + base, v[2] + base}, model});
-    faceNormals_.push_back(glm::normalize(n));
+    triangles_.push_back({v, model});
+    faceNormals_.push_back(glm::normalize(nf));
   }
 }
 
@@ -48,6 +67,15 @@ Bounds3 Geometry::primitiveBounds(std::uint32_t prim) const {
   if (isSphere(prim)) return spheres_[prim - triangles_.size()].bounds();
   Bounds3 b;
   for (std::uint32_t v : triangles_[prim].v) b.expand(positions_[v]);
+  return b;
+}
+
+Bounds3 Geometry::bounds() const {
+  Bounds3 b;
+  for (const Triangle& t : triangles_) {
+    for (std::uint32_t v : t.v) b.expand(positions_[v]);
+  }
+  for (const Sphere& s : spheres_) b.expand(s.bounds());
   return b;
 }
 

@@ -83,6 +83,8 @@ class Geometry {
   }
   bool isSphere(std::uint32_t prim) const { return prim >= triangles_.size(); }
   Bounds3 primitiveBounds(std::uint32_t prim) const;
+  // The box around every primitive (empty for a scene without any).
+  Bounds3 bounds() const;
   std::optional<Hit> intersect(std::uint32_t prim, const Ray& ray, float tMax) const {
     return intersect(prim, ray, WatertightRay(ray), tMax);
   }

@@ -1,5 +1,6 @@
 #include "common/scene/camera.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -22,6 +23,18 @@ std::string cameraProblem(const CameraSpec& c) {
     return "up: is parallel to the viewing direction (look_at - eye); choose another up vector";
   }
   return "";
+}
+
+CameraSpec fitCamera(const CameraSpec& spec, const Bounds3& bounds, float aspect) {
+  const float halfV = glm::radians(spec.fovY) * 0.5f;
+  const float halfH = std::atan(std::tan(halfV) * aspect);
+  const float radius = 0.5f * glm::length(bounds.extent());
+  const glm::vec3 forward = glm::normalize(spec.lookAt - spec.eye);
+  const float distance = radius > 0.0f ? radius / std::sin(std::min(halfV, halfH)) : glm::length(spec.lookAt - spec.eye);
+  CameraSpec out = spec;
+  out.lookAt = bounds.centre();
+  out.eye = out.lookAt - distance * forward;
+  return out;
 }
 
 Camera::Camera(const CameraSpec& spec, int width, int height)

@@ -5,6 +5,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "common/geometry/bounds.h"
 #include "common/geometry/ray.h"
 
 namespace glint {
@@ -20,6 +21,13 @@ struct CameraSpec {
 // What makes a camera unusable, as "field: what is wrong" ("up: must not be
 // the zero vector"), or "" for a good camera. Fields are the scene format's.
 std::string cameraProblem(const CameraSpec& spec);
+
+// The camera moved along its viewing direction so that the sphere around
+// `bounds` fills the narrower of the two fields of view (vertical fov_y, or
+// the horizontal one of a frame width / height wide): look_at at the box's
+// centre, the eye at the distance where the sphere touches the view's
+// edges, up kept. A box of one point keeps the spec's distance.
+CameraSpec fitCamera(const CameraSpec& spec, const Bounds3& bounds, float aspect);
 
 // A pinhole camera that sees exactly what gluLookAt(eye, lookAt, up) with
 // gluPerspective(fovY, width / height, ...) shows: square pixels, film

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <climits>
 #include <cstdint>
+#include <cstring>
 #include <istream>
 #include <map>
 #include <memory>
@@ -11,6 +12,7 @@
 #include <utility>
 
 #include "common/base/error.h"
+#include "common/base/heap_tuning.h"
 
 namespace glint {
 namespace {
@@ -56,12 +58,21 @@ class FaceList {
       throw InputError(where_ + " has more triangles than the limit of " +
                        std::to_string(limits_.maxTriangles));
     }
-    corners_.insert(corners_.end(), corners, corners + count);
+    for (int k = 0; k < count; ++k) corners_.push_back(corners[k]);  // (a range insert costs a call a face)
     sizes_.push_back(static_cast<std::uint8_t>(count));
     materials_.push_back(material);
   }
 
   std::size_t triangles() const { return triangles_; }
+
+  // Room for `faces` more faces with `corners` corners in all.
+  void reserve(std::size_t faces, std::size_t corners) {
+    reservePrefaulted(corners_, corners_.size() + corners);
+    reservePrefaulted(sizes_, sizes_.size() + faces);
+    reservePrefaulted(materials_, materials_.size() + faces);
+  }
+  std::size_t faces() const { return sizes_.size(); }
+  std::size_t corners() const { return corners_.size(); }
 
   // Appends the faces of a later piece of the text, each material code
   // passed through remap.
@@ -276,8 +287,32 @@ struct PieceReader {
     of(user).sawMtllib = true;
   }
 
+  // Room for the attributes and faces of text [begin, end), counted from
+  // the first letters of its lines: growing the arrays as the lines come
+  // copied them and faulted their pages in one by one (heap_tuning.h).
+  void reserveFor(const char* begin, const char* end) {
+    std::size_t counts[4] = {0, 0, 0, 0};  // v, vn, vt, f lines
+    for (const char* line = begin; line < end;) {
+      while (line < end && (*line == ' ' || *line == '\t')) ++line;
+      if (end - line >= 2) {
+        const bool vertexLine = line[0] == 'v';
+        counts[0] += vertexLine && (line[1] == ' ' || line[1] == '\t') ? 1 : 0;
+        counts[1] += vertexLine && line[1] == 'n' ? 1 : 0;
+        counts[2] += vertexLine && line[1] == 't' ? 1 : 0;
+        counts[3] += line[0] == 'f' && (line[1] == ' ' || line[1] == '\t') ? 1 : 0;
+      }
+      const void* next = std::memchr(line, '\n', static_cast<std::size_t>(end - line));
+      line = next ? static_cast<const char*>(next) + 1 : end;
+    }
+    reservePrefaulted(attrib.vertices, 3 * counts[0]);
+    reservePrefaulted(attrib.normals, 3 * counts[1]);
+    reservePrefaulted(attrib.texcoords, 2 * counts[2]);
+    faces.reserve(counts[3], 3 * counts[3]);  // triangles, at first guess
+  }
+
   // Reads text [begin, end); NeedsEarClipping and InputError pass through.
   void read(const char* begin, const char* end) {
+    reserveFor(begin, end);
     tinyobj::callback_t callbacks;
     callbacks.vertex_cb = &vertex;
     callbacks.normal_cb = &normal;
@@ -322,6 +357,18 @@ std::vector<const char*> cutsOf(const std::string& text, std::size_t pieces) {
 void joinPieces(std::vector<std::unique_ptr<PieceReader>>& readers, const MaterialTable& table,
                 ObjTriangles& out) {
   PieceReader& whole = *readers[0];
+  std::size_t faces = 0, corners = 0, sizes[3] = {0, 0, 0};
+  for (std::size_t i = 1; i < readers.size(); ++i) {
+    faces += readers[i]->faces.faces();
+    corners += readers[i]->faces.corners();
+    sizes[0] += readers[i]->attrib.vertices.size();
+    sizes[1] += readers[i]->attrib.normals.size();
+    sizes[2] += readers[i]->attrib.texcoords.size();
+  }
+  whole.faces.reserve(faces, corners);
+  reservePrefaulted(whole.attrib.vertices, whole.attrib.vertices.size() + sizes[0]);
+  reservePrefaulted(whole.attrib.normals, whole.attrib.normals.size() + sizes[1]);
+  reservePrefaulted(whole.attrib.texcoords, whole.attrib.texcoords.size() + sizes[2]);
   bool named = whole.sawMtllib;  // usemtl names count from the first mtllib line on
   int current = whole.material;
   for (std::size_t i = 1; i < readers.size(); ++i) {

@@ -8,6 +8,7 @@
 
 #include "common/base/array_hash.h"
 #include "common/base/error.h"
+#include "common/base/heap_tuning.h"
 #include "common/scene/obj_faces.h"
 
 namespace glint {
@@ -70,7 +71,7 @@ std::string notObjText(const std::string& text) {
 ObjTriangles parseObj(FileSource& files, const std::string& path, const std::string& place,
                       const LoadLimits& limits, bool withMaterials, std::vector<std::string>& warnings,
                       std::string& mtlPath) {
-  const std::string text = files.read(path, place);
+  const std::string& text = files.read(path, place);
   if (const std::string why = notObjText(text); !why.empty()) throw InputError(place + ": '" + path + "' " + why);
   std::string mtl;
   const std::string lib = mtllibName(text);
@@ -119,7 +120,27 @@ void readMaterials(const std::vector<tinyobj::material_t>& materials, FileSource
 // (the ordered map this replaced took two thirds of a large OBJ's load).
 class FaceGrouper {
  public:
-  explicit FaceGrouper(const tinyobj::attrib_t& attrib) : attrib_(attrib), first_(attrib.vertices.size() / 3) {}
+  // Room for the meshes of `triangles` (the file's triangles by material),
+  // faulted in at once: a mesh gets its corners' indices and (a guess) its
+  // share of the file's vertices.
+  FaceGrouper(const tinyobj::attrib_t& attrib, const std::map<int, std::size_t>& triangles)
+      : attrib_(attrib),
+        normals_(!attrib.normals.empty()),
+        uvs_(!attrib.texcoords.empty()) {
+    const std::size_t positions = attrib.vertices.size() / 3;
+    reservePrefaulted(first_, positions);
+    first_.resize(positions);
+    std::size_t all = 0;
+    for (const auto& [material, count] : triangles) all += count;
+    for (const auto& [material, count] : triangles) {
+      MeshInput& mesh = groups_[material].mesh;
+      const std::size_t vertices = std::min(3 * count, positions * count / std::max<std::size_t>(all, 1) + 1);
+      reservePrefaulted(mesh.indices, 3 * count);
+      reservePrefaulted(mesh.positions, vertices);
+      if (normals_) reservePrefaulted(mesh.normals, vertices);
+      if (uvs_) reservePrefaulted(mesh.uvs, vertices);
+    }
+  }
 
   // A corner whose indices name the file's data (ObjTriangles checked them).
   void addCorner(int material, const tinyobj::index_t& idx) {
@@ -174,17 +195,23 @@ class FaceGrouper {
     MeshInput& mesh = group.mesh;
     const auto v = static_cast<std::size_t>(idx.vertex_index);
     mesh.positions.emplace_back(attrib_.vertices[3 * v], attrib_.vertices[3 * v + 1], attrib_.vertices[3 * v + 2]);
-    const auto n = static_cast<std::size_t>(std::max(idx.normal_index, 0));
-    mesh.normals.push_back(idx.normal_index >= 0 ? glm::vec3(attrib_.normals[3 * n], attrib_.normals[3 * n + 1],
-                                                             attrib_.normals[3 * n + 2])
-                                                 : glm::vec3(0.0f));
-    const auto t = static_cast<std::size_t>(std::max(idx.texcoord_index, 0));
-    mesh.uvs.push_back(idx.texcoord_index >= 0 ? glm::vec2(attrib_.texcoords[2 * t], attrib_.texcoords[2 * t + 1])
-                                               : glm::vec2(0.0f));
     group.complete = group.complete && idx.normal_index >= 0;
+    if (normals_) {  // a file without normals gives meshes without (so do files with too few: finish())
+      const auto n = static_cast<std::size_t>(std::max(idx.normal_index, 0));
+      mesh.normals.push_back(idx.normal_index >= 0 ? glm::vec3(attrib_.normals[3 * n], attrib_.normals[3 * n + 1],
+                                                               attrib_.normals[3 * n + 2])
+                                                   : glm::vec3(0.0f));
+    }
+    if (uvs_) {  // and one without uvs, meshes without (uv (0, 0) everywhere, as absent uvs give)
+      const auto t = static_cast<std::size_t>(std::max(idx.texcoord_index, 0));
+      mesh.uvs.push_back(idx.texcoord_index >= 0 ? glm::vec2(attrib_.texcoords[2 * t], attrib_.texcoords[2 * t + 1])
+                                                 : glm::vec2(0.0f));
+    }
   }
 
   const tinyobj::attrib_t& attrib_;
+  const bool normals_;  // the file has normals
+  const bool uvs_;      // the file has uvs
   std::vector<FirstUse> first_;  // by position index
   std::unordered_map<std::array<int, 4>, std::uint32_t, ArrayHash> others_;  // (material, v, n, t) -> vertex
   std::map<int, Group> groups_;  // by material; its nodes stay put, so last_ stays valid
@@ -206,10 +233,14 @@ MeshModel loadObj(FileSource& files, const std::string& path, const std::string&
   }
   // Faces without a material (or all faces, without MTL) use a default one.
   const int defaultMaterial = static_cast<int>(model.materials.size());
-  FaceGrouper grouper(obj.attrib);
+  const auto materialOf = [&](std::size_t t) {
+    return obj.materialOf[t] >= 0 && obj.materialOf[t] < defaultMaterial ? obj.materialOf[t] : defaultMaterial;
+  };
+  std::map<int, std::size_t> triangles;  // by material
+  for (std::size_t t = 0; t < obj.materialOf.size(); ++t) ++triangles[materialOf(t)];
+  FaceGrouper grouper(obj.attrib, triangles);
   for (std::size_t t = 0; t < obj.materialOf.size(); ++t) {
-    const int mat = obj.materialOf[t] >= 0 && obj.materialOf[t] < defaultMaterial ? obj.materialOf[t] : defaultMaterial;
-    for (std::size_t k = 0; k < 3; ++k) grouper.addCorner(mat, obj.corners[3 * t + k]);
+    for (std::size_t k = 0; k < 3; ++k) grouper.addCorner(materialOf(t), obj.corners[3 * t + k]);
   }
   if (obj.materialOf.empty()) {
     throw InputError(place + ": '" + path + "' holds no triangle (" + std::to_string(obj.attrib.vertices.size() / 3) +

@@ -67,6 +67,7 @@ class SceneLoader {
     if (auto l = root.find("lights")) readLights(*l);
     const JsonReader objects = root["objects"];
     for (std::size_t i = 0; i < objects.arraySize(); ++i) readObject(objects.at(i));
+    if (auto fit = root["camera"].find("fit"); fit && fit->boolean()) fitToScene(*fit);
     return std::move(scene_);
   }
 
@@ -80,13 +81,21 @@ class SceneLoader {
   }
 
   void readCamera(const JsonReader& r) {
-    r.allowKeys({"eye", "look_at", "up", "fov_y", "file"});
+    r.allowKeys({"eye", "look_at", "up", "fov_y", "file", "fit"});
     CameraSpec& c = scene_.frame.camera;
     if (auto f = r.find("file")) return readCameraFile(r, *f);
     c.eye = r["eye"].vec3();
     c.lookAt = r["look_at"].vec3();
     c.up = r.vec3("up", {0.0f, 1.0f, 0.0f});
     c.fovY = r.number("fov_y", 45.0f, 0.0f, 179.0f, true);
+  }
+
+  // "fit": true: the camera moved along its direction to frame every object.
+  void fitToScene(const JsonReader& fit) {
+    const Bounds3 bounds = scene_.geometry.bounds();
+    if (bounds.empty()) fit.fail("the scene has no object to frame");
+    FrameSettings& f = scene_.frame;
+    f.camera = fitCamera(f.camera, bounds, static_cast<float>(f.width) / static_cast<float>(f.height));
   }
 
   // The first perspective camera of a glTF file (imported as a mesh file is).
@@ -544,7 +553,7 @@ Scene loadScene(std::string_view text, FileSource& files, SceneBudget& budget) {
 Scene loadSceneFile(const std::filesystem::path& path, const LoadLimits& limits) {
   try {
     DirectorySource files(path.parent_path(), limits.maxFileBytes);
-    const std::string text = files.read(path.filename().string(), "scene file");
+    const std::string& text = files.read(path.filename().string(), "scene file");
     return loadScene(text, files, limits);
   } catch (const InputError& e) {
     throw InputError(path.string() + ": " + e.what());

@@ -256,7 +256,8 @@ TEST_F(Cli, UsageErrorsExitWithTwo) {
   for (const char* options : {"-o x.jpg", "-o x.png --size 640", "-o x.png --size -5x10",
                               "-o x.png --samples 5 --pattern regular", "-o x.png --adaptive-threshold 0",
                               "-o x.png --mask bogus", "-o x.png --crop 0,0,700,10", "-o x.exr --encoding srgb",
-                              "-o x.png --provenance-out p.png", "-o x.png --tls-ca ca.pem"}) {
+                              "-o x.png --provenance-out p.png", "-o x.png --tls-ca ca.pem", "-o x.png --server 127.0.0.1",
+                              "-o x.png --server 127.0.0.1:7878,host:port"}) {
     const Result run = glint("render " + scene("room.json") + " " + options);
     EXPECT_EQ(run.status, 2) << options << "\n" << run.output;
     EXPECT_EQ(run.output.rfind("glint: error: ", 0), 0u) << options << "\n" << run.output;
@@ -289,6 +290,61 @@ TEST_F(Cli, EveryRenderingCommandTakesTheSameFrameOptions) {
     EXPECT_NE(size.output.find("--size 640: expected WIDTHxHEIGHT"), std::string::npos) << size.output;
   }
   EXPECT_TRUE(fs::is_empty(dir_));
+}
+
+// A scene whose objects are known: a mirror sphere (radius 1 at (1, 0, 0))
+// over a matte floor quad from (-3, -1, -2) to (3, -1, 2).
+constexpr const char* kTwoObjects = R"({"glint": 1, "image": {"width": 64, "height": 48},
+  "camera": {"eye": [0, 1, 6], "look_at": [0, 0, 0]},
+  "materials": {"mirror": {"color": [1, 1, 1], "reflectivity": 0.9}, "matte": {"color": [0.5, 0.5, 0.5]}},
+  "lights": [{"type": "point", "position": [0, 4, 4]}],
+  "objects": [{"type": "sphere", "center": [1, 0, 0], "radius": 1, "material": "mirror"},
+              {"type": "mesh", "positions": [-3,-1,-2, 3,-1,-2, 3,-1,2, -3,-1,2], "indices": [0,1,2, 0,2,3],
+               "material": "matte"}]})";
+
+// glint info says what the scene holds; the pixels it says the hybrid frame
+// traces are those of the mask glint render writes (--mask-out), counted.
+TEST_F(Cli, InfoDescribesTheSceneAndWhatTheHybridFrameTraces) {
+  const std::string file = writeScene("two.json", kTwoObjects);
+  const Result info = glint("info " + file);
+  ASSERT_EQ(info.status, 0) << info.output;
+  for (const char* line : {"image      64x48, 1 regular samples a pixel", "bounds     min (-3, -1, -2), max (3, 1, 2)",
+                           "objects    1 mesh, 1 sphere; 2 triangles (0 dropped: cannot be hit), 4 vertices",
+                           "materials  2, 1 traced under the mask rule auto: mirror", "lights     1 point light",
+                           "effects    simulated: shadows reflection; left out: refraction textures"}) {
+    EXPECT_NE(info.output.find(line), std::string::npos) << line << "\n" << info.output;
+  }
+  const std::size_t at = info.output.find("hybrid     traces ");
+  ASSERT_NE(at, std::string::npos) << info.output;
+  const unsigned long traced = std::stoul(info.output.substr(at + 18));
+  EXPECT_NE(info.output.find(" of 3072 pixels", at), std::string::npos) << info.output;
+  ASSERT_EQ(glint("render " + file + " -q -o " + path("x.png") + " --mask-out " + path("mask.png")).status, 0);
+  const Image mask = decodePng(path("mask.png"));
+  unsigned long white = 0;
+  for (std::size_t i = 0; i < mask.rgb.size(); i += 3) white += mask.rgb[i] == 255 ? 1 : 0;
+  EXPECT_GT(white, 100u);
+  EXPECT_EQ(traced, white);
+  // The frame options apply, and --no-raster leaves the count out.
+  const Result small = glint("info " + file + " --size 32x24 --mask all --no-raster");
+  EXPECT_NE(small.output.find("image      32x24"), std::string::npos) << small.output;
+  EXPECT_EQ(small.output.find("hybrid"), std::string::npos) << small.output;
+}
+
+// --fit frames every object as the scene's "fit": true does: the same image.
+TEST_F(Cli, FitFromTheCommandLineOrTheScene) {
+  std::string text = kTwoObjects;
+  const std::string far = writeScene("far.json", text.replace(text.find("[0, 1, 6]"), 9, "[0, 10, 60]"));
+  ASSERT_EQ(glint("render " + far + " -q -o " + path("option.png") + " --fit").status, 0);
+  text.replace(text.find("\"look_at\""), 9, "\"fit\": true, \"look_at\"");
+  const std::string fitted = writeScene("fitted.json", text);
+  ASSERT_EQ(glint("render " + fitted + " -q -o " + path("scene.png")).status, 0);
+  ASSERT_EQ(glint("render " + far + " -q -o " + path("far.png")).status, 0);
+  EXPECT_EQ(decodePng(path("option.png")).rgb, decodePng(path("scene.png")).rgb);
+  EXPECT_NE(decodePng(path("option.png")).rgb, decodePng(path("far.png")).rgb);
+  const Result empty = glint("render " + writeScene("empty.json", R"({"glint": 1, "image": {"width": 8, "height": 8},
+    "camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0]}, "objects": []})") + " -o " + path("e.png") + " --fit");
+  EXPECT_EQ(empty.status, 1) << empty.output;
+  EXPECT_NE(empty.output.find("--fit: the scene has no object to frame"), std::string::npos) << empty.output;
 }
 
 // A scene with comments renders as the same scene without them; --eye,

@@ -22,7 +22,7 @@ if ! PATH="$bin:$PATH" bash -euo pipefail tutorial-commands.sh > out.log 2>&1; t
 fi
 cat out.log
 fail() { echo "tutorial.sh: $1" >&2; exit 1; }
-for f in first.png first-mask.png bunny.png bunny-stats.json bunny-near.png bunny-farm.png who.png \
+for f in first.png first-mask.png bunny.png bunny-stats.json bunny-near.png bunny-fit.png bunny-farm.png who.png \
          accuracy/report.md accuracy/accuracy.csv; do
   [ -s "tutorial/$f" ] || fail "the tutorial says it writes tutorial/$f; it is missing"
 done
@@ -30,5 +30,6 @@ done
 grep -qF 'glint: error: tutorial/broken.json: objects[2].radius: must be > 0' out.log ||
   fail "the broken scene's message is not the one the tutorial quotes"
 grep -qF 'glint exited with 1' out.log || fail "the broken scene did not exit with 1, as the tutorial says"
+grep -qF '  bounds     min (' out.log || fail "glint info printed no bounds"
 grep -qF 'the same bytes as in process' out.log || fail "the farm's frame differs from the in-process one"
 echo "tutorial.sh: every command ran and did what the text says"

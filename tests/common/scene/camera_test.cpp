@@ -1,5 +1,8 @@
 #include "common/scene/camera.h"
 
+#include <cmath>
+#include <utility>
+
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
@@ -41,6 +44,45 @@ TEST(Camera, ImageCentreLooksAtTarget) {
   // The top edge of the image is fov_y / 2 above the axis.
   const Ray top = camera.generateRay({50.0f, 0.0f});
   EXPECT_NEAR(std::atan2(top.d.y, -top.d.z), glm::radians(22.5f), 1e-5f);
+}
+
+// "fit": the camera keeps its direction, up and fov, looks at the box's
+// centre, and the sphere around the box touches the narrower field of view:
+// every corner projects inside the frame, and a point of the sphere on the
+// view's edge projects onto the frame's edge.
+TEST(Camera, FitFramesTheBoxFromTheCamerasDirection) {
+  const Bounds3 box{{10.0f, -2.0f, 3.0f}, {14.0f, 1.0f, 4.0f}};
+  for (const auto& [w, h] : {std::pair{640, 480}, std::pair{200, 600}}) {
+    const CameraSpec spec{{0.0f, 0.0f, 0.0f}, {1.0f, 0.2f, -1.0f}, {0.0f, 1.0f, 0.0f}, 40.0f};
+    const float aspect = static_cast<float>(w) / static_cast<float>(h);
+    const CameraSpec fit = fitCamera(spec, box, aspect);
+    EXPECT_NEAR(glm::distance(fit.lookAt, box.centre()), 0.0f, 1e-5f);
+    EXPECT_NEAR(glm::dot(glm::normalize(fit.lookAt - fit.eye), glm::normalize(spec.lookAt - spec.eye)), 1.0f, 1e-6f);
+    EXPECT_EQ(fit.up, spec.up);
+    EXPECT_EQ(fit.fovY, spec.fovY);
+    const glm::mat4 view = glm::lookAt(fit.eye, fit.lookAt, fit.up);
+    const glm::mat4 proj = glm::perspective(glm::radians(fit.fovY), aspect, 0.1f, 1000.0f);
+    for (const glm::vec3& corner : box.corners()) {
+      const glm::vec4 clip = proj * view * glm::vec4(corner, 1.0f);
+      EXPECT_LE(std::abs(clip.x / clip.w), 1.0f) << w << "x" << h;
+      EXPECT_LE(std::abs(clip.y / clip.w), 1.0f) << w << "x" << h;
+      EXPECT_GT(clip.w, 0.0f);
+    }
+    // The sphere's tangent point on the narrower side: at the field's edge.
+    const double radius = 0.5 * glm::length(glm::dvec3(box.extent()));
+    const double distance = glm::length(glm::dvec3(fit.eye) - glm::dvec3(box.centre()));
+    const double halfV = glm::radians(40.0) / 2.0;
+    const double halfH = std::atan(std::tan(halfV) * aspect);
+    EXPECT_NEAR(std::asin(radius / distance), std::min(halfV, halfH), 1e-5) << w << "x" << h;
+  }
+}
+
+// A box of one point: nothing to scale by, the camera keeps its distance.
+TEST(Camera, FitAroundOnePointKeepsTheDistance) {
+  const Bounds3 point{{1.0f, 2.0f, 3.0f}, {1.0f, 2.0f, 3.0f}};
+  const CameraSpec spec{{0.0f, 0.0f, 5.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 45.0f};
+  const CameraSpec fit = fitCamera(spec, point, 1.0f);
+  EXPECT_NEAR(glm::distance(fit.eye, glm::vec3(1.0f, 2.0f, 8.0f)), 0.0f, 1e-5f);
 }
 
 }  // namespace

@@ -53,9 +53,9 @@ Soup soupOf(const MeshModel& model) {
       for (std::size_t k = 0; k < 3; ++k) {
         const std::uint32_t i = mesh.indices[3 * t + k];
         const glm::vec3 n = mesh.normals.empty() ? glm::vec3(0.0f) : mesh.normals[i];
-        const float corner[8] = {
-            mesh.positions[i].x, mesh.positions[i].y, mesh.positions[i].z, n.x, n.y, n.z,
-            mesh.uvs[i].x,       mesh.uvs[i].y};
+        const glm::vec2 uv = mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[i];  // absent: (0, 0)
+        const float corner[8] = {mesh.positions[i].x, mesh.positions[i].y, mesh.positions[i].z, n.x, n.y, n.z, uv.x,
+                                 uv.y};
         std::memcpy(&tri[8 * k], corner, sizeof corner);
       }
       soup[static_cast<int>(mesh.material)].push_back(tri);

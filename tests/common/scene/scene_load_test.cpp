@@ -1,5 +1,8 @@
 #include "common/scene/scene_load.h"
 
+#include <cmath>
+
+#include <glm/trigonometric.hpp>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -349,6 +352,29 @@ TEST(SceneLoad, AKeyWrittenTwiceIsAnError) {
   text = j.dump();
   text.insert(1, "// \"glint\": 1,\n");
   EXPECT_EQ(loadError(text), "(loaded without error)");
+}
+
+// "fit": true moves the camera along its direction onto the objects' box
+// (common/scene/camera.h's fitCamera, tested there): here the scene's
+// objects are a sphere of radius 1 at the origin and a triangle reaching
+// (1, 1, 0), so the box is [-1, 1]^3 and its centre the origin.
+TEST(SceneLoad, FitFramesTheObjects) {
+  json j = minimalScene();
+  j["camera"] = {{"eye", {20, 0, 0}}, {"look_at", {30, 0, 0}}, {"fit", true}};
+  MemorySource files;
+  const Scene s = loadScene(j.dump(), files);
+  const CameraSpec& c = s.frame.camera;
+  EXPECT_NEAR(glm::length(c.lookAt), 0.0f, 1e-6f);
+  EXPECT_NEAR(c.eye.y, 0.0f, 1e-6f);
+  EXPECT_NEAR(c.eye.z, 0.0f, 1e-6f);
+  // The box's sphere (radius sqrt 3) in the narrower, vertical field of 45 degrees.
+  EXPECT_NEAR(c.eye.x, -std::sqrt(3.0f) / std::sin(glm::radians(22.5f)), 1e-4f);
+  j["camera"]["fit"] = false;
+  EXPECT_EQ(loadScene(j.dump(), files).frame.camera.eye, glm::vec3(20, 0, 0));
+  j["camera"]["fit"] = true;
+  j["objects"] = json::array();
+  EXPECT_NE(loadError(j.dump()).find("camera.fit: the scene has no object to frame"), std::string::npos)
+      << loadError(j.dump());
 }
 
 // A number beyond a double is an error at its path, like every other scene
