@@ -21,10 +21,11 @@ void keepFreedMemoryForReuse();
 // system call (Linux's MADV_POPULATE_WRITE) instead of one page fault a
 // page: on a virtual machine a fault costs about 10 us, 2.5 ms a megabyte,
 // which made page faults the larger part of loading a large mesh
-// (docs/performance.md). The contents do not change; pages already there
-// cost nothing. Does nothing where the kernel or C library cannot (before
-// Linux 5.14, glibc 2.35).
-void prefault(void* data, std::size_t bytes);
+// (docs/performance.md). Whole 2 MiB stretches are asked for as huge pages
+// (one fault each instead of 512). The contents do not change; pages
+// already there cost nothing. False where the kernel or C library cannot
+// (before Linux 5.14, glibc 2.35): then it did nothing.
+bool prefault(void* data, std::size_t bytes);
 
 // Room in v for n elements (at least twice its capacity when it must grow,
 // so that growing it step by step stays linear), faulted in at once: the

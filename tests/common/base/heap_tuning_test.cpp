@@ -1,6 +1,10 @@
 #include "common/base/heap_tuning.h"
 
 #include <cstdlib>
+#include <vector>
+
+#include <sys/mman.h>
+#include <unistd.h>
 
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -32,6 +36,46 @@ TEST(HeapTuning, FreedMegabytesStayInTheProcess) {
 #else
   GTEST_SKIP() << "the tuning applies to glibc only";
 #endif
+}
+
+// prefault makes every whole page of the range resident (mincore tells)
+// and leaves its contents as they were; the pages around it stay out.
+TEST(HeapTuning, PrefaultMakesTheRangeResidentAndKeepsItsBytes) {
+  const std::size_t page = static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
+  const std::size_t size = 64 * page;
+  auto* region = static_cast<unsigned char*>(mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0));
+  ASSERT_NE(region, MAP_FAILED);
+  region[10 * page + 5] = 42;  // one page written before
+  const auto resident = [&] {
+    std::vector<unsigned char> in(size / page);
+    mincore(region, size, in.data());
+    return in;
+  };
+  EXPECT_EQ(resident()[20], 0);
+  if (!prefault(region + 8 * page + 100, 40 * page)) {
+    munmap(region, size);
+    GTEST_SKIP() << "the kernel cannot populate a range (Linux 5.14 and later can)";
+  }
+  const std::vector<unsigned char> in = resident();
+  for (std::size_t p = 9; p < 48; ++p) EXPECT_TRUE(in[p] & 1) << "page " << p;
+  for (std::size_t p : {0, 7, 49, 63}) EXPECT_FALSE(in[p] & 1) << "page " << p;
+  EXPECT_EQ(region[10 * page + 5], 42);
+  EXPECT_EQ(region[20 * page], 0);
+  munmap(region, size);
+}
+
+// reservePrefaulted keeps the elements, makes room for n, and grows at
+// least twofold (a loop of small reservations stays linear).
+TEST(HeapTuning, ReservePrefaultedKeepsTheElementsAndGrowsGeometrically) {
+  std::vector<int> v = {1, 2, 3};
+  reservePrefaulted(v, 1000);
+  EXPECT_EQ(v, (std::vector<int>{1, 2, 3}));
+  EXPECT_GE(v.capacity(), 1000u);
+  const std::size_t capacity = v.capacity();
+  reservePrefaulted(v, capacity + 1);
+  EXPECT_GE(v.capacity(), 2 * capacity);
+  reservePrefaulted(v, 2);  // below the size: nothing
+  EXPECT_EQ(v.size(), 3u);
 }
 
 }  // namespace
