@@ -6,7 +6,7 @@ JOBS  ?= 2
 DEPS := cmake g++ make pkg-config libglm-dev nlohmann-json3-dev libtinyobjloader-dev \
         libstb-dev libcli11-dev libgtest-dev libgmock-dev \
         libflatbuffers-dev flatbuffers-compiler libssl-dev libasio-dev libosmesa6-dev \
-        libglfw3-dev libgl1-mesa-dri xvfb xauth x11-utils openssl iproute2 \
+        libegl-dev libglfw3-dev libgl1-mesa-dri xvfb xauth x11-utils openssl iproute2 \
         libopenexr-dev libassimp-dev libjpeg-dev assimp-testmodels
 # The benchmark also compares against POV-Ray 3.7 and Embree 3.
 BENCH_DEPS := povray libembree-dev

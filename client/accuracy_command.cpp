@@ -34,6 +34,7 @@ struct Sweep {
   int frames;
   int tileSize;         // --tile-size
   TileService* remote;  // --server: the rows' tiles go there
+  std::optional<gl::GlBackend> gl;                 // --gl
   std::unique_ptr<gl::OffscreenContext> context;  // made for the first hybrid row
   std::unique_ptr<gl::RasterScene> raster;
 };
@@ -79,7 +80,7 @@ LinearImage traceRow(Sweep& sweep, const FrameSettings& frame, AccuracyRow& row)
 // A hybrid row (hybridKey): OpenGL draws, the tracer fills the mask.
 LinearImage hybridRow(Sweep& sweep, const FrameSettings& frame, const MaskSettings& mask, AccuracyRow& row) {
   if (!sweep.context) {
-    sweep.context = std::make_unique<gl::OffscreenContext>(frame.width, frame.height);
+    sweep.context = std::make_unique<gl::OffscreenContext>(frame.width, frame.height, sweep.gl);
     sweep.raster = std::make_unique<gl::RasterScene>(sweep.context->api(), sweep.prepared.scene());
   }
   LocalTileService local(sweep.prepared, sweep.pool);
@@ -160,7 +161,7 @@ void runAccuracy(const AccuracyOptions& o) {
   ThreadPool pool(resolveThreadCount(o.threads));
   std::unique_ptr<DistributedTileService> remote;
   if (o.remote.any()) remote = connectServers(o.remote, loaded.bundle);
-  Sweep sweep{prepared, pool, o.frames, o.frame.tileSize, remote.get(), nullptr, nullptr};
+  Sweep sweep{prepared, pool, o.frames, o.frame.tileSize, remote.get(), o.gl, nullptr, nullptr};
   LinearImage reference;
   const AccuracyReference ref = renderReference(sweep, scene.frame, o.referenceSamples, dir, reference);
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "client/frame_overrides.h"
+#include "client/headless_gl.h"
 #include "client/tile_backend.h"
 
 namespace glint {
@@ -15,12 +16,13 @@ struct AccuracyOptions {
   std::string outDir;
   std::vector<std::string> vary;  // "KEY=V1,V2,..." each; none: the default sweep
   int referenceSamples = 256;
-  int frames = 3;  // frames per row; the median time is reported
+  int frames = 3;        // frames per row; the median time is reported
   FrameOverrides frame;  // the base every row varies one setting of
   int threads = 0;
   // --server ...: the rows are traced by glintd (their images are the 8-bit
   // frames, so errors below 1/255 are not seen); the reference in process.
   RemoteOptions remote;
+  std::optional<gl::GlBackend> gl;  // --gl: the hybrid rows' headless OpenGL; unset: the default
 };
 
 // Renders a reference and every setting of the sweep, measures each row's

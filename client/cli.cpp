@@ -1,12 +1,12 @@
 #include "client/cli.h"
 
+#include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <functional>
 #include <memory>
-#include <algorithm>
-#include <charconv>
-#include <cmath>
 #include <regex>
 #include <sstream>
 #include <utility>
@@ -16,11 +16,12 @@
 
 #include "client/accuracy_command.h"
 #include "client/info_command.h"
+#include "client/offscreen_context.h"
 #include "client/render_command.h"
 #include "client/server_list.h"
 #include "client/server_source.h"
-#include "client/view_command.h"
 #include "client/usage_error.h"
+#include "client/view_command.h"
 #include "common/base/build_identity.h"
 #include "common/base/error.h"
 #include "common/scene/frame_limits.h"
@@ -130,6 +131,17 @@ CLI::Option* addEnumOption(CLI::App* app, const std::string& name, std::optional
       ->check(CLI::IsMember(enumWordList<Enum>()));
 }
 
+// --gl: which headless OpenGL the raster pass runs on.
+void addGlOption(CLI::App* app, std::optional<gl::GlBackend>& target) {
+  std::string built;
+  for (const gl::GlBackend b : gl::builtGlBackends())
+    built += std::string(built.empty() ? "" : ", ") + std::string(enumWord(b));
+  addEnumOption(app, "--gl", target,
+                "Headless OpenGL for the raster pass: egl (Mesa's surfaceless platform) or osmesa; both draw the same "
+                "bytes (default: the first of " +
+                    built + " that can be had)");
+}
+
 // --server (repeatable, comma-separated), --server-file, --stall-timeout, --scene-timeout and
 // TLS, for render, view and accuracy.
 void addServerOptions(CLI::App* app, RemoteOptions& remote) {
@@ -219,19 +231,21 @@ std::function<void()> declareRender(CLI::App* render) {
   auto options = std::make_shared<RenderOptions>();
   RenderOptions& o = *options;
   render->add_option("scene", o.scene, "Scene file (.json)")->required()->check(CLI::ExistingFile);
-  render->add_option("-o,--output", o.output,
-                     "Image to write, its format by extension: .png (8-bit), .exr (half float, linear), .pfm (float, "
-                     "linear); written only when the render succeeds")
+  render
+      ->add_option("-o,--output", o.output,
+                   "Image to write, its format by extension: .png (8-bit), .exr (half float, linear), .pfm (float, "
+                   "linear); written only when the render succeeds")
       ->required();
   addFrameOptions(render, o.frame);
+  addGlOption(render, o.gl);
   render->add_option("--mask-out", o.maskOut, "Also write the mask as a PNG (white: ray traced)");
   render->add_option("--threads", o.threads, "Render threads; 0 = one per hardware thread")
       ->check(CLI::Range(0, 1024))
       ->default_val(0);
-  render->add_option_function<std::string>(
-            "--crop",
-            [&o](const std::string& text) { o.crop = asUsageError([&] { return parseCrop(text); }); },
-            "Render only pixels X0 <= x < X1, Y0 <= y < Y1 (y from the top) of the frame; the image is that window")
+  render
+      ->add_option_function<std::string>(
+          "--crop", [&o](const std::string& text) { o.crop = asUsageError([&] { return parseCrop(text); }); },
+          "Render only pixels X0 <= x < X1, Y0 <= y < Y1 (y from the top) of the frame; the image is that window")
       ->type_name("X0,Y0,X1,Y1");
   addEnumOption(render, "--bvh", o.bvh, "BVH builder in process (default: sah; qsplit is the thesis's)");
   addServerOptions(render, o.remote);
@@ -241,8 +255,9 @@ std::function<void()> declareRender(CLI::App* render) {
   render->add_option("--stats", o.statsPath,
                      "Write one JSON object per frame (rays by kind, timings, effect plan; docs/stats.md) to FILE; "
                      "- for stdout");
-  render->add_option("--frames", o.frames,
-                     "Render N frames and print the median time of each step (like the thesis's Table 4.1)")
+  render
+      ->add_option("--frames", o.frames,
+                   "Render N frames and print the median time of each step (like the thesis's Table 4.1)")
       ->check(CLI::Range(1, 100000))
       ->default_val(1);
   render->add_flag("-q,--quiet", o.quiet, "No progress and no summary on stderr");
@@ -278,6 +293,7 @@ std::function<void()> declareInfo(CLI::App* info) {
   InfoOptions& o = *options;
   info->add_option("scene", o.scene, "Scene file (.json)")->required()->check(CLI::ExistingFile);
   addFrameOptions(info, o.frame);
+  addGlOption(info, o.gl);
   info->add_flag("!--no-raster", o.raster, "Skip the raster pass (no OpenGL; no traced-pixel count)");
   return [options] { runInfo(*options); };
 }
@@ -285,7 +301,8 @@ std::function<void()> declareInfo(CLI::App* info) {
 constexpr const char* kAccuracyHelp =
     "Show what accuracy costs in time: render a converged reference of the scene, then the scene with one "
     "setting varied at a time (--vary KEY=V1,V2,...; KEY: samples, pattern, filter, max_depth, min_weight, "
-    "mask_threshold, shadow_map; none: a default sweep of every key), and write each setting's time and error against the "
+    "mask_threshold, shadow_map; none: a default sweep of every key), and write each setting's time and error against "
+    "the "
     "reference (accuracy.csv), its images and error images, a plot and report.md to DIR.";
 
 // Declares `glint accuracy`'s options; returns what runs once they are parsed.
@@ -309,6 +326,7 @@ std::function<void()> declareAccuracy(CLI::App* accuracy) {
       ->check(CLI::Range(0, 1024))
       ->default_val(0);
   addServerOptions(accuracy, o.remote);
+  addGlOption(accuracy, o.gl);
   return [options] { runAccuracy(*options); };
 }
 

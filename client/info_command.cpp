@@ -29,13 +29,14 @@ std::string count(std::size_t n, const char* one, const char* many) {
 
 std::string percent(std::size_t part, std::size_t whole) {
   char text[32];
-  std::snprintf(text, sizeof text, "%.1f %%", whole ? 100.0 * static_cast<double>(part) / static_cast<double>(whole) : 0.0);
+  std::snprintf(text, sizeof text, "%.1f %%",
+                whole ? 100.0 * static_cast<double>(part) / static_cast<double>(whole) : 0.0);
   return text;
 }
 
 void printFrame(const FrameSettings& f) {
-  std::printf("  image      %dx%d, %d %s samples a pixel, %s filter, max depth %d, min weight %g\n", f.width,
-              f.height, f.sampling.samples, std::string(enumWord(f.sampling.pattern)).c_str(),
+  std::printf("  image      %dx%d, %d %s samples a pixel, %s filter, max depth %d, min weight %g\n", f.width, f.height,
+              f.sampling.samples, std::string(enumWord(f.sampling.pattern)).c_str(),
               std::string(enumWord(f.sampling.filter)).c_str(), f.tracing.maxDepth, f.tracing.minWeight);
   const CameraSpec& c = f.camera;
   std::printf("  camera     eye %s, look_at %s, up %s, fov_y %g\n", vec(c.eye).c_str(), vec(c.lookAt).c_str(),
@@ -58,7 +59,8 @@ void printBounds(const Scene& scene) {
 
 void printContents(const Scene& scene) {
   const Geometry& g = scene.geometry;
-  std::printf("  objects    %s, %s; %s (%zu dropped: cannot be hit), %s\n", count(g.models().size(), "mesh", "meshes").c_str(),
+  std::printf("  objects    %s, %s; %s (%zu dropped: cannot be hit), %s\n",
+              count(g.models().size(), "mesh", "meshes").c_str(),
               count(g.spheres().size(), "sphere", "spheres").c_str(),
               count(g.triangles().size(), "triangle", "triangles").c_str(), g.droppedTriangles(),
               count(g.positions().size(), "vertex", "vertices").c_str());
@@ -88,9 +90,9 @@ void printContents(const Scene& scene) {
 void printPlan(const Scene& scene) {
   const EffectPlan plan = EffectPlan::derive(scene);
   std::string on, off;
-  const std::pair<const char*, bool> effects[] = {{"shadows", plan.shadows},         {"reflection", plan.reflection},
-                                                  {"refraction", plan.refraction},   {"textures", plan.textures},
-                                                  {"attenuation", plan.attenuation}, {"antialiasing", plan.antialiasing}};
+  const std::pair<const char*, bool> effects[] = {
+      {"shadows", plan.shadows},   {"reflection", plan.reflection},   {"refraction", plan.refraction},
+      {"textures", plan.textures}, {"attenuation", plan.attenuation}, {"antialiasing", plan.antialiasing}};
   for (const auto& [name, needed] : effects) (needed ? on : off).append(" ").append(name);
   std::printf("  effects    simulated:%s; left out:%s\n", on.empty() ? " none" : on.c_str(),
               off.empty() ? " none" : off.c_str());
@@ -100,23 +102,25 @@ void printPlan(const Scene& scene) {
 }
 
 // One raster pass: the pixels the hybrid frame would trace, and why.
-void printHybrid(const Scene& scene, int tileSize) {
+void printHybrid(const Scene& scene, int tileSize, std::optional<gl::GlBackend> backend) {
   const FrameSettings& f = scene.frame;
   const std::size_t pixels = static_cast<std::size_t>(f.width) * static_cast<std::size_t>(f.height);
   if (scene.mask.rule == MaskRule::kAll) {
     std::printf("  hybrid     mask rule all: every pixel traced (%zu)\n", pixels);
     return;
   }
-  gl::OffscreenContext context(f.width, f.height);
+  gl::OffscreenContext context(f.width, f.height, backend);
   gl::RasterScene raster(context.api(), scene);
   HybridResult r;
   markHybrid(context.api(), raster, f, scene.mask, tileSize, r);
   std::size_t marked[4] = {0, 0, 0, 0};  // by PixelMark
   for (const std::uint8_t mark : r.mask) ++marked[markOf(mark)];
-  std::printf("  hybrid     traces %zu of %zu pixels (%s) in %d tiles of %d: %zu of masked objects, %zu of "
-              "undecided shadows, %zu on the raster's edges (raster pass %.1f ms)\n",
-              r.maskedPixels, pixels, percent(r.maskedPixels, pixels).c_str(), r.tiles, tileSize,
-              marked[kMaskedPixel], marked[kShadowEdgePixel], marked[kRasterEdgePixel], r.times.totalMs);
+  std::printf(
+      "  hybrid     traces %zu of %zu pixels (%s) in %d tiles of %d: %zu of masked objects, %zu of "
+      "undecided shadows, %zu on the raster's edges (raster pass %.1f ms)\n",
+      r.maskedPixels, pixels, percent(r.maskedPixels, pixels).c_str(), r.tiles, tileSize, marked[kMaskedPixel],
+      marked[kShadowEdgePixel], marked[kRasterEdgePixel], r.times.totalMs);
+  std::printf("             (OpenGL: %s)\n", std::string(enumWord(context.backend())).c_str());
 }
 
 }  // namespace
@@ -130,7 +134,7 @@ void runInfo(const InfoOptions& options) {
   printBounds(scene);
   printContents(scene);
   printPlan(scene);
-  if (options.raster) printHybrid(scene, options.frame.tileSize);
+  if (options.raster) printHybrid(scene, options.frame.tileSize, options.gl);
 }
 
 }  // namespace glint

@@ -1,16 +1,19 @@
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "client/frame_overrides.h"
+#include "client/headless_gl.h"
 
 namespace glint {
 
 // Options of `glint info`.
 struct InfoOptions {
   std::string scene;
-  FrameOverrides frame;  // the frame's and mask's options, as every command has them
-  bool raster = true;    // --no-raster: skip the raster pass that counts the traced pixels
+  FrameOverrides frame;             // the frame's and mask's options, as every command has them
+  bool raster = true;               // --no-raster: skip the raster pass that counts the traced pixels
+  std::optional<gl::GlBackend> gl;  // --gl: the raster pass's headless OpenGL; unset: the default
 };
 
 // Prints what a scene holds and what rendering it would do: the image and

@@ -1,41 +1,70 @@
 #include "client/offscreen_context.h"
 
-#include <GL/osmesa.h>
+#include <string>
 
 #include "common/base/error.h"
 
 #if defined(__SANITIZE_ADDRESS__)
-// Mesa's OSMesa keeps about 480 bytes per context after
-// OSMesaDestroyContext (also after releasing the context first); under
-// -DGLINT_SANITIZE=ON LeakSanitizer is told that this leak is not Glint's.
-extern "C" const char* __lsan_default_suppressions() { return "leak:libOSMesa.so\n"; }
+// Mesa keeps a few hundred bytes per context after it is destroyed (OSMesa),
+// and EGL's display for the process; under -DGLINT_SANITIZE=ON
+// LeakSanitizer is told that these are not Glint's.
+extern "C" const char* __lsan_default_suppressions() {
+  return "leak:libOSMesa.so\nleak:libEGL_mesa.so\n";
+}
 #endif
 
 namespace glint::gl {
+namespace {
 
-struct OffscreenContext::Impl {
-  OSMesaContext context = nullptr;
-};
-
-OffscreenContext::OffscreenContext(int width, int height)
-    : impl_(std::make_unique<Impl>()),
-      pixels_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4),
-      width_(width),
-      height_(height) {
-  const int attributes[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0, OSMESA_STENCIL_BITS, 0,
-                            OSMESA_PROFILE, OSMESA_COMPAT_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 3,
-                            OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
-  impl_->context = OSMesaCreateContextAttribs(attributes, nullptr);
-  if (!impl_->context) throw InputError("OpenGL: cannot create an OSMesa context (OpenGL 3.3 compatibility)");
-  if (!OSMesaMakeCurrent(impl_->context, pixels_.data(), GL_UNSIGNED_BYTE, width, height)) {
-    OSMesaDestroyContext(impl_->context);
-    throw InputError("OpenGL: cannot make the OSMesa context current");
+std::unique_ptr<HeadlessGl> make(GlBackend backend, int width, int height) {
+  switch (backend) {
+#if defined(GLINT_HAVE_EGL)
+    case GlBackend::kEgl:
+      return makeEglContext();
+#endif
+#if defined(GLINT_HAVE_OSMESA)
+    case GlBackend::kOsmesa:
+      return makeOsmesaContext(width, height);
+#endif
+    default:
+      throw InputError("OpenGL (" + std::string(enumWord(backend)) + "): this glint was built without it");
   }
-  api_ = loadApi([](const char* name) { return reinterpret_cast<void*>(OSMesaGetProcAddress(name)); });
 }
 
-OffscreenContext::~OffscreenContext() {
-  if (impl_->context) OSMesaDestroyContext(impl_->context);
+}  // namespace
+
+const std::vector<GlBackend>& builtGlBackends() {
+  static const std::vector<GlBackend> backends = {
+#if defined(GLINT_HAVE_EGL)
+    GlBackend::kEgl,
+#endif
+#if defined(GLINT_HAVE_OSMESA)
+    GlBackend::kOsmesa,
+#endif
+  };
+  return backends;
 }
+
+OffscreenContext::OffscreenContext(int width, int height, std::optional<GlBackend> backend)
+    : backend_(backend.value_or(GlBackend::kEgl)), width_(width), height_(height) {
+  if (backend) {
+    context_ = make(*backend, width, height);
+  } else {
+    std::string why;
+    for (const GlBackend b : builtGlBackends()) {
+      try {
+        context_ = make(b, width, height);
+        backend_ = b;
+        break;
+      } catch (const InputError& e) {
+        why += std::string(why.empty() ? "" : "; ") + e.what();
+      }
+    }
+    if (!context_) throw InputError("no headless OpenGL context could be made: " + why);
+  }
+  api_ = loadApi([this](const char* name) { return context_->procAddress(name); });
+}
+
+OffscreenContext::~OffscreenContext() = default;
 
 }  // namespace glint::gl

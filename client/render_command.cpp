@@ -236,7 +236,7 @@ std::optional<LinearImage> renderFrames(const RenderRun& run, TileBackend& backe
   std::optional<gl::OffscreenContext> context;
   std::optional<gl::RasterScene> raster;
   if (hybridPath) {
-    context.emplace(frame.width, frame.height);
+    context.emplace(frame.width, frame.height, options.gl);
     raster.emplace(context->api(), scene);
   }
   std::optional<StatsWriter> stats;

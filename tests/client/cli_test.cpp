@@ -347,6 +347,20 @@ TEST_F(Cli, FitFromTheCommandLineOrTheScene) {
   EXPECT_NE(empty.output.find("--fit: the scene has no object to frame"), std::string::npos) << empty.output;
 }
 
+// --gl picks the headless OpenGL; each gives the same image (and info
+// names the one it ran on); a backend glint does not know is a usage error.
+TEST_F(Cli, GlBackendsGiveTheSameImage) {
+  const std::string room = scene("room.json") + " --size 160x120";
+  for (const char* backend : {"egl", "osmesa"}) {
+    const Result run = glint("render " + room + " -q -o " + path(std::string(backend) + ".png") + " --gl " + backend);
+    ASSERT_EQ(run.status, 0) << backend << ": " << run.output;
+    const Result info = glint("info " + room + " --gl " + backend);
+    EXPECT_NE(info.output.find(std::string("(OpenGL: ") + backend + ")"), std::string::npos) << info.output;
+  }
+  EXPECT_EQ(decodePng(path("egl.png")).rgb, decodePng(path("osmesa.png")).rgb);
+  EXPECT_EQ(glint("render " + room + " -o " + path("x.png") + " --gl vulkan").status, 2);
+}
+
 // A scene with comments renders as the same scene without them; --eye,
 // --look-at, --up and --fov render as a scene file with that camera.
 TEST_F(Cli, CommentsAndCameraOverrides) {

@@ -554,6 +554,40 @@ TEST(Hybrid, ReusedResultEqualsAFreshOne) {
   EXPECT_LT(reused.maskedPixels, static_cast<std::size_t>(s.frame.width * s.frame.height));
 }
 
+// Every headless OpenGL this build has draws the same hybrid frame, to the
+// byte: the marks, the raster's colour, the composed image (the thesis's
+// scenes, the glass and the bunny, with shadow maps and traced edges).
+TEST(Hybrid, EveryGlBackendDrawsTheSameBytes) {
+  const std::vector<gl::GlBackend>& backends = gl::builtGlBackends();
+  if (backends.size() < 2) GTEST_SKIP() << "this build has one headless OpenGL";
+  for (const char* name : {"scenes/room.json", "scenes/room-gl-floor.json", "scenes/glass.json", "scenes/bunny.json"}) {
+    const SceneSetup s = load(name);
+    const PreparedScene prepared(s.loaded.scene, BvhSettings{});
+    ThreadPool pool(2);
+    LocalTileService local(prepared, pool);
+    std::vector<HybridResult> results;
+    for (const gl::GlBackend backend : backends) {
+      gl::OffscreenContext context(s.frame.width, s.frame.height, backend);
+      EXPECT_EQ(context.backend(), backend);
+      gl::RasterScene raster(context.api(), prepared.scene());
+      renderHybrid(context.api(), raster, local, s.frame, prepared.scene().mask, 32, results.emplace_back());
+    }
+    for (std::size_t i = 1; i < results.size(); ++i) {
+      EXPECT_EQ(results[i].mask, results[0].mask) << name << ": " << enumWord(backends[i]);
+      EXPECT_EQ(results[i].image.rgb, results[0].image.rgb) << name << ": " << enumWord(backends[i]);
+      EXPECT_GT(results[i].maskedPixels, 0u) << name;
+    }
+  }
+}
+
+// Asked for by name, a backend is that one or an error that names it.
+TEST(Hybrid, AGlBackendAskedForIsTheOneUsed) {
+  for (const gl::GlBackend backend : gl::builtGlBackends()) {
+    EXPECT_EQ(gl::OffscreenContext(16, 16, backend).backend(), backend);
+  }
+  EXPECT_EQ(gl::OffscreenContext(16, 16).backend(), gl::builtGlBackends().front());
+}
+
 // The share of pixels where two images differ by at most `tolerance` in
 // every channel.
 double shareWithin(const FrameImage& a, const FrameImage& b, int tolerance) {
