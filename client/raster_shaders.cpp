@@ -43,7 +43,7 @@ uniform int uLightCount;
 uniform vec3 uLightPosition[MAX_LIGHTS];
 uniform vec3 uLightColor[MAX_LIGHTS];
 uniform vec3 uLightAttenuation[MAX_LIGHTS];
-uniform vec3 uColor;                         // the material's colour (untextured)
+uniform vec3 uColor;                         // the material's colour (times its texture)
 uniform vec4 uTerms;                         // ambient, diffuse, specular, shininess
 uniform vec3 uCheckerColor0;
 uniform vec3 uCheckerColor1;
@@ -90,7 +90,7 @@ float wrap(float x) {
 }
 #endif
 
-vec3 surfaceColour(vec2 uv) {
+vec3 textureColour(vec2 uv) {
 #if defined(TEXTURE_CHECKER)
   float sum = floor(uv.x * uCheckerScale) + floor(uv.y * uCheckerScale);
   return mod(abs(sum), 2.0) == 1.0 ? uCheckerColor1 : uCheckerColor0;
@@ -109,6 +109,15 @@ vec3 surfaceColour(vec2 uv) {
   vec3 bottom = (1.0 - tx) * texel(ix, iy + 1) + tx * texel(ix + 1, iy + 1);
   return (1.0 - ty) * top + ty * bottom;
 #endif
+#else
+  return vec3(1.0);
+#endif
+}
+
+// The material's colour times its texture, as the tracer's shade() takes it.
+vec3 surfaceColour(vec2 uv) {
+#if defined(TEXTURE_CHECKER) || defined(TEXTURE_IMAGE)
+  return uColor * textureColour(uv);
 #else
   return uColor;
 #endif

@@ -24,8 +24,10 @@ glm::vec3 Tracer::lightIntensity(int light, float distance) const {
 
 glm::vec3 Tracer::shade(const SurfaceHit& s, const glm::vec3& outside, const glm::vec3& toViewer,
                         const Material& m, const MaterialEffects& e, RayStats& stats) const {
+  // The colour times the texture (glTF's baseColorFactor x baseColorTexture;
+  // a textured material's colour is 1 unless given, and 1 x t is t exactly).
   const glm::vec3 c =
-      e.textured && m.texture >= 0 ? scene_.textures[m.texture].evaluate(s.uv) : m.color;
+      e.textured && m.texture >= 0 ? m.color * scene_.textures[m.texture].evaluate(s.uv) : m.color;
   glm::vec3 result = phongAmbient(c, m.ambient);
   if (!e.direct) return result;
   for (int i = 0; i < static_cast<int>(scene_.lights.size()); ++i) {

@@ -197,8 +197,7 @@ MeshModel importWithAssimp(FileSource& files, const std::string& path, std::stri
   }
   for (unsigned i = 0; i < scene->mNumMaterials; ++i) {
     Material m = toMaterial(*scene->mMaterials[i]);
-    m.texture = readTexture(*scene, *scene->mMaterials[i], files, path, place, budget, model);
-    if (m.texture >= 0) m.color = glm::vec3(1.0f);
+    m.texture = readTexture(*scene, *scene->mMaterials[i], files, path, place, budget, model);  // times m.color
     model.materials.push_back(std::move(m));
   }
   return model;

@@ -203,7 +203,6 @@ class SceneLoader {
                    "transparency", "ior", "raytrace"});
       Material mat;
       mat.name = name;
-      if (m.has("color") && m.has("texture")) m.fail("give either color or texture, not both");
       mat.color = m.vec3("color", glm::vec3(1.0f));
       if (auto t = m.find("texture")) {
         const std::string texName = t->string();
@@ -212,7 +211,7 @@ class SceneLoader {
         const Texture& tex = scene_.textures[it->second];
         // A solid texture is only a colour: fold it in, no lookups at render time.
         if (tex.type == TextureType::kSolid) {
-          mat.color = tex.colors[0];
+          mat.color *= tex.colors[0];
         } else {
           mat.texture = it->second;
         }

@@ -347,6 +347,43 @@ TEST_F(Cli, FitFromTheCommandLineOrTheScene) {
   EXPECT_NE(empty.output.find("--fit: the scene has no object to frame"), std::string::npos) << empty.output;
 }
 
+// A glTF material's baseColorFactor multiplies its baseColorTexture (it
+// was dropped): Debian's textured box with a red factor renders, in the
+// full trace and in the hybrid frame (the raster draws the matte box), as
+// the box without it in red and black in green and blue.
+TEST_F(Cli, BaseColorFactorTimesTheTexture) {
+  const fs::path models = "/usr/share/assimp/models/glTF2/BoxTextured-glTF";
+  ASSERT_TRUE(fs::exists(models)) << "install assimp-testmodels (make deps)";
+  fs::copy(models, dir_ / "box");
+  std::ifstream in(models / "BoxTextured.gltf");
+  std::string gltf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string texture = "\"baseColorTexture\"";
+  ASSERT_NE(gltf.find(texture), std::string::npos);
+  gltf.replace(gltf.find(texture), texture.size(), "\"baseColorFactor\": [1, 0, 0, 1], " + texture);
+  std::ofstream(dir_ / "box" / "Red.gltf") << gltf;
+  const auto sceneOf = [&](const char* file) {
+    return writeScene(std::string(file) + ".json", R"({"glint": 1, "image": {"width": 96, "height": 72},
+      "camera": {"eye": [2, 1.5, 3], "look_at": [0, 0, 0], "fit": true},
+      "lights": [{"type": "point", "position": [3, 4, 5]}],
+      "objects": [{"type": "mesh", "file": "box/)" + std::string(file) + R"(.gltf"}]})");
+  };
+  for (const char* mask : {"all", "auto"}) {
+    const std::string m = std::string(" -q --mask ") + mask + " -o ";
+    ASSERT_EQ(glint("render " + sceneOf("BoxTextured") + m + path("plain.png")).status, 0);
+    ASSERT_EQ(glint("render " + sceneOf("Red") + m + path("red.png")).status, 0);
+    const Image plain = decodePng(path("plain.png")), red = decodePng(path("red.png"));
+    std::size_t box = 0;
+    for (std::size_t i = 0; i < plain.rgb.size(); i += 3) {
+      if (plain.rgb[i] == 0 && plain.rgb[i + 1] == 0 && plain.rgb[i + 2] == 0) continue;  // the black background
+      ++box;
+      EXPECT_EQ(red.rgb[i], plain.rgb[i]) << mask << " at " << i / 3;
+      EXPECT_EQ(red.rgb[i + 1], 0) << mask << " at " << i / 3;
+      EXPECT_EQ(red.rgb[i + 2], 0) << mask << " at " << i / 3;
+    }
+    EXPECT_GT(box, 1000u) << mask;
+  }
+}
+
 // --gl picks the headless OpenGL; each gives the same image (and info
 // names the one it ran on); a backend glint does not know is a usage error.
 TEST_F(Cli, GlBackendsGiveTheSameImage) {

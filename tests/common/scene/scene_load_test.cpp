@@ -139,12 +139,6 @@ TEST(SceneLoad, BadScenesNameThePlace) {
        "objects[0].material: no material named 'gold'"},
       {"unknown texture", [](json& j) { j["materials"]["m"] = {{"texture", "wood"}}; },
        "materials.m.texture: no texture named 'wood'"},
-      {"color and texture",
-       [](json& j) {
-         j["textures"] = {{"t", {{"type", "solid"}, {"color", {1, 1, 1}}}}};
-         j["materials"]["m"]["texture"] = "t";
-       },
-       "materials.m: give either color or texture"},
       {"zero up", [](json& j) { j["camera"]["up"] = {0, 0, 0}; }, "camera.up: must not be the zero vector"},
       {"up along view", [](json& j) { j["camera"]["up"] = {0, 0, 1}; }, "camera.up: is parallel"},
       {"eye at target", [](json& j) { j["camera"]["look_at"] = {0, 0, 5}; }, "camera.look_at: must differ"},
