@@ -10,6 +10,7 @@
 #include <stb_image.h>
 
 #include "common/base/error.h"
+#include "common/scene/exr_decode.h"
 #include "common/scene/jpeg_decode.h"
 
 namespace glint {
@@ -72,8 +73,8 @@ void checkBmpRows(std::string_view bytes, int width, int height, const std::stri
 // has no signature: its header's colour-map type (0 or 1), image type and
 // bits per pixel must be ones TGA defines, which no other format's first
 // bytes are.
-enum class ImageFormat { kPng, kBmp, kJpeg, kTga, kHdr };
-constexpr const char* kFormats = "PNG, BMP, JPEG, TGA or Radiance HDR";
+enum class ImageFormat { kPng, kBmp, kJpeg, kTga, kHdr, kExr };
+constexpr const char* kFormats = "PNG, BMP, JPEG, TGA, Radiance HDR or OpenEXR";
 
 bool looksLikeTga(std::string_view b) {
   constexpr std::size_t kHeaderBytes = 18;
@@ -90,6 +91,7 @@ std::optional<ImageFormat> imageFormat(std::string_view b) {
   if (b.starts_with("BM")) return ImageFormat::kBmp;
   if (b.starts_with("\xff\xd8\xff")) return ImageFormat::kJpeg;
   if (b.starts_with("#?RADIANCE") || b.starts_with("#?RGBE")) return ImageFormat::kHdr;
+  if (looksLikeExr(b)) return ImageFormat::kExr;
   if (looksLikeTga(b)) return ImageFormat::kTga;
   return std::nullopt;
 }
@@ -113,10 +115,7 @@ Image decodeHdr(const stbi_uc* data, int size, const std::string& place) {
   if (!pixels) throw InputError(place + ": cannot decode image (" + stbi_failure_reason() + ")");
   const auto* linear = static_cast<const float*>(pixels.get());
   Image image{w, h, std::vector<std::uint8_t>(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3)};
-  for (std::size_t i = 0; i < image.rgb.size(); ++i) {
-    const float v = std::isfinite(linear[i]) ? std::clamp(linear[i], 0.0f, 1.0f) : 0.0f;
-    image.rgb[i] = static_cast<std::uint8_t>(std::lround(v * 255.0f));
-  }
+  std::transform(linear, linear + image.rgb.size(), image.rgb.begin(), linearTexelByte);
   return image;
 }
 
@@ -128,7 +127,8 @@ Image decodeImage(std::string_view bytes, const std::string& place, SceneBudget&
     throw InputError(place + ": image file is too large");
   }
   // Only the formats read here reach a decoder (stb_image would try others:
-  // GIF, PSD, PIC, PNM); JPEG goes to libjpeg-turbo (jpeg_decode.h).
+  // GIF, PSD, PIC, PNM); JPEG goes to libjpeg-turbo (jpeg_decode.h) and
+  // OpenEXR to OpenEXR's core library (exr_decode.h).
   const std::optional<ImageFormat> format = imageFormat(bytes);
   if (!format) throw InputError(place + ": not a " + kFormats + " image");
   // The size a header gives, checked and charged before anything is decoded.
@@ -140,6 +140,7 @@ Image decodeImage(std::string_view bytes, const std::string& place, SceneBudget&
     budget.chargeImage(w, h, place);
   };
   if (*format == ImageFormat::kJpeg) return decodeJpeg(bytes, place, admit);
+  if (*format == ImageFormat::kExr) return decodeExr(bytes, place, admit);
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
   const int size = static_cast<int>(bytes.size());
   int w = 0, h = 0, channels = 0;

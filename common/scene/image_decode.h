@@ -8,10 +8,10 @@
 
 namespace glint {
 
-// Decodes a PNG, BMP, JPEG, TGA or Radiance HDR image held in memory into
-// 8-bit RGB texels (an HDR image's linear values clamped to [0, 1]). The size
-// its header gives is checked against the texture limit and charged to the
-// budget before anything is decoded. Images wider or taller than their data,
+// Decodes a PNG, BMP, JPEG, TGA, Radiance HDR or OpenEXR image held in
+// memory into 8-bit RGB texels (an HDR or EXR image's linear values clamped
+// to [0, 1]). The size its header gives is checked against the texture
+// limit and charged to the budget before anything is decoded. Images wider or taller than their data,
 // corrupt, or over a limit are rejected with an InputError that starts with
 // `place`.
 Image decodeImage(std::string_view bytes, const std::string& place, SceneBudget& budget);

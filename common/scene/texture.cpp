@@ -53,6 +53,11 @@ glm::vec3 lookup(const Image& image, ImageFilter filter, const glm::vec2& uv) {
 
 }  // namespace
 
+std::uint8_t linearTexelByte(float linear) {
+  const float v = std::isfinite(linear) ? std::clamp(linear, 0.0f, 1.0f) : 0.0f;
+  return static_cast<std::uint8_t>(std::lround(v * 255.0f));
+}
+
 glm::vec3 Image::texel(std::size_t index) const {
   const std::uint8_t* t = &rgb[3 * index];
   return {kUnit.value[t[0]], kUnit.value[t[1]], kUnit.value[t[2]]};

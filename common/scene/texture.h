@@ -22,6 +22,10 @@ struct Image {
   glm::vec3 texel(std::size_t index) const;
 };
 
+// A linear value (an HDR or EXR image's) as a texel byte: clamped to [0, 1]
+// and rounded to the nearest of 255 steps; a value that is not finite is 0.
+std::uint8_t linearTexelByte(float linear);
+
 enum class TextureType { kSolid, kChecker, kImage };
 enum class ImageFilter { kNearest, kBilinear };
 

@@ -76,7 +76,7 @@ TEST(Docs, SceneFormatExampleRenders) {
 // JPEG cut inside its header.
 TEST(Docs, TextureFormatsListedAreTheOnesThatLoad) {
   const std::string doc = readText(test::sourcePath("docs/scene-format.md"));
-  EXPECT_NE(doc.find("`image` (PNG, BMP, JPEG, TGA or Radiance HDR"), std::string::npos);
+  EXPECT_NE(doc.find("`image` (PNG, BMP, JPEG, TGA, Radiance HDR or\n  OpenEXR"), std::string::npos);
   SceneBudget budget;
   EXPECT_EQ(decodeImage(test::flatPng(3, 2), "png", budget).width, 3);
   const unsigned char bmp[] = {'B', 'M', 58,   0,    0, 0, 0, 0, 0,  0, 54, 0, 0, 0, 40, 0,   0, 0, 1,    0,
@@ -93,6 +93,8 @@ TEST(Docs, TextureFormatsListedAreTheOnesThatLoad) {
   const float linear[] = {0.5f, 0.25f, 0.125f, 1.0f, 2.0f, 0.0f};
   stbi_write_hdr_to_func(into, &hdr, 2, 1, 3, linear);
   for (const std::string* file : {&jpeg, &tga, &hdr}) EXPECT_EQ(decodeImage(*file, "file", budget).width, 2);
+  const std::string exr = readText(test::sourcePath("tests/fuzz/corpus/image/small-zip.exr"));  // OpenEXR wrote it
+  EXPECT_EQ(decodeImage(exr, "exr", budget).width, 4);
   const std::string gif("GIF89a\x01\x00\x01\x00\x00\x00\x00;", 14);
   EXPECT_THROW(decodeImage(gif, "gif", budget), InputError);
   EXPECT_THROW(decodeImage(jpeg.substr(0, 11), "jpeg", budget), InputError);

@@ -1,4 +1,4 @@
-// libFuzzer target: image textures (PNG, BMP, JPEG, TGA, Radiance HDR)
+// libFuzzer target: image textures (PNG, BMP, JPEG, TGA, Radiance HDR, OpenEXR)
 // decoded from memory, with the texture and scene limits a server would
 // apply.
 #include <cstddef>

@@ -9,6 +9,9 @@
 #include <string>
 #include <vector>
 
+#include <OpenEXR/ImfArray.h>
+#include <OpenEXR/ImfRgbaFile.h>
+#include <OpenEXR/ImfTiledRgbaFile.h>
 #include <stb_image_write.h>
 
 #include "common/render/frame.h"
@@ -138,6 +141,41 @@ void sceneSeeds() {
   }
 }
 
+// OpenEXR textures as OpenEXR writes them: scanlines under each lossless
+// and lossy compression (each its own decompressor), tiles, luminance.
+void exrSeeds() {
+  Imf::Array2D<Imf::Rgba> pixels;
+  pixels.resizeErase(3, 4);
+  for (int i = 0; i < 12; ++i) pixels[i / 4][i % 4] = Imf::Rgba(i / 8.0f, 1.0f - i / 12.0f, 0.25f);
+  const fs::path path = fs::temp_directory_path() / "glint-seed.exr";
+  const std::pair<Imf::Compression, const char*> compressions[] = {
+      {Imf::NO_COMPRESSION, "none"}, {Imf::RLE_COMPRESSION, "rle"},  {Imf::ZIPS_COMPRESSION, "zips"},
+      {Imf::ZIP_COMPRESSION, "zip"}, {Imf::PIZ_COMPRESSION, "piz"},  {Imf::PXR24_COMPRESSION, "pxr24"},
+      {Imf::B44_COMPRESSION, "b44"}, {Imf::DWAA_COMPRESSION, "dwaa"}};
+  for (const auto& [compression, name] : compressions) {
+    {
+      Imf::RgbaOutputFile out(path.c_str(), 4, 3, Imf::WRITE_RGB, 1.0f, Imath::V2f(0, 0), 1.0f, Imf::INCREASING_Y,
+                              compression);
+      out.setFrameBuffer(&pixels[0][0], 1, 4);
+      out.writePixels(3);
+    }
+    write("image", std::string("small-") + name + ".exr", readFile(path));
+  }
+  {
+    Imf::RgbaOutputFile out(path.c_str(), 4, 3, Imf::WRITE_Y);
+    out.setFrameBuffer(&pixels[0][0], 1, 4);
+    out.writePixels(3);
+  }
+  write("image", "small-luminance.exr", readFile(path));
+  {
+    Imf::TiledRgbaOutputFile out(path.c_str(), 4, 3, 2, 2, Imf::ONE_LEVEL, Imf::ROUND_DOWN, Imf::WRITE_RGBA);
+    out.setFrameBuffer(&pixels[0][0], 1, 4);
+    out.writeTiles(0, out.numXTiles() - 1, 0, out.numYTiles() - 1);
+  }
+  write("image", "small-tiled.exr", readFile(path));
+  fs::remove(path);
+}
+
 void objAndImageSeeds() {
   write("obj", "cube", std::string(fuzz::kCubeObj).replace(0, 15, "mtllib m.mtl") + "\n#MTL\n" +
                            std::string(fuzz::kCubeMtl));
@@ -169,6 +207,7 @@ void objAndImageSeeds() {
   write("image", "small.jpg", jpeg);
   write("image", "small.tga", tga);
   write("image", "small.hdr", hdr);
+  exrSeeds();
 }
 
 }  // namespace

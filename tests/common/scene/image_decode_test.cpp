@@ -106,7 +106,7 @@ TEST(ImageDecode, AJpegWithTooManyHuffmanCodesIsRefused) {
 }
 
 TEST(ImageDecode, OtherFormatsNeverReachTheDecoder) {
-  const char* expected = "t.png: not a PNG, BMP, JPEG, TGA or Radiance HDR image";
+  const char* expected = "t.png: not a PNG, BMP, JPEG, TGA, Radiance HDR or OpenEXR image";
   EXPECT_NE(decodeError("GIF89a\x01\x00\x01\x00").find(expected), std::string::npos);
   EXPECT_NE(decodeError(std::string("8BPS\0\1\0\0\0\0\0\0\0\3\0\0\0\1\0\0\0\1", 22)).find(expected),
             std::string::npos);                                                               // PSD
