@@ -90,10 +90,7 @@ void printContents(const Scene& scene) {
 void printPlan(const Scene& scene) {
   const EffectPlan plan = EffectPlan::derive(scene);
   std::string on, off;
-  const std::pair<const char*, bool> effects[] = {
-      {"shadows", plan.shadows},   {"reflection", plan.reflection},   {"refraction", plan.refraction},
-      {"textures", plan.textures}, {"attenuation", plan.attenuation}, {"antialiasing", plan.antialiasing}};
-  for (const auto& [name, needed] : effects) (needed ? on : off).append(" ").append(name);
+  for (const NamedEffect& e : namedEffects(plan)) (e.needed ? on : off).append(" ").append(e.name);
   std::printf("  effects    simulated:%s; left out:%s\n", on.empty() ? " none" : on.c_str(),
               off.empty() ? " none" : off.c_str());
   std::printf("  raster     %s\n", rasterShadows(scene, plan, scene.mask)

@@ -20,7 +20,7 @@ namespace glint::gl {
 namespace {
 
 // The texture units the fragment shaders read.
-enum TextureUnit : int { kImageUnit = 0, kShadowMapUnit = 1 };
+enum TextureUnit : int { kImageUnit = 0, kShadowMapUnit = 1, kEmissionUnit = 2 };
 
 unsigned compile(const Api& gl, GLenum type, std::initializer_list<const char*> parts) {
   const unsigned shader = gl.CreateShader(type);
@@ -253,19 +253,24 @@ unsigned RasterScene::program(const ShaderVariant& variant) {
   return made;
 }
 
+TextureKind RasterScene::textureKind(int texture) const {
+  if (texture < 0) return TextureKind::kNone;
+  const Texture& t = scene_.textures[static_cast<std::size_t>(texture)];
+  return t.type == TextureType::kChecker ? TextureKind::kChecker
+         : t.type == TextureType::kSolid ? TextureKind::kNone
+         : t.filter == ImageFilter::kBilinear ? TextureKind::kBilinear
+                                              : TextureKind::kNearest;
+}
+
 ShaderVariant RasterScene::variantOf(const Batch& batch, const FrameSettings& frame, const MaskSettings& mask) const {
   ShaderVariant v;
   v.sphere = batch.spheres;
   const Material& m = scene_.materials[batch.material];
   v.traced = materialMasked(m, mask);
   if (v.traced) return v;
-  if (m.texture >= 0) {
-    const Texture& t = scene_.textures[static_cast<std::size_t>(m.texture)];
-    v.texture = t.type == TextureType::kChecker ? TextureKind::kChecker
-                : t.type == TextureType::kSolid ? TextureKind::kNone
-                : t.filter == ImageFilter::kBilinear ? TextureKind::kBilinear
-                                                    : TextureKind::kNearest;
-  }
+  v.texture = textureKind(m.texture);
+  v.emits = plan_.materials[batch.material].emits;
+  if (v.emits) v.emission = textureKind(m.emissionTexture);
   v.lit = !scene_.lights.empty() && (m.diffuse > 0.0f || m.specular > 0.0f);
   v.specular = v.lit && m.specular > 0.0f;
   v.shadows = v.lit && shadows_ && !batch.spots.empty();
@@ -301,6 +306,7 @@ void RasterScene::setFrameUniforms(unsigned program, const FrameSettings& frame,
     gl_.Uniform3fv(at("uLightAttenuation"), n, glm::value_ptr(attenuations[0]));
   }
   gl_.Uniform1i(at("uImage"), kImageUnit);
+  gl_.Uniform1i(at("uEmissionImage"), kEmissionUnit);
   shadowMaps_.setUniforms(program, kShadowMapUnit, scene_.lights.size(), shadows_);
 }
 
@@ -309,6 +315,11 @@ void RasterScene::setMaterialUniforms(unsigned program, const Material& m) {
   gl_.Uniform3fv(at("uColor"), 1, glm::value_ptr(m.color));
   const glm::vec4 terms(m.ambient, m.diffuse, m.specular, m.shininess);
   gl_.Uniform4fv(at("uTerms"), 1, glm::value_ptr(terms));
+  gl_.Uniform3fv(at("uEmission"), 1, glm::value_ptr(m.emission));
+  if (m.emissionTexture >= 0) {
+    gl_.ActiveTexture(GL_TEXTURE0 + kEmissionUnit);
+    gl_.BindTexture(GL_TEXTURE_2D, images_[static_cast<std::size_t>(m.emissionTexture)]);
+  }
   if (m.texture < 0) return;
   const Texture& t = scene_.textures[static_cast<std::size_t>(m.texture)];
   if (t.type == TextureType::kSolid) gl_.Uniform3fv(at("uColor"), 1, glm::value_ptr(t.colors[0]));

@@ -72,6 +72,8 @@ class RasterScene {
   };
   Projection projection(const FrameSettings& frame) const;
   unsigned program(const ShaderVariant& variant);
+  // The shader kind that reads a material's texture (an index, or -1).
+  TextureKind textureKind(int texture) const;
   ShaderVariant variantOf(const Batch& batch, const FrameSettings& frame, const MaskSettings& mask) const;
   void setFrameUniforms(unsigned program, const FrameSettings& frame, const Projection& projection,
                         const MaskSettings& mask);

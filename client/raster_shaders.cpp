@@ -6,7 +6,8 @@ namespace glint::gl {
 
 int ShaderVariant::key() const {
   return (sphere ? 1 : 0) | (traced ? 2 : 0) | static_cast<int>(texture) << 2 | (lit ? 16 : 0) |
-         (specular ? 32 : 0) | (shadows ? 64 : 0) | (srgb ? 128 : 0) | (depthMap ? 256 : 0);
+         (specular ? 32 : 0) | (shadows ? 64 : 0) | (srgb ? 128 : 0) | (depthMap ? 256 : 0) | (emits ? 512 : 0) |
+         static_cast<int>(emission) << 10;
 }
 
 std::string ShaderVariant::defines() const {
@@ -18,6 +19,9 @@ std::string ShaderVariant::defines() const {
   define(texture == TextureKind::kChecker, "TEXTURE_CHECKER");
   define(texture == TextureKind::kNearest || texture == TextureKind::kBilinear, "TEXTURE_IMAGE");
   define(texture == TextureKind::kBilinear, "TEXTURE_BILINEAR");
+  define(emits, "EMISSIVE");
+  define(emission == TextureKind::kNearest || emission == TextureKind::kBilinear, "EMISSION_IMAGE");
+  define(emission == TextureKind::kBilinear, "EMISSION_BILINEAR");
   define(lit, "LIT");
   define(specular, "SPECULAR");
   define(shadows, "SHADOWS");
@@ -49,6 +53,8 @@ uniform vec3 uCheckerColor0;
 uniform vec3 uCheckerColor1;
 uniform float uCheckerScale;
 uniform sampler2D uImage;                    // the material's image texture, RGB float, read with texelFetch
+uniform vec3 uEmission;                      // the material's emission (times its emission image)
+uniform sampler2D uEmissionImage;            // as uImage
 uniform sampler2DArray uShadowMaps;          // depth: distance from the light / uShadowFar
 uniform int uShadowSize;                     // texels a face edge
 uniform int uShadowLayer[MAX_LIGHTS];        // the light's first face, -1: no map
@@ -76,17 +82,33 @@ uint surfaceOf(int object) {
   return uint(object) << 2 | (gShadowUndecided && uMarkUndecided ? 2u : 0u);
 }
 
-#ifdef TEXTURE_IMAGE
-vec3 texel(int x, int y) {
-  ivec2 size = textureSize(uImage, 0);
+#if defined(TEXTURE_IMAGE) || defined(EMISSION_IMAGE)
+vec3 texel(sampler2D image, int x, int y) {
+  ivec2 size = textureSize(image, 0);
   x = ((x % size.x) + size.x) % size.x;
   y = ((y % size.y) + size.y) % size.y;
-  return texelFetch(uImage, ivec2(x, y), 0).rgb;
+  return texelFetch(image, ivec2(x, y), 0).rgb;
 }
 
 float wrap(float x) {
   float w = x - floor(x);
   return w < 1.0 ? w : 0.0;
+}
+
+// An image texture at uv, as Texture::evaluate reads it (`bilinear` is a
+// constant at each call, so the compiler keeps one filter).
+vec3 imageColour(sampler2D image, vec2 uv, bool bilinear) {
+  vec2 size = vec2(textureSize(image, 0));
+  float x = wrap(uv.x) * size.x;
+  float y = (1.0 - wrap(uv.y)) * size.y;
+  if (!bilinear) return texel(image, int(x), int(y));
+  float fx = x - 0.5, fy = y - 0.5;
+  float x0 = floor(fx), y0 = floor(fy);
+  float tx = fx - x0, ty = fy - y0;
+  int ix = int(x0), iy = int(y0);
+  vec3 top = (1.0 - tx) * texel(image, ix, iy) + tx * texel(image, ix + 1, iy);
+  vec3 bottom = (1.0 - tx) * texel(image, ix, iy + 1) + tx * texel(image, ix + 1, iy + 1);
+  return (1.0 - ty) * top + ty * bottom;
 }
 #endif
 
@@ -94,23 +116,23 @@ vec3 textureColour(vec2 uv) {
 #if defined(TEXTURE_CHECKER)
   float sum = floor(uv.x * uCheckerScale) + floor(uv.y * uCheckerScale);
   return mod(abs(sum), 2.0) == 1.0 ? uCheckerColor1 : uCheckerColor0;
+#elif defined(TEXTURE_BILINEAR)
+  return imageColour(uImage, uv, true);
 #elif defined(TEXTURE_IMAGE)
-  vec2 size = vec2(textureSize(uImage, 0));
-  float x = wrap(uv.x) * size.x;
-  float y = (1.0 - wrap(uv.y)) * size.y;
-#ifndef TEXTURE_BILINEAR
-  return texel(int(x), int(y));
-#else
-  float fx = x - 0.5, fy = y - 0.5;
-  float x0 = floor(fx), y0 = floor(fy);
-  float tx = fx - x0, ty = fy - y0;
-  int ix = int(x0), iy = int(y0);
-  vec3 top = (1.0 - tx) * texel(ix, iy) + tx * texel(ix + 1, iy);
-  vec3 bottom = (1.0 - tx) * texel(ix, iy + 1) + tx * texel(ix + 1, iy + 1);
-  return (1.0 - ty) * top + ty * bottom;
-#endif
+  return imageColour(uImage, uv, false);
 #else
   return vec3(1.0);
+#endif
+}
+
+// The surface's own light, as the tracer's emitted().
+vec3 emitted(vec2 uv) {
+#if defined(EMISSION_BILINEAR)
+  return uEmission * imageColour(uEmissionImage, uv, true);
+#elif defined(EMISSION_IMAGE)
+  return uEmission * imageColour(uEmissionImage, uv, false);
+#else
+  return uEmission;
 #endif
 }
 
@@ -193,6 +215,9 @@ float shadowVisibility(int light, vec3 p, vec3 ng) {
 vec3 shade(vec3 p, vec3 ng, vec3 ns, vec2 uv) {
   vec3 c = surfaceColour(uv);
   vec3 result = c * uTerms.x;
+#ifdef EMISSIVE
+  result += emitted(uv);
+#endif
 #ifdef LIT
   vec3 toViewer = normalize(uEye - p);
   if (dot(ng, toViewer) < 0.0) ng = -ng;

@@ -21,6 +21,8 @@ struct ShaderVariant {
   bool sphere = false;
   bool traced = false;  // a masked material: depth and surface only, no shading
   TextureKind texture = TextureKind::kNone;
+  bool emits = false;                         // the material's emission is added
+  TextureKind emission = TextureKind::kNone;  // its emission texture: none or an image
   bool lit = false;       // diffuse or specular terms (else ambient alone)
   bool specular = false;
   bool shadows = false;   // the shadow maps are read

@@ -14,8 +14,9 @@ namespace {
 // (client/raster_edges.h); 6: the raster reads the shadow maps only where
 // the geometry does not prove the light reaches (client/light_proof.h), and
 // tests OpenGL's own depth; 7: a material's colour multiplies its texture
-// (glTF's baseColorFactor; the scenes' own pixels are unchanged).
-constexpr int kTracerVersion = 7;
+// (glTF's baseColorFactor; the scenes' own pixels are unchanged); 8: a
+// material's emission (glTF's emissiveFactor x emissiveTexture, MTL's Ke).
+constexpr int kTracerVersion = 8;
 
 // FNV-1a: the flags only need a short, stable fingerprint.
 std::uint64_t fingerprint(const char* text) {

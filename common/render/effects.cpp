@@ -44,7 +44,9 @@ EffectPlan EffectPlan::derive(const Scene& scene, const FrameSettings& frame) {
     MaterialEffects e;
     e.direct = m.diffuse > 0.0f || m.specular > 0.0f;
     e.specular = m.specular > 0.0f;
-    e.textured = m.texture >= 0 && scene.textures[m.texture].type != TextureType::kSolid;
+    e.emits = hasPositive(m.emission);
+    e.textured = (m.texture >= 0 && scene.textures[m.texture].type != TextureType::kSolid) ||
+                 (e.emits && m.emissionTexture >= 0);
     // Total internal reflection hands the transparent weight to the reflected
     // ray; it can only happen when the material's index differs from air's.
     const bool tir = m.transparency > 0.0f && m.ior != 1.0f;
@@ -54,6 +56,7 @@ EffectPlan EffectPlan::derive(const Scene& scene, const FrameSettings& frame) {
     plan.reflection = plan.reflection || e.reflects;
     plan.refraction = plan.refraction || e.refracts;
     plan.textures = plan.textures || e.textured;
+    plan.emission = plan.emission || e.emits;
     plan.materials.push_back(e);
   }
   bool anyLight = false;
@@ -71,10 +74,15 @@ EffectPlan EffectPlan::derive(const Scene& scene, const FrameSettings& frame) {
   return plan;
 }
 
+std::vector<NamedEffect> namedEffects(const EffectPlan& plan) {
+  return {{"shadows", plan.shadows},   {"reflection", plan.reflection}, {"refraction", plan.refraction},
+          {"textures", plan.textures}, {"emission", plan.emission},     {"attenuation", plan.attenuation},
+          {"antialiasing", plan.antialiasing}};
+}
+
 nlohmann::json toJson(const EffectPlan& plan) {
-  nlohmann::json j = {{"shadows", plan.shadows},       {"reflection", plan.reflection},
-                      {"refraction", plan.refraction}, {"textures", plan.textures},
-                      {"attenuation", plan.attenuation}, {"antialiasing", plan.antialiasing}};
+  nlohmann::json j = nlohmann::json::object();
+  for (const NamedEffect& e : namedEffects(plan)) j[e.name] = e.needed;
   int active = 0;
   for (bool l : plan.lights) active += l ? 1 : 0;
   j["active_lights"] = active;

@@ -12,7 +12,8 @@ namespace glint {
 struct MaterialEffects {
   bool direct = false;      // diffuse or specular > 0: lights and shadow rays matter
   bool specular = false;    // specular > 0: the (V . R)^h term
-  bool textured = false;    // checker or image texture: uv lookups
+  bool textured = false;    // checker or image texture, or an emission texture: uv lookups
+  bool emits = false;       // emission > 0: light of its own
   bool reflects = false;    // a reflected ray can carry at least min_weight
   bool refracts = false;    // a refracted ray can carry at least min_weight
 };
@@ -26,6 +27,7 @@ struct EffectPlan {
   bool reflection = false;    // reflected rays
   bool refraction = false;    // refracted rays
   bool textures = false;      // texture lookups other than a solid colour
+  bool emission = false;      // a material's light of its own
   bool attenuation = false;   // distance fall-off of some light (other than a constant)
   bool antialiasing = false;  // samples off the pixel centre: several, or jittered
   std::vector<MaterialEffects> materials;
@@ -34,6 +36,14 @@ struct EffectPlan {
   static EffectPlan derive(const Scene& scene, const FrameSettings& frame);
   static EffectPlan derive(const Scene& scene) { return derive(scene, scene.frame); }
 };
+
+// The plan's effects by name, in one order: shadows, reflection,
+// refraction, textures, emission, attenuation, antialiasing.
+struct NamedEffect {
+  const char* name;
+  bool needed;
+};
+std::vector<NamedEffect> namedEffects(const EffectPlan& plan);
 
 nlohmann::json toJson(const EffectPlan& plan);
 

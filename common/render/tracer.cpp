@@ -22,6 +22,10 @@ glm::vec3 Tracer::lightIntensity(int light, float distance) const {
   return attenuate(l.color, l.attenuation, distance);
 }
 
+glm::vec3 Tracer::emitted(const Material& m, const glm::vec2& uv) const {
+  return m.emissionTexture >= 0 ? m.emission * scene_.textures[m.emissionTexture].evaluate(uv) : m.emission;
+}
+
 glm::vec3 Tracer::shade(const SurfaceHit& s, const glm::vec3& outside, const glm::vec3& toViewer,
                         const Material& m, const MaterialEffects& e, RayStats& stats) const {
   // The colour times the texture (glTF's baseColorFactor x baseColorTexture;
@@ -29,6 +33,7 @@ glm::vec3 Tracer::shade(const SurfaceHit& s, const glm::vec3& outside, const glm
   const glm::vec3 c =
       e.textured && m.texture >= 0 ? m.color * scene_.textures[m.texture].evaluate(s.uv) : m.color;
   glm::vec3 result = phongAmbient(c, m.ambient);
+  if (e.emits) result += emitted(m, s.uv);
   if (!e.direct) return result;
   for (int i = 0; i < static_cast<int>(scene_.lights.size()); ++i) {
     if (!plan_.lights[i]) continue;

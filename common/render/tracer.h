@@ -35,6 +35,8 @@ class Tracer {
   glm::vec3 shade(const SurfaceHit& s, const glm::vec3& outside, const glm::vec3& toViewer, const Material& m,
                   const MaterialEffects& e, RayStats& stats) const;
   glm::vec3 lightIntensity(int light, float distance) const;
+  // The surface's own light at uv (Material::emission).
+  glm::vec3 emitted(const Material& m, const glm::vec2& uv) const;
 
   const Scene& scene_;
   const Bvh& bvh_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <initializer_list>
 #include <memory>
 
 #include <assimp/IOStream.hpp>
@@ -10,6 +11,7 @@
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <glm/common.hpp>
 
 #include "common/base/error.h"
 #include "common/scene/image_decode.h"
@@ -106,6 +108,8 @@ Material toMaterial(const aiMaterial& m) {
   if (m.Get(AI_MATKEY_BASE_COLOR, c) == AI_SUCCESS || m.Get(AI_MATKEY_COLOR_DIFFUSE, c) == AI_SUCCESS) {
     out.color = {c.r, c.g, c.b};
   }
+  aiColor3D e;
+  if (m.Get(AI_MATKEY_COLOR_EMISSIVE, e) == AI_SUCCESS) out.emission = glm::max(glm::vec3(e.r, e.g, e.b), glm::vec3(0.0f));
   float opacity = 1.0f, metallic = 0.0f, roughness = 1.0f;
   m.Get(AI_MATKEY_OPACITY, opacity);
   out.transparency = std::clamp(1.0f - opacity, 0.0f, 1.0f);
@@ -117,15 +121,16 @@ Material toMaterial(const aiMaterial& m) {
   return out;
 }
 
-// The material's base colour (or diffuse) texture, from a file beside the
-// mesh or embedded in it; -1 without one, or when its file is missing.
-int readTexture(const aiScene& scene, const aiMaterial& m, FileSource& files, const std::string& path,
-                const std::string& place, SceneBudget& budget, MeshModel& model) {
+// The material's texture of the first of `types` it has, from a file
+// beside the mesh or embedded in it; -1 without one, or when its file is
+// missing.
+int readTexture(const aiScene& scene, const aiMaterial& m, std::initializer_list<aiTextureType> types,
+                FileSource& files, const std::string& path, const std::string& place, SceneBudget& budget,
+                MeshModel& model) {
   aiString uri;
-  if (m.GetTexture(aiTextureType_BASE_COLOR, 0, &uri) != AI_SUCCESS &&
-      m.GetTexture(aiTextureType_DIFFUSE, 0, &uri) != AI_SUCCESS) {
-    return -1;
-  }
+  const bool found = std::any_of(types.begin(), types.end(),
+                                 [&](aiTextureType type) { return m.GetTexture(type, 0, &uri) == AI_SUCCESS; });
+  if (!found) return -1;
   const std::string texPlace = place + " (texture " + uri.C_Str() + ")";
   std::string bytes;
   if (const aiTexture* embedded = scene.GetEmbeddedTexture(uri.C_Str())) {
@@ -197,7 +202,12 @@ MeshModel importWithAssimp(FileSource& files, const std::string& path, std::stri
   }
   for (unsigned i = 0; i < scene->mNumMaterials; ++i) {
     Material m = toMaterial(*scene->mMaterials[i]);
-    m.texture = readTexture(*scene, *scene->mMaterials[i], files, path, place, budget, model);  // times m.color
+    const aiMaterial& from = *scene->mMaterials[i];
+    m.texture = readTexture(*scene, from, {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE}, files, path, place,
+                            budget, model);  // times m.color
+    if (m.emission != glm::vec3(0.0f)) {
+      m.emissionTexture = readTexture(*scene, from, {aiTextureType_EMISSIVE}, files, path, place, budget, model);
+    }
     model.materials.push_back(std::move(m));
   }
   return model;

@@ -13,8 +13,12 @@ enum class RaytraceRule { kAuto, kAlways, kNever };
 // The thesis's material; defaults are the scene format's.
 struct Material {
   std::string name;
-  glm::vec3 color{1.0f};  // surface colour C when there is no texture
+  glm::vec3 color{1.0f};  // times the texture: the surface colour C
   int texture = -1;       // index into Scene::textures, or -1
+  // Light of the surface's own, added to what it reflects (it lights
+  // nothing else): emission times the emission texture, an image.
+  glm::vec3 emission{0.0f};
+  int emissionTexture = -1;  // index into Scene::textures, or -1
   float ambient = 0.0f;   // r_A
   float diffuse = 1.0f;   // r_D
   float specular = 0.0f;  // r_S

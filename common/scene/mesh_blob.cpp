@@ -9,7 +9,7 @@ namespace glint {
 namespace {
 
 constexpr std::string_view kMagic = "GLINTMSH";
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 2;
 
 class Writer {
  public:
@@ -78,6 +78,8 @@ void writeMaterial(Writer& w, const Material& m) {
   w.putString(m.name);
   w.put(m.color);
   w.put(static_cast<std::int32_t>(m.texture));
+  w.put(m.emission);
+  w.put(static_cast<std::int32_t>(m.emissionTexture));
   for (const float v : {m.ambient, m.diffuse, m.specular, m.shininess, m.reflectivity, m.transparency, m.ior}) {
     w.put(v);
   }
@@ -89,7 +91,11 @@ Material readMaterial(Reader& r, std::size_t textures) {
   m.name = r.getString();
   m.color = r.get<glm::vec3>();
   m.texture = r.get<std::int32_t>();
-  if (m.texture < -1 || m.texture >= static_cast<std::int64_t>(textures)) r.fail("names a texture it does not hold");
+  m.emission = r.get<glm::vec3>();
+  m.emissionTexture = r.get<std::int32_t>();
+  for (const int t : {m.texture, m.emissionTexture}) {
+    if (t < -1 || t >= static_cast<std::int64_t>(textures)) r.fail("names a texture it does not hold");
+  }
   for (float* v : {&m.ambient, &m.diffuse, &m.specular, &m.shininess, &m.reflectivity, &m.transparency, &m.ior}) {
     *v = r.get<float>();
   }

@@ -6,6 +6,8 @@
 #include <unordered_map>
 #include <tuple>
 
+#include <glm/common.hpp>
+
 #include "common/base/array_hash.h"
 #include "common/base/error.h"
 #include "common/base/heap_tuning.h"
@@ -40,11 +42,12 @@ bool mtlReflects(int illum) { return illum >= 3 && illum <= 7; }
 // MTL -> Glint: Kd is the surface colour C (or map_Kd the texture) with r_D
 // = 1, so that C r_D = Kd; r_A and r_S are the means of Ka and Ks; Ns is h;
 // Ni the index; d (or 1 - Tr) the opacity; under illum 3 to 7 the mean of
-// Ks is also the reflectivity.
+// Ks is also the reflectivity; Ke is the emission.
 Material toMaterial(const tinyobj::material_t& m) {
   Material out;
   out.name = m.name;
   out.color = {m.diffuse[0], m.diffuse[1], m.diffuse[2]};
+  out.emission = glm::max(glm::vec3(m.emission[0], m.emission[1], m.emission[2]), glm::vec3(0.0f));
   out.ambient = mean(m.ambient);
   out.diffuse = 1.0f;
   out.specular = mean(m.specular);

@@ -4,6 +4,7 @@
 #include <map>
 
 #include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
 
 #include "common/base/error.h"
 #include "common/scene/frame_limits.h"
@@ -195,27 +196,48 @@ class SceneLoader {
     return images_.get(normalisePath(file.string()), file.path());
   }
 
+  const Texture& namedTexture(const JsonReader& t) const {
+    const std::string texName = t.string();
+    const auto it = textureIndex_.find(texName);
+    if (it == textureIndex_.end()) t.fail("no texture named '" + texName + "' in textures");
+    return scene_.textures[it->second];
+  }
+
+  // emission times emission_texture (either alone is the emission; default
+  // none): an image, or a solid colour folded in.
+  void readEmission(const JsonReader& m, Material& mat) const {
+    const auto t = m.find("emission_texture");
+    mat.emission = m.vec3("emission", glm::vec3(t ? 1.0f : 0.0f));
+    if (glm::any(glm::lessThan(mat.emission, glm::vec3(0.0f)))) m.find("emission")->fail("must not be negative");
+    if (!t) return;
+    const Texture& tex = namedTexture(*t);
+    if (tex.type == TextureType::kChecker) t->fail("must name an image or solid texture, not a checker");
+    if (tex.type == TextureType::kSolid) {
+      mat.emission *= tex.colors[0];
+    } else {
+      mat.emissionTexture = textureIndex_.at(t->string());
+    }
+  }
+
   void readMaterials(const JsonReader& r) {
     r.requireObject();
     for (const auto& [name, value] : r.raw().items()) {
       const JsonReader m(value, r.path() + "." + name);
-      m.allowKeys({"color", "texture", "ambient", "diffuse", "specular", "shininess", "reflectivity",
-                   "transparency", "ior", "raytrace"});
+      m.allowKeys({"color", "texture", "emission", "emission_texture", "ambient", "diffuse", "specular",
+                   "shininess", "reflectivity", "transparency", "ior", "raytrace"});
       Material mat;
       mat.name = name;
       mat.color = m.vec3("color", glm::vec3(1.0f));
       if (auto t = m.find("texture")) {
-        const std::string texName = t->string();
-        const auto it = textureIndex_.find(texName);
-        if (it == textureIndex_.end()) t->fail("no texture named '" + texName + "' in textures");
-        const Texture& tex = scene_.textures[it->second];
+        const Texture& tex = namedTexture(*t);
         // A solid texture is only a colour: fold it in, no lookups at render time.
         if (tex.type == TextureType::kSolid) {
           mat.color *= tex.colors[0];
         } else {
-          mat.texture = it->second;
+          mat.texture = textureIndex_.at(t->string());
         }
       }
+      readEmission(m, mat);
       mat.ambient = m.number("ambient", 0.0f, 0.0f);
       mat.diffuse = m.number("diffuse", 1.0f, 0.0f);
       mat.specular = m.number("specular", 0.0f, 0.0f);
@@ -427,6 +449,7 @@ class SceneLoader {
         continue;
       }
       if (m.texture >= 0) m.texture += textureBase;
+      if (m.emissionTexture >= 0) m.emissionTexture += textureBase;
       m.name = o.path() + ":" + m.name;
       index.push_back(static_cast<std::uint32_t>(scene_.materials.size()));
       scene_.materials.push_back(std::move(m));

@@ -6,12 +6,14 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "common/image/encoding.h"
 #include "tests/support/glint_run.h"
 #include "tests/support/glintd_process.h"
+#include "tests/support/test_support.h"
 
 namespace {
 
@@ -382,6 +384,95 @@ TEST_F(Cli, BaseColorFactorTimesTheTexture) {
     }
     EXPECT_GT(box, 1000u) << mask;
   }
+}
+
+// A material's emission (times its emission texture) is light of its own:
+// on the panel that has it, every renderer (the full trace, the raster
+// alone, the hybrid frame) adds exactly emission x texel to the pixels of
+// the panel without it, and not one other pixel changes (it lights nothing).
+TEST_F(Cli, EmissionAddsToItsSurfaceOnly) {
+  std::ofstream(path("glow.png"), std::ios::binary) << glint::test::flatPng(2, 2);  // texels 200 / 255
+  const auto sceneWith = [&](const std::string& name, const std::string& emission) {
+    return writeScene(name, R"({"glint": 1, "image": {"width": 64, "height": 48},
+      "camera": {"eye": [0, 0.5, 5], "look_at": [0, 0, 0]}, "background": [0, 0, 0.2],
+      "textures": {"glow": {"type": "image", "file": "glow.png"}},
+      "materials": {"panel": {"color": [0.4, 0.4, 0.4], "ambient": 0.1)" + emission + R"(},
+                    "floor": {"color": [0.8, 0.8, 0.8], "ambient": 0.1}},
+      "lights": [{"type": "point", "position": [2, 3, 4]}],
+      "objects": [{"type": "quad", "corners": [[-1, -0.5, 0], [1, -0.5, 0], [1, 1, 0], [-1, 1, 0]],
+                   "uvs": [[0, 0], [1, 0], [1, 1], [0, 1]], "material": "panel"},
+                  {"type": "quad", "corners": [[-4, -1, -4], [4, -1, -4], [4, -1, 4], [-4, -1, 4]],
+                   "material": "floor"}]})");
+  };
+  const std::string plain = sceneWith("plain.json", "");
+  const std::string glowing = sceneWith("glow.json", R"(, "emission": [0.6, 0.3, 0], "emission_texture": "glow")");
+  for (const char* mask : {"all", "none", "auto"}) {
+    const std::string m = std::string(" -q --mask ") + mask + " -o ";
+    ASSERT_EQ(glint("render " + plain + m + path("plain.png")).status, 0);
+    ASSERT_EQ(glint("render " + glowing + m + path("glow.png.out.png")).status, 0);
+    const Image before = decodePng(path("plain.png")), after = decodePng(path("glow.png.out.png"));
+    ASSERT_EQ(before.rgb.size(), after.rgb.size());
+    std::size_t panel = 0, unchanged = 0;
+    for (std::size_t i = 0; i < before.rgb.size(); i += 3) {
+      const int dr = after.rgb[i] - before.rgb[i], dg = after.rgb[i + 1] - before.rgb[i + 1];
+      const int db = after.rgb[i + 2] - before.rgb[i + 2];
+      if (dr == 0 && dg == 0 && db == 0) {
+        ++unchanged;
+        continue;
+      }
+      ++panel;  // 0.6 x 200 = 120 and 0.3 x 200 = 60, each within the rounding of a sum
+      EXPECT_TRUE(std::abs(dr - 120) <= 1 && std::abs(dg - 60) <= 1 && db == 0)
+          << mask << " at " << i / 3 << ": " << dr << " " << dg << " " << db;
+    }
+    EXPECT_GT(panel, 300u) << mask;
+    EXPECT_GT(unchanged, 2000u) << mask;
+  }
+}
+
+// A glTF material's emissiveFactor times its emissiveTexture is the
+// emission: Debian's textured box emitting its own texture in red adds
+// light to red alone, the same in the full trace and the hybrid frame, and
+// through a server (the imported material travels with the mesh).
+TEST_F(Cli, GltfEmissionAsAuthored) {
+  const fs::path models = "/usr/share/assimp/models/glTF2/BoxTextured-glTF";
+  ASSERT_TRUE(fs::exists(models)) << "install assimp-testmodels (make deps)";
+  fs::copy(models, dir_ / "box");
+  std::ifstream in(models / "BoxTextured.gltf");
+  std::string gltf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string name = "\"name\": \"Texture\"";
+  ASSERT_NE(gltf.find(name), std::string::npos);
+  gltf.replace(gltf.find(name), name.size(), "\"emissiveFactor\": [0.5, 0, 0], \"emissiveTexture\": {\"index\": 0}, " + name);
+  std::ofstream(dir_ / "box" / "Glow.gltf") << gltf;
+  const auto sceneOf = [&](const char* file) {
+    return writeScene(std::string(file) + ".json", R"({"glint": 1, "image": {"width": 96, "height": 72},
+      "camera": {"eye": [2, 1.5, 3], "look_at": [0, 0, 0], "fit": true},
+      "lights": [{"type": "point", "position": [3, 4, 5]}],
+      "objects": [{"type": "mesh", "file": "box/)" + std::string(file) + R"(.gltf"}]})");
+  };
+  glint::server::test::GlintdProcess server({"--threads", "1"});
+  std::vector<int> redAdded[2];
+  for (const char* mask : {"all", "auto"}) {
+    const std::string m = std::string(" -q --mask ") + mask + " -o ";
+    ASSERT_EQ(glint("render " + sceneOf("BoxTextured") + m + path("plain.png")).status, 0);
+    ASSERT_EQ(glint("render " + sceneOf("Glow") + m + path("glow.png")).status, 0);
+    ASSERT_EQ(glint("render " + sceneOf("Glow") + m + path("served.png") + " --server " + server.address()).status, 0);
+    const Image plain = decodePng(path("plain.png")), glow = decodePng(path("glow.png"));
+    EXPECT_EQ(decodePng(path("served.png")).rgb, glow.rgb) << mask;
+    std::vector<int>& added = redAdded[mask[0] == 'a' && mask[1] == 'l' ? 0 : 1];
+    for (std::size_t i = 0; i < plain.rgb.size(); i += 3) {
+      added.push_back(glow.rgb[i] - plain.rgb[i]);
+      EXPECT_EQ(glow.rgb[i + 1], plain.rgb[i + 1]) << mask << " at " << i / 3;
+      EXPECT_EQ(glow.rgb[i + 2], plain.rgb[i + 2]) << mask << " at " << i / 3;
+    }
+  }
+  std::size_t glowing = 0, apart = 0;  // apart: the two frames disagree (a texel's edge, a silhouette)
+  for (std::size_t i = 0; i < redAdded[0].size(); ++i) {
+    apart += std::abs(redAdded[0][i] - redAdded[1][i]) > 2 ? 1 : 0;
+    EXPECT_GE(redAdded[0][i], 0) << "at " << i;
+    glowing += redAdded[0][i] > 20 ? 1 : 0;
+  }
+  EXPECT_GT(glowing, 1000u);
+  EXPECT_LE(apart, glowing / 100);
 }
 
 // --gl picks the headless OpenGL; each gives the same image (and info

@@ -37,8 +37,13 @@ FrameResult render(const Scene& scene, const EffectPlan& plan, int threads, int 
 EffectPlan everyEffect(const Scene& scene) {
   EffectPlan plan;
   plan.shadows = plan.reflection = plan.refraction = true;
-  plan.textures = plan.attenuation = plan.antialiasing = true;
-  plan.materials.assign(scene.materials.size(), MaterialEffects{true, true, true, true, true});
+  plan.textures = plan.emission = plan.attenuation = plan.antialiasing = true;
+  plan.materials.assign(scene.materials.size(), MaterialEffects{.direct = true,
+                                                                .specular = true,
+                                                                .textured = true,
+                                                                .emits = true,
+                                                                .reflects = true,
+                                                                .refracts = true});
   plan.lights.assign(scene.lights.size(), true);
   return plan;
 }

@@ -1,5 +1,7 @@
 #include "common/render/effects.h"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -39,6 +41,7 @@ TEST(Effects, RoomPlan) {
   EXPECT_TRUE(p.textures);
   EXPECT_TRUE(p.attenuation);
   EXPECT_TRUE(p.antialiasing);
+  EXPECT_FALSE(p.emission);
 }
 
 TEST(Effects, NoShadowRaysWhereNothingCanCastAShadow) {
@@ -120,6 +123,33 @@ TEST(Effects, NoRefractionWithoutTransparency) {
   const auto [derived, full] = derivedAndFull(s);
   EXPECT_EQ(derived.stats.refraction, 0u);
   EXPECT_GT(derived.stats.reflection, 0u);
+}
+
+// Emission is added only where a material emits; with it, the derived plan
+// still renders the bytes every effect does, and an emitting sphere without
+// lights shows its emission (ambient 0.1 x colour plus it) and nothing else.
+TEST(Effects, EmissionOnlyWhereAMaterialEmits) {
+  json j = sphereScene();
+  j["materials"]["glow"] = {{"color", {1, 1, 1}}, {"ambient", 0.1}, {"emission", {0.5, 0.25, 0.0}}};
+  j["objects"].push_back({{"type", "sphere"}, {"center", {1.5, 0, 0}}, {"radius", 0.4}, {"material", "glow"}});
+  const Scene s = test::sceneFromJson(j.dump());
+  const EffectPlan plan = EffectPlan::derive(s);
+  EXPECT_TRUE(plan.emission);
+  for (std::size_t i = 0; i < s.materials.size(); ++i) {
+    EXPECT_EQ(plan.materials[i].emits, s.materials[i].name == "glow") << s.materials[i].name;
+    EXPECT_FALSE(plan.materials[i].textured) << s.materials[i].name;
+  }
+  derivedAndFull(s);
+  EXPECT_FALSE(EffectPlan::derive(test::sceneFromJson(sphereScene().dump())).emission);
+
+  j["lights"] = json::array();
+  j["objects"].erase(0);
+  const Scene dark = test::sceneFromJson(j.dump());
+  const FrameResult r = test::render(dark, EffectPlan::derive(dark), 1);
+  const test::Rgb centre = test::pixelAt(r.image, 35, 16);  // the sphere: 1.5 right of the middle, 11.6 pixels
+  EXPECT_EQ(centre.r, std::lround(255 * 0.6f));
+  EXPECT_EQ(centre.g, std::lround(255 * 0.35f));
+  EXPECT_EQ(centre.b, std::lround(255 * 0.1f));
 }
 
 TEST(Effects, GlassSceneRefracts) {

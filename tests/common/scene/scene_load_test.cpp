@@ -70,6 +70,30 @@ TEST(SceneLoad, DefaultsAreTheFormats) {
   EXPECT_EQ(s.frame.camera.up, glm::vec3(0, 1, 0));
 }
 
+// emission times emission_texture, either alone the emission, none by
+// default; a solid texture folds into the emission.
+TEST(SceneLoad, EmissionAndItsTexture) {
+  json j = minimalScene();
+  j["textures"] = {{"glow", {{"type", "solid"}, {"color", {0.5, 1, 0.25}}}}};
+  j["materials"]["both"] = {{"emission", {2, 2, 2}}, {"emission_texture", "glow"}};
+  j["materials"]["texture"] = {{"emission_texture", "glow"}};
+  j["materials"]["colour"] = {{"emission", {0.1, 0.2, 0.3}}};
+  MemorySource files;
+  const Scene s = loadScene(j.dump(), files);
+  const auto material = [&s](const std::string& name) {
+    for (const Material& m : s.materials) {
+      if (m.name == name) return m;
+    }
+    ADD_FAILURE() << "no material " << name;
+    return Material{};
+  };
+  EXPECT_EQ(material("m").emission, glm::vec3(0.0f));
+  EXPECT_EQ(material("both").emission, glm::vec3(1.0f, 2.0f, 0.5f));
+  EXPECT_EQ(material("texture").emission, glm::vec3(0.5f, 1.0f, 0.25f));
+  EXPECT_EQ(material("colour").emission, glm::vec3(0.1f, 0.2f, 0.3f));
+  for (const Material& m : s.materials) EXPECT_EQ(m.emissionTexture, -1) << m.name;
+}
+
 TEST(SceneLoad, TransformsScaleRotateTranslateInThatOrder) {
   json j = minimalScene();
   j["objects"][0]["transform"] = {{"scale", 2}, {"rotate", {0, 0, 1, 90}}, {"translate", {1, 0, 0}}};
@@ -139,6 +163,16 @@ TEST(SceneLoad, BadScenesNameThePlace) {
        "objects[0].material: no material named 'gold'"},
       {"unknown texture", [](json& j) { j["materials"]["m"] = {{"texture", "wood"}}; },
        "materials.m.texture: no texture named 'wood'"},
+      {"negative emission", [](json& j) { j["materials"]["m"]["emission"] = {1, -0.5, 0}; },
+       "materials.m.emission: must not be negative"},
+      {"checker emission",
+       [](json& j) {
+         j["textures"] = {{"c", {{"type", "checker"}, {"colors", {{0, 0, 0}, {1, 1, 1}}}, {"scale", 2}}}};
+         j["materials"]["m"]["emission_texture"] = "c";
+       },
+       "materials.m.emission_texture: must name an image or solid texture, not a checker"},
+      {"unknown emission texture", [](json& j) { j["materials"]["m"]["emission_texture"] = "glow"; },
+       "materials.m.emission_texture: no texture named 'glow'"},
       {"zero up", [](json& j) { j["camera"]["up"] = {0, 0, 0}; }, "camera.up: must not be the zero vector"},
       {"up along view", [](json& j) { j["camera"]["up"] = {0, 0, 1}; }, "camera.up: is parallel"},
       {"eye at target", [](json& j) { j["camera"]["look_at"] = {0, 0, 5}; }, "camera.look_at: must differ"},
