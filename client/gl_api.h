@@ -49,6 +49,7 @@ namespace glint::gl {
   X(Uniform1fv) \
   X(Uniform3fv) \
   X(Uniform4fv) \
+  X(UniformMatrix3x2fv) \
   X(UniformMatrix4fv) \
   X(GenVertexArrays) \
   X(BindVertexArray) \

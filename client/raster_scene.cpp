@@ -310,6 +310,12 @@ void RasterScene::setFrameUniforms(unsigned program, const FrameSettings& frame,
   shadowMaps_.setUniforms(program, kShadowMapUnit, scene_.lights.size(), shadows_);
 }
 
+void RasterScene::setUvTransform(int location, const std::optional<UvTransform>& transform) {
+  const UvTransform t = transform.value_or(UvTransform{});
+  const glm::mat3x2 columns(t.m[0], t.m[1], t.offset);
+  gl_.UniformMatrix3x2fv(location, 1, GL_FALSE, glm::value_ptr(columns));
+}
+
 void RasterScene::setMaterialUniforms(unsigned program, const Material& m) {
   const auto at = [&](const char* name) { return gl_.GetUniformLocation(program, name); };
   gl_.Uniform3fv(at("uColor"), 1, glm::value_ptr(m.color));
@@ -317,11 +323,14 @@ void RasterScene::setMaterialUniforms(unsigned program, const Material& m) {
   gl_.Uniform4fv(at("uTerms"), 1, glm::value_ptr(terms));
   gl_.Uniform3fv(at("uEmission"), 1, glm::value_ptr(m.emission));
   if (m.emissionTexture >= 0) {
+    const Texture& e = scene_.textures[static_cast<std::size_t>(m.emissionTexture)];
+    setUvTransform(at("uEmissionTransform"), e.transform);
     gl_.ActiveTexture(GL_TEXTURE0 + kEmissionUnit);
     gl_.BindTexture(GL_TEXTURE_2D, images_[static_cast<std::size_t>(m.emissionTexture)]);
   }
   if (m.texture < 0) return;
   const Texture& t = scene_.textures[static_cast<std::size_t>(m.texture)];
+  setUvTransform(at("uImageTransform"), t.transform);
   if (t.type == TextureType::kSolid) gl_.Uniform3fv(at("uColor"), 1, glm::value_ptr(t.colors[0]));
   gl_.Uniform3fv(at("uCheckerColor0"), 1, glm::value_ptr(t.colors[0]));
   gl_.Uniform3fv(at("uCheckerColor1"), 1, glm::value_ptr(t.colors[1]));

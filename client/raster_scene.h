@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -78,6 +79,8 @@ class RasterScene {
   void setFrameUniforms(unsigned program, const FrameSettings& frame, const Projection& projection,
                         const MaskSettings& mask);
   void setMaterialUniforms(unsigned program, const Material& material);
+  // A texture's uv transform (identity for none) into a mat3x2 uniform.
+  void setUvTransform(int location, const std::optional<UvTransform>& transform);
   void setViewUniforms(unsigned program, const Projection& projection);
   // The shadow maps `mask` calls for, drawn if they are not yet; false when
   // it calls for none.

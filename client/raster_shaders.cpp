@@ -53,8 +53,10 @@ uniform vec3 uCheckerColor0;
 uniform vec3 uCheckerColor1;
 uniform float uCheckerScale;
 uniform sampler2D uImage;                    // the material's image texture, RGB float, read with texelFetch
+uniform mat3x2 uImageTransform;              // the texture's uv transform (Texture::transform)
 uniform vec3 uEmission;                      // the material's emission (times its emission image)
 uniform sampler2D uEmissionImage;            // as uImage
+uniform mat3x2 uEmissionTransform;
 uniform sampler2DArray uShadowMaps;          // depth: distance from the light / uShadowFar
 uniform int uShadowSize;                     // texels a face edge
 uniform int uShadowLayer[MAX_LIGHTS];        // the light's first face, -1: no map
@@ -112,7 +114,8 @@ vec3 imageColour(sampler2D image, vec2 uv, bool bilinear) {
 }
 #endif
 
-vec3 textureColour(vec2 uv) {
+vec3 textureColour(vec2 given) {
+  vec2 uv = uImageTransform * vec3(given, 1.0);
 #if defined(TEXTURE_CHECKER)
   float sum = floor(uv.x * uCheckerScale) + floor(uv.y * uCheckerScale);
   return mod(abs(sum), 2.0) == 1.0 ? uCheckerColor1 : uCheckerColor0;
@@ -126,7 +129,8 @@ vec3 textureColour(vec2 uv) {
 }
 
 // The surface's own light, as the tracer's emitted().
-vec3 emitted(vec2 uv) {
+vec3 emitted(vec2 given) {
+  vec2 uv = uEmissionTransform * vec3(given, 1.0);
 #if defined(EMISSION_BILINEAR)
   return uEmission * imageColour(uEmissionImage, uv, true);
 #elif defined(EMISSION_IMAGE)

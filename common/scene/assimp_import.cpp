@@ -1,6 +1,7 @@
 #include "common/scene/assimp_import.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <initializer_list>
 #include <memory>
@@ -14,6 +15,7 @@
 #include <glm/common.hpp>
 
 #include "common/base/error.h"
+#include "common/scene/gltf_texture_transform.h"
 #include "common/scene/image_decode.h"
 
 namespace glint {
@@ -121,6 +123,19 @@ Material toMaterial(const aiMaterial& m) {
   return out;
 }
 
+// The KHR_texture_transform Assimp's glTF importer read (its transform
+// turns the other way about the image's centre, with v up, so it moved the
+// offset: undone here).
+KhrTextureTransform khrTransform(const aiUVTransform& uv) {
+  KhrTextureTransform t;
+  t.scale = {uv.mScaling.x, uv.mScaling.y};
+  t.rotation = -uv.mRotation;
+  const double c = std::cos(t.rotation), s = std::sin(t.rotation);
+  t.offset.x = uv.mTranslation.x - 0.5 * t.scale.x * (1.0 - c + s);
+  t.offset.y = 1.0 - t.scale.y + 0.5 * t.scale.y * (s + c - 1.0) - uv.mTranslation.y;
+  return t;
+}
+
 // The material's texture of the first of `types` it has, from a file
 // beside the mesh or embedded in it; -1 without one, or when its file is
 // missing.
@@ -128,9 +143,9 @@ int readTexture(const aiScene& scene, const aiMaterial& m, std::initializer_list
                 FileSource& files, const std::string& path, const std::string& place, SceneBudget& budget,
                 MeshModel& model) {
   aiString uri;
-  const bool found = std::any_of(types.begin(), types.end(),
-                                 [&](aiTextureType type) { return m.GetTexture(type, 0, &uri) == AI_SUCCESS; });
-  if (!found) return -1;
+  const auto type = std::find_if(types.begin(), types.end(),
+                                 [&](aiTextureType t) { return m.GetTexture(t, 0, &uri) == AI_SUCCESS; });
+  if (type == types.end()) return -1;
   const std::string texPlace = place + " (texture " + uri.C_Str() + ")";
   std::string bytes;
   if (const aiTexture* embedded = scene.GetEmbeddedTexture(uri.C_Str())) {
@@ -148,6 +163,8 @@ int readTexture(const aiScene& scene, const aiMaterial& m, std::initializer_list
   Texture tex;
   tex.type = TextureType::kImage;
   tex.image = std::make_shared<Image>(decodeImage(bytes, texPlace, budget));
+  aiUVTransform uv;
+  if (m.Get(AI_MATKEY_UVTRANSFORM(*type, 0), uv) == AI_SUCCESS) tex.transform = glintUvTransform(khrTransform(uv));
   model.textures.push_back(std::move(tex));
   return static_cast<int>(model.textures.size()) - 1;
 }

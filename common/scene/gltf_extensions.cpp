@@ -9,8 +9,12 @@ namespace {
 // Extensions whose meshes Assimp cannot decode: an error, not a warning.
 constexpr std::string_view kUnreadable[] = {"KHR_draco_mesh_compression", "EXT_meshopt_compression"};
 
-bool unreadable(const std::string& name) {
-  for (const std::string_view u : kUnreadable) {
+// Extensions Glint applies (common/scene/gltf_texture_transform.h).
+constexpr std::string_view kApplied[] = {"KHR_texture_transform"};
+
+template <std::size_t N>
+bool listed(const std::string& name, const std::string_view (&list)[N]) {
+  for (const std::string_view u : list) {
     if (name == u) return true;
   }
   return false;
@@ -27,10 +31,11 @@ std::string unappliedGltfExtensions(std::string_view bytes, const std::string& p
     for (const nlohmann::json& name : list) {
       if (!name.is_string()) continue;
       const std::string extension = name.get<std::string>();
-      if (unreadable(extension)) {
+      if (listed(extension, kUnreadable)) {
         throw InputError(place + ": uses " + extension +
                          ", compressed meshes Glint cannot read; export the model without mesh compression");
       }
+      if (listed(extension, kApplied)) continue;
       if (used.find(extension) == std::string::npos) used += (used.empty() ? "" : ", ") + extension;
     }
   }

@@ -121,6 +121,7 @@ Texture readTexture(Reader& r, const std::string& place, SceneBudget& budget) {
   t.type = TextureType::kImage;
   t.filter = static_cast<ImageFilter>(filter);
   t.image = std::move(image);
+  if (r.get<std::uint8_t>() != 0) t.transform = UvTransform{r.get<glm::mat2>(), r.get<glm::vec2>()};
   return t;
 }
 
@@ -155,6 +156,11 @@ std::string encodeMeshBlob(const MeshModel& model) {
     w.put(static_cast<std::uint32_t>(t.image->height));
     w.put(static_cast<std::uint8_t>(t.filter));
     w.putArray(t.image->rgb);
+    w.put(static_cast<std::uint8_t>(t.transform.has_value()));
+    if (t.transform) {
+      w.put(t.transform->m);
+      w.put(t.transform->offset);
+    }
   }
   w.put(static_cast<std::uint32_t>(model.materials.size()));
   for (const Material& m : model.materials) writeMaterial(w, m);

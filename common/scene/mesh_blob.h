@@ -12,7 +12,8 @@ namespace glint {
 // files: the MeshModel's arrays, bit for bit, so that the server's scene is
 // the client's. Little-endian:
 //   "GLINTMSH" u32 version (2)
-//   u32 textures,  each: u32 width, u32 height, u8 filter, width*height*3 texels
+//   u32 textures,  each: u32 width, u32 height, u8 filter, width*height*3 texels,
+//                        u8 has uv transform, then f32 m[4] (columns) offset[2]
 //   u32 materials, each: u32 name length, name, f32 color[3], i32 texture,
 //                        f32 emission[3], i32 emission texture,
 //                        f32 ambient diffuse specular shininess reflectivity

@@ -74,7 +74,8 @@ int checkerIndex(const glm::vec2& uv, float scale) {
   return magnitude < 0x1p53 && (static_cast<std::int64_t>(magnitude) & 1) != 0 ? 1 : 0;
 }
 
-glm::vec3 Texture::evaluate(const glm::vec2& uv) const {
+glm::vec3 Texture::evaluate(const glm::vec2& given) const {
+  const glm::vec2 uv = transform ? transform->apply(given) : given;
   switch (type) {
     case TextureType::kSolid:
       return colors[0];

@@ -3,8 +3,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
+#include <glm/mat2x2.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -40,6 +42,15 @@ struct EnumWords<ImageFilter> {
       {{ImageFilter::kNearest, "nearest"}, {ImageFilter::kBilinear, "bilinear"}}};
 };
 
+// An affine map of texture coordinates applied before a lookup (glTF's
+// KHR_texture_transform): uv' = m uv + offset.
+struct UvTransform {
+  glm::mat2 m{1.0f};
+  glm::vec2 offset{0.0f};
+
+  glm::vec2 apply(const glm::vec2& uv) const { return m * uv + offset; }
+};
+
 // The thesis's abstract texture: a colour at (u, v).
 struct Texture {
   TextureType type = TextureType::kSolid;
@@ -47,6 +58,7 @@ struct Texture {
   float scale = 1.0f;                                        // checker squares per unit of u and v
   std::shared_ptr<const Image> image;
   ImageFilter filter = ImageFilter::kNearest;
+  std::optional<UvTransform> transform;  // none: uv as given
 
   glm::vec3 evaluate(const glm::vec2& uv) const;
 };

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "common/image/encoding.h"
+#include "common/image/image_write.h"
 #include "tests/support/glint_run.h"
 #include "tests/support/glintd_process.h"
 #include "tests/support/test_support.h"
@@ -473,6 +474,65 @@ TEST_F(Cli, GltfEmissionAsAuthored) {
   }
   EXPECT_GT(glowing, 1000u);
   EXPECT_LE(apart, glowing / 100);
+}
+
+// KHR_texture_transform as the extension's example has it: offset (0, 1),
+// rotation 90 degrees, scale 0.5 show the lower left quarter of the image
+// turned clockwise. A quad made here (uv (0, 0) at its top left, as glTF
+// has it) with a 4 x 4 image whose lower left quarter is red, green / blue,
+// white (the rest black) shows blue, red / white, green in its quarters, in
+// the full trace, the raster and through a server, with no warning about
+// the extension.
+TEST_F(Cli, GltfTextureTransformAsTheExtensionSays) {
+  glint::FrameImage grid{4, 4, std::vector<std::uint8_t>(48, 0)};
+  const auto paint = [&grid](int x, int y, int r, int g, int b) {
+    const std::size_t at = static_cast<std::size_t>(3 * (y * 4 + x));
+    grid.rgb[at] = static_cast<std::uint8_t>(r), grid.rgb[at + 1] = static_cast<std::uint8_t>(g);
+    grid.rgb[at + 2] = static_cast<std::uint8_t>(b);
+  };
+  paint(0, 2, 255, 0, 0), paint(1, 2, 0, 255, 0), paint(0, 3, 0, 0, 255), paint(1, 3, 255, 255, 255);
+  glint::writePng(dir_ / "grid.png", grid);
+  const float positions[] = {-1, 1, 0, 1, 1, 0, -1, -1, 0, 1, -1, 0};
+  const float uvs[] = {0, 0, 1, 0, 0, 1, 1, 1};
+  const std::uint16_t indices[] = {0, 2, 1, 1, 2, 3};
+  std::ofstream bin(dir_ / "quad.bin", std::ios::binary);
+  bin.write(reinterpret_cast<const char*>(positions), sizeof positions);
+  bin.write(reinterpret_cast<const char*>(uvs), sizeof uvs);
+  bin.write(reinterpret_cast<const char*>(indices), sizeof indices);
+  bin.close();
+  std::ofstream(dir_ / "quad.gltf") << R"({"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_texture_transform"],
+    "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2, "material": 0}]}],
+    "materials": [{"pbrMetallicRoughness": {"metallicFactor": 0, "baseColorTexture": {"index": 0,
+      "extensions": {"KHR_texture_transform": {"offset": [0, 1], "rotation": 1.5707963267948966, "scale": [0.5, 0.5]}}}}}],
+    "textures": [{"source": 0}], "images": [{"uri": "grid.png"}],
+    "buffers": [{"uri": "quad.bin", "byteLength": 92}],
+    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 32},
+                    {"buffer": 0, "byteOffset": 80, "byteLength": 12}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, -1, 0], "max": [1, 1, 0]},
+                  {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"},
+                  {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}]})";
+  const std::string scene = writeScene("quad.json", R"({"glint": 1, "image": {"width": 64, "height": 64},
+    "camera": {"eye": [0, 0, 3], "look_at": [0, 0, 0]}, "lights": [{"type": "point", "position": [0, 0, 3]}],
+    "objects": [{"type": "mesh", "file": "quad.gltf"}]})");
+  glint::server::test::GlintdProcess server({"--threads", "1"});
+  for (const std::string& options :
+       std::vector<std::string>{"--mask all", "--mask none", "--mask all --server " + server.address()}) {
+    const Result run = glint("render " + scene + " " + options + " -o " + path("quad.png"));
+    ASSERT_EQ(run.status, 0) << run.output;
+    EXPECT_EQ(run.output.find("KHR_texture_transform"), std::string::npos) << run.output;
+    const Image image = decodePng(path("quad.png"));
+    // The quarters' centres, 0.5 from the middle: 12.9 pixels at this distance and field of view.
+    const auto colour = [&image](int x, int y) {
+      const std::size_t at = static_cast<std::size_t>(3 * (y * 64 + x));
+      const auto on = [&](int k) { return image.rgb[at + static_cast<std::size_t>(k)] > 40 ? 1 : 0; };
+      return on(0) * 4 + on(1) * 2 + on(2);  // 4 red, 2 green, 1 blue, 7 white
+    };
+    EXPECT_EQ(colour(19, 19), 1) << options << ": top left, blue";
+    EXPECT_EQ(colour(45, 19), 4) << options << ": top right, red";
+    EXPECT_EQ(colour(19, 45), 7) << options << ": bottom left, white";
+    EXPECT_EQ(colour(45, 45), 2) << options << ": bottom right, green";
+  }
 }
 
 // --gl picks the headless OpenGL; each gives the same image (and info

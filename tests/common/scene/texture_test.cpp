@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "common/scene/gltf_texture_transform.h"
+
 namespace glint {
 namespace {
 
@@ -57,6 +59,28 @@ TEST(Texture, ImageUvRunsRightAndUp) {
   const glm::vec3 mid = t.evaluate({0.5f, 0.75f});            // halfway between the top texels
   EXPECT_NEAR(mid.x, 0.5f, 1e-6f);
   EXPECT_NEAR(mid.y, 0.5f, 1e-6f);
+}
+
+// The extension's own example: offset (0, 1), rotation 90 degrees, scale
+// 0.5 "utilizes only the lower left quadrant of the source image, rotated
+// clockwise 90 degrees". In Glint's uv (v up) the quadrant is [0, 0.5]^2,
+// and turned clockwise the quad's top left (0, 1) shows the quadrant's
+// bottom left (0, 0), its top right (1, 1) the quadrant's top left (0, 0.5),
+// its bottom left (0, 0) the quadrant's bottom right (0.5, 0).
+TEST(Texture, KhrTextureTransformAsTheExtensionsExample) {
+  const UvTransform t = glintUvTransform({{0.0, 1.0}, M_PI / 2.0, {0.5, 0.5}});
+  const std::pair<glm::vec2, glm::vec2> corners[] = {
+      {{0, 1}, {0, 0}}, {{1, 1}, {0, 0.5}}, {{0, 0}, {0.5, 0}}, {{1, 0}, {0.5, 0.5}}};
+  for (const auto& [quad, image] : corners) {
+    const glm::vec2 got = t.apply(quad);
+    EXPECT_NEAR(got.x, image.x, 1e-6) << quad.x << "," << quad.y;
+    EXPECT_NEAR(got.y, image.y, 1e-6) << quad.x << "," << quad.y;
+  }
+  // No transform is the identity, bit for bit.
+  const UvTransform identity = glintUvTransform({});
+  for (const glm::vec2 uv : {glm::vec2(0.3f, 0.7f), glm::vec2(-12.25f, 3e5f), glm::vec2(1e-30f, 1.0f)}) {
+    EXPECT_EQ(identity.apply(uv), uv);
+  }
 }
 
 }  // namespace
