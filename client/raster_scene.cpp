@@ -107,6 +107,7 @@ RasterScene::~RasterScene() {
   for (Batch& b : batches_) {
     gl_.DeleteBuffers(1, &b.vbo);
     if (b.elements) gl_.DeleteBuffers(1, &b.elements);
+    if (b.colors) gl_.DeleteBuffers(1, &b.colors);
     gl_.DeleteVertexArrays(1, &b.vao);
   }
   for (unsigned image : images_) {
@@ -155,26 +156,44 @@ void RasterScene::newBatch(std::uint32_t material, bool spheres, const void* ver
 
 void RasterScene::uploadMeshes() {
   const Geometry& g = scene_.geometry;
-  std::map<std::uint32_t, std::pair<std::vector<MeshVertex>, std::vector<std::uint32_t>>> byMaterial;
+  struct Mesh {
+    std::vector<MeshVertex> vertices;
+    std::vector<glm::vec3> colors;  // when the scene has vertex colours
+    std::vector<std::uint32_t> prims;
+  };
+  std::map<std::uint32_t, Mesh> byMaterial;
+  const bool colored = !g.colors().empty();
   for (std::uint32_t i = 0; i < g.triangles().size(); ++i) {
     const Triangle& t = g.triangles()[i];
     const std::uint32_t material = g.models()[t.model].material;
     const glm::vec3& face = g.faceNormals()[i];
     const auto object = static_cast<std::int32_t>(t.model + 1);
-    auto& [vertices, prims] = byMaterial[material];
-    for (std::uint32_t v : t.v) vertices.push_back({g.positions()[v], g.normals()[v], g.uvs()[v], face, object});
-    prims.push_back(i);
+    Mesh& mesh = byMaterial[material];
+    for (std::uint32_t v : t.v) {
+      mesh.vertices.push_back({g.positions()[v], g.normals()[v], g.uvs()[v], face, object});
+      if (colored) mesh.colors.push_back(g.colors()[v]);
+    }
+    mesh.prims.push_back(i);
   }
   for (auto& [material, mesh] : byMaterial) {
-    auto& [vertices, prims] = mesh;
-    newBatch(material, false, vertices.data(), vertices.size(), sizeof(MeshVertex));
-    batches_.back().prims = std::move(prims);
+    newBatch(material, false, mesh.vertices.data(), mesh.vertices.size(), sizeof(MeshVertex));
+    batches_.back().prims = std::move(mesh.prims);
     attribute(gl_, 0, 3, sizeof(MeshVertex), offsetof(MeshVertex, position));
     attribute(gl_, 1, 3, sizeof(MeshVertex), offsetof(MeshVertex, normal));
     attribute(gl_, 2, 2, sizeof(MeshVertex), offsetof(MeshVertex, uv));
     attribute(gl_, 3, 3, sizeof(MeshVertex), offsetof(MeshVertex, faceNormal));
     intAttribute(gl_, 4, sizeof(MeshVertex), offsetof(MeshVertex, object));
+    if (colored) uploadColors(batches_.back(), mesh.colors);
   }
+}
+
+// A second buffer beside the batch's vertices: attribute 5, a colour each.
+void RasterScene::uploadColors(Batch& batch, const std::vector<glm::vec3>& colors) {
+  gl_.GenBuffers(1, &batch.colors);
+  gl_.BindBuffer(GL_ARRAY_BUFFER, batch.colors);
+  gl_.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(colors.size() * sizeof(glm::vec3)), colors.data(),
+                 GL_STATIC_DRAW);
+  attribute(gl_, 5, 3, sizeof(glm::vec3), 0);
 }
 
 void RasterScene::uploadSpheres() {
@@ -271,6 +290,7 @@ ShaderVariant RasterScene::variantOf(const Batch& batch, const FrameSettings& fr
   v.texture = textureKind(m.texture);
   v.emits = plan_.materials[batch.material].emits;
   if (v.emits) v.emission = textureKind(m.emissionTexture);
+  v.vertexColors = batch.colors != 0;
   v.lit = !scene_.lights.empty() && (m.diffuse > 0.0f || m.specular > 0.0f);
   v.specular = v.lit && m.specular > 0.0f;
   v.shadows = v.lit && shadows_ && !batch.spots.empty();

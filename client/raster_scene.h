@@ -53,10 +53,12 @@ class RasterScene {
     std::vector<std::uint32_t> prims;        // its primitives (Geometry's ids), ascending: 3 or 36 vertices each
     std::vector<ShadowSpot> spots;           // where a light may be blocked on its primitives (LightProof)
     unsigned elements = 0;                   // element buffer of its draws in rectangles, made on first use
+    unsigned colors = 0;                     // its vertices' colours (a mesh's, when the scene has any)
   };
   void newBatch(std::uint32_t material, bool spheres, const void* vertices, std::size_t count,
                 std::size_t vertexBytes);
   void uploadMeshes();
+  void uploadColors(Batch& batch, const std::vector<glm::vec3>& colors);
   void uploadSpheres();
   void uploadTextures();
   // Hands each spot to the batch that draws its primitive.

@@ -7,7 +7,7 @@ namespace glint::gl {
 int ShaderVariant::key() const {
   return (sphere ? 1 : 0) | (traced ? 2 : 0) | static_cast<int>(texture) << 2 | (lit ? 16 : 0) |
          (specular ? 32 : 0) | (shadows ? 64 : 0) | (srgb ? 128 : 0) | (depthMap ? 256 : 0) | (emits ? 512 : 0) |
-         static_cast<int>(emission) << 10;
+         static_cast<int>(emission) << 10 | (vertexColors ? 4096 : 0);
 }
 
 std::string ShaderVariant::defines() const {
@@ -22,6 +22,7 @@ std::string ShaderVariant::defines() const {
   define(emits, "EMISSIVE");
   define(emission == TextureKind::kNearest || emission == TextureKind::kBilinear, "EMISSION_IMAGE");
   define(emission == TextureKind::kBilinear, "EMISSION_BILINEAR");
+  define(vertexColors, "VERTEX_COLORS");
   define(lit, "LIT");
   define(specular, "SPECULAR");
   define(shadows, "SHADOWS");
@@ -140,12 +141,22 @@ vec3 emitted(vec2 given) {
 #endif
 }
 
-// The material's colour times its texture, as the tracer's shade() takes it.
+#ifdef VERTEX_COLORS
+in vec3 vColor;  // the mesh's vertex colours, interpolated
+#endif
+
+// The material's colour times its texture (times the vertex colours), as
+// the tracer's shade() takes it.
 vec3 surfaceColour(vec2 uv) {
 #if defined(TEXTURE_CHECKER) || defined(TEXTURE_IMAGE)
-  return uColor * textureColour(uv);
+  vec3 base = uColor * textureColour(uv);
 #else
-  return uColor;
+  vec3 base = uColor;
+#endif
+#ifdef VERTEX_COLORS
+  return base * vColor;
+#else
+  return base;
 #endif
 }
 
@@ -261,16 +272,19 @@ layout(location = 1) in vec3 aNormal;
 layout(location = 2) in vec2 aUv;
 layout(location = 3) in vec3 aFaceNormal;
 layout(location = 4) in int aObject;
+layout(location = 5) in vec3 aColor;  // read only by VERTEX_COLORS variants
 uniform mat4 uViewProjection;
 out vec3 vPosition;
 out vec3 vNormal;
 out vec2 vUv;
+out vec3 vColor;
 flat out vec3 vFaceNormal;
 flat out int vObject;
 void main() {
   vPosition = aPosition;
   vNormal = aNormal;
   vUv = aUv;
+  vColor = aColor;
   vFaceNormal = aFaceNormal;
   vObject = aObject;
   gl_Position = uViewProjection * vec4(aPosition, 1.0);

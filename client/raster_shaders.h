@@ -23,6 +23,7 @@ struct ShaderVariant {
   TextureKind texture = TextureKind::kNone;
   bool emits = false;                         // the material's emission is added
   TextureKind emission = TextureKind::kNone;  // its emission texture: none or an image
+  bool vertexColors = false;                  // a mesh's colours multiply the surface colour
   bool lit = false;       // diffuse or specular terms (else ambient alone)
   bool specular = false;
   bool shadows = false;   // the shadow maps are read

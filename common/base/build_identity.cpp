@@ -16,7 +16,7 @@ namespace {
 // tests OpenGL's own depth; 7: a material's colour multiplies its texture
 // (glTF's baseColorFactor; the scenes' own pixels are unchanged); 8: a
 // material's emission (glTF's emissiveFactor x emissiveTexture, MTL's Ke)
-// and glTF's KHR_texture_transform.
+// glTF's KHR_texture_transform and a mesh's vertex colours.
 constexpr int kTracerVersion = 8;
 
 // FNV-1a: the flags only need a short, stable fingerprint.

@@ -33,6 +33,18 @@ void appendAttribute(std::vector<T>& to, std::vector<T>& from, std::size_t n) {
   }
 }
 
+// Appends a mesh's vertex colours: nothing while no mesh has them; white
+// for the vertices before the first mesh that has, and for a mesh without.
+void appendColors(std::vector<glm::vec3>& to, std::vector<glm::vec3>& from, std::size_t before, std::size_t n) {
+  if (from.empty() && to.empty()) return;
+  if (to.empty()) to.assign(before, glm::vec3(1.0f));
+  if (from.empty()) {
+    to.resize(to.size() + n, glm::vec3(1.0f));
+  } else {
+    to.insert(to.end(), from.begin(), from.end());
+  }
+}
+
 }  // namespace
 
 void Geometry::addMesh(MeshInput mesh) {
@@ -45,6 +57,7 @@ void Geometry::addMesh(MeshInput mesh) {
   appendAttribute(positions_, mesh.positions, n);
   appendAttribute(normals_, mesh.normals, n);
   appendAttribute(uvs_, mesh.uvs, n);
+  appendColors(colors_, mesh.colors, base, n);
   reservePrefaulted(triangles_, triangles_.size() + mesh.indices.size() / 3);
   reservePrefaulted(faceNormals_, faceNormals_.size() + mesh.indices.size() / 3);
   for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
@@ -98,9 +111,10 @@ std::optional<Hit> Geometry::intersect(std::uint32_t prim, const Ray& ray, const
   return Hit{h->t, prim, h->b0, h->b1, h->b2};
 }
 
-SurfaceHit Geometry::surface(const Ray& ray, const Hit& hit, bool withUv) const {
+SurfaceHit Geometry::surface(const Ray& ray, const Hit& hit, bool withUv, bool withColor) const {
   SurfaceHit s;
   s.uv = glm::vec2(0.0f);
+  s.color = glm::vec3(1.0f);
   if (isSphere(hit.prim)) {
     const Sphere& sphere = spheres_[hit.prim - triangles_.size()];
     s.p = projectToSphere(sphere, ray.o + hit.t * ray.d);
@@ -136,6 +150,9 @@ SurfaceHit Geometry::surface(const Ray& ray, const Hit& hit, bool withUv) const 
   s.ns = len > 0.0f && std::isfinite(len) ? n / len : s.ng;
   if (glm::dot(s.ns, s.ng) < 0.0f) s.ns = -s.ns;
   if (withUv) s.uv = hit.b0 * uvs_[tri.v[0]] + hit.b1 * uvs_[tri.v[1]] + hit.b2 * uvs_[tri.v[2]];
+  if (withColor && !colors_.empty()) {
+    s.color = hit.b0 * colors_[tri.v[0]] + hit.b1 * colors_[tri.v[1]] + hit.b2 * colors_[tri.v[2]];
+  }
   return s;
 }
 

@@ -32,13 +32,14 @@ struct Triangle {
 };
 
 // A mesh as the scene gives it: positions and triangles, optional per-vertex
-// normals and uvs (empty when absent).
+// normals, uvs and colours (empty when absent).
 struct MeshInput {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;
   std::vector<glm::vec2> uvs;
   std::vector<std::uint32_t> indices;  // three per triangle
   std::uint32_t material = 0;
+  std::vector<glm::vec3> colors;  // per vertex, times the material's colour (none: white)
 };
 
 // Nearest hit found by traversal: distance, primitive and (for triangles)
@@ -64,6 +65,7 @@ struct SurfaceHit {
   glm::vec3 ng;  // unit geometric normal, facing the incoming ray
   glm::vec3 ns;  // unit shading normal, in the hemisphere of ng
   glm::vec2 uv;
+  glm::vec3 color;  // the vertex colours' blend (white without them)
   // Bound on the rounding error of each coordinate of p (absolute): how far
   // a spawned ray's origin must move off the surface at least.
   float error;
@@ -89,9 +91,10 @@ class Geometry {
     return intersect(prim, ray, WatertightRay(ray), tMax);
   }
   std::optional<Hit> intersect(std::uint32_t prim, const Ray& ray, const WatertightRay& w, float tMax) const;
-  // withUv false skips the texture coordinates (uv stays (0, 0)): no work
-  // for a lookup that a plain-coloured material never makes.
-  SurfaceHit surface(const Ray& ray, const Hit& hit, bool withUv = true) const;
+  // withUv false skips the texture coordinates (uv stays (0, 0)), and
+  // withColor false the vertex colours (white): no work for a lookup that a
+  // plain-coloured material never makes, or for colours no mesh has.
+  SurfaceHit surface(const Ray& ray, const Hit& hit, bool withUv = true, bool withColor = true) const;
   std::uint32_t materialOf(std::uint32_t prim) const;
 
   const std::vector<Triangle>& triangles() const { return triangles_; }
@@ -99,6 +102,9 @@ class Geometry {
   const std::vector<glm::vec3>& positions() const { return positions_; }
   const std::vector<glm::vec3>& normals() const { return normals_; }
   const std::vector<glm::vec2>& uvs() const { return uvs_; }
+  // Every vertex's colour once a mesh has them (white for the others);
+  // empty while none has.
+  const std::vector<glm::vec3>& colors() const { return colors_; }
   // Unit geometric normal of each triangle, normalize(cross(b - a, c - a))
   // of its sorted vertices, computed once when the mesh is added.
   const std::vector<glm::vec3>& faceNormals() const { return faceNormals_; }
@@ -111,6 +117,7 @@ class Geometry {
   std::vector<glm::vec3> positions_;
   std::vector<glm::vec3> normals_;
   std::vector<glm::vec2> uvs_;
+  std::vector<glm::vec3> colors_;
   std::vector<Triangle> triangles_;
   std::vector<glm::vec3> faceNormals_;
   std::vector<Model> models_;

@@ -69,6 +69,7 @@ EffectPlan EffectPlan::derive(const Scene& scene, const FrameSettings& frame) {
   bool anyDirect = false;
   for (const MaterialEffects& e : plan.materials) anyDirect = anyDirect || e.direct;
   plan.shadows = anyLight && anyDirect && !selfShadowFree(scene.geometry);
+  plan.vertexColors = !scene.geometry.colors().empty();
   plan.antialiasing =
       frame.sampling.samples > 1 || frame.sampling.pattern != SamplePattern::kRegular;
   return plan;
@@ -76,8 +77,8 @@ EffectPlan EffectPlan::derive(const Scene& scene, const FrameSettings& frame) {
 
 std::vector<NamedEffect> namedEffects(const EffectPlan& plan) {
   return {{"shadows", plan.shadows},   {"reflection", plan.reflection}, {"refraction", plan.refraction},
-          {"textures", plan.textures}, {"emission", plan.emission},     {"attenuation", plan.attenuation},
-          {"antialiasing", plan.antialiasing}};
+          {"textures", plan.textures}, {"emission", plan.emission},     {"vertex_colors", plan.vertexColors},
+          {"attenuation", plan.attenuation}, {"antialiasing", plan.antialiasing}};
 }
 
 nlohmann::json toJson(const EffectPlan& plan) {

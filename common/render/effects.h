@@ -28,6 +28,7 @@ struct EffectPlan {
   bool refraction = false;    // refracted rays
   bool textures = false;      // texture lookups other than a solid colour
   bool emission = false;      // a material's light of its own
+  bool vertexColors = false;  // a mesh's per-vertex colours
   bool attenuation = false;   // distance fall-off of some light (other than a constant)
   bool antialiasing = false;  // samples off the pixel centre: several, or jittered
   std::vector<MaterialEffects> materials;
@@ -38,7 +39,7 @@ struct EffectPlan {
 };
 
 // The plan's effects by name, in one order: shadows, reflection,
-// refraction, textures, emission, attenuation, antialiasing.
+// refraction, textures, emission, vertex_colors, attenuation, antialiasing.
 struct NamedEffect {
   const char* name;
   bool needed;

@@ -30,8 +30,10 @@ glm::vec3 Tracer::shade(const SurfaceHit& s, const glm::vec3& outside, const glm
                         const Material& m, const MaterialEffects& e, RayStats& stats) const {
   // The colour times the texture (glTF's baseColorFactor x baseColorTexture;
   // a textured material's colour is 1 unless given, and 1 x t is t exactly).
-  const glm::vec3 c =
+  // A mesh's vertex colours multiply both (glTF's COLOR_0).
+  const glm::vec3 base =
       e.textured && m.texture >= 0 ? m.color * scene_.textures[m.texture].evaluate(s.uv) : m.color;
+  const glm::vec3 c = plan_.vertexColors ? base * s.color : base;
   glm::vec3 result = phongAmbient(c, m.ambient);
   if (e.emits) result += emitted(m, s.uv);
   if (!e.direct) return result;
@@ -66,7 +68,7 @@ glm::vec3 Tracer::trace(const Ray& ray, int depth, float weight, bool inside,
   const std::uint32_t material = scene_.geometry.materialOf(hit->prim);
   const Material& m = scene_.materials[material];
   const MaterialEffects& e = plan_.materials[material];
-  const SurfaceHit s = scene_.geometry.surface(ray, *hit, e.textured);
+  const SurfaceHit s = scene_.geometry.surface(ray, *hit, e.textured, plan_.vertexColors);
   const glm::vec3 outside = offsetRayOrigin(s.p, s.error, s.ng);
   glm::vec3 color = shade(s, outside, -ray.d, m, e, stats);
   if (depth >= tracing_.maxDepth || !(e.reflects || e.refracts)) return color;

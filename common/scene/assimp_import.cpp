@@ -178,6 +178,7 @@ MeshInput toMesh(const aiMesh& m) {
     mesh.positions.emplace_back(m.mVertices[i].x, m.mVertices[i].y, m.mVertices[i].z);
     if (m.HasNormals()) mesh.normals.emplace_back(m.mNormals[i].x, m.mNormals[i].y, m.mNormals[i].z);
     if (m.HasTextureCoords(0)) mesh.uvs.emplace_back(m.mTextureCoords[0][i].x, m.mTextureCoords[0][i].y);
+    if (m.HasVertexColors(0)) mesh.colors.emplace_back(m.mColors[0][i].r, m.mColors[0][i].g, m.mColors[0][i].b);
   }
   for (unsigned f = 0; f < m.mNumFaces; ++f) {
     const aiFace& face = m.mFaces[f];

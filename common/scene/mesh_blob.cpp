@@ -132,9 +132,11 @@ MeshInput readMesh(Reader& r, std::size_t materials, const LoadLimits& limits) {
   const auto vertices = r.get<std::uint32_t>();
   if (vertices > limits.maxVertices) r.fail("has more vertices than the limit");
   const bool normals = r.get<std::uint8_t>() != 0, uvs = r.get<std::uint8_t>() != 0;
+  const bool colors = r.get<std::uint8_t>() != 0;
   mesh.positions = r.getArray<glm::vec3>(vertices, "positions");
   if (normals) mesh.normals = r.getArray<glm::vec3>(vertices, "normals");
   if (uvs) mesh.uvs = r.getArray<glm::vec2>(vertices, "uvs");
+  if (colors) mesh.colors = r.getArray<glm::vec3>(vertices, "colors");
   const auto indices = r.get<std::uint32_t>();
   if (indices % 3 != 0) r.fail("has a mesh whose index count is not a multiple of 3");
   mesh.indices = r.getArray<std::uint32_t>(indices, "indices");
@@ -170,9 +172,11 @@ std::string encodeMeshBlob(const MeshModel& model) {
     w.put(static_cast<std::uint32_t>(mesh.positions.size()));
     w.put(static_cast<std::uint8_t>(!mesh.normals.empty()));
     w.put(static_cast<std::uint8_t>(!mesh.uvs.empty()));
+    w.put(static_cast<std::uint8_t>(!mesh.colors.empty()));
     w.putArray(mesh.positions);
     w.putArray(mesh.normals);
     w.putArray(mesh.uvs);
+    w.putArray(mesh.colors);
     w.put(static_cast<std::uint32_t>(mesh.indices.size()));
     w.putArray(mesh.indices);
   }

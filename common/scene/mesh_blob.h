@@ -19,7 +19,8 @@ namespace glint {
 //                        f32 ambient diffuse specular shininess reflectivity
 //                        transparency ior, u8 raytrace
 //   u32 meshes,    each: u32 material, u32 vertices, u8 has normals, u8 has uvs,
-//                        f32 positions[3v], normals[3v], uvs[2v], u32 indices, u32[indices]
+//                        u8 has colours, f32 positions[3v], normals[3v], uvs[2v],
+//                        colors[3v], u32 indices, u32[indices]
 //   u8 has camera, then f32 eye[3] look_at[3] up[3] fov_y
 std::string encodeMeshBlob(const MeshModel& model);
 

@@ -181,7 +181,7 @@ TEST(LightProof, RandomSoupsAreLitOutsideTheirSpots) {
 // shadows spots nothing.
 TEST(LightProof, DegenerateCasesSpotTheWholePrimitive) {
   Geometry g;
-  g.addMesh(MeshInput{{{0, 0, 0}, {1, 0, 0}, {0, 0, 1}}, {}, {}, {0, 1, 2}, 0});
+  g.addMesh(MeshInput{{{0, 0, 0}, {1, 0, 0}, {0, 0, 1}}, {}, {}, {0, 1, 2}, 0, {}});
   g.addSphere({{5.0f, 5.0f, 5.0f}, 1.0f, 0});
   // In the triangle's plane; inside the sphere; casting none; above both.
   const Scene scene =

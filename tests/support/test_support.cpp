@@ -37,7 +37,7 @@ FrameResult render(const Scene& scene, const EffectPlan& plan, int threads, int 
 EffectPlan everyEffect(const Scene& scene) {
   EffectPlan plan;
   plan.shadows = plan.reflection = plan.refraction = true;
-  plan.textures = plan.emission = plan.attenuation = plan.antialiasing = true;
+  plan.textures = plan.emission = plan.vertexColors = plan.attenuation = plan.antialiasing = true;
   plan.materials.assign(scene.materials.size(), MaterialEffects{.direct = true,
                                                                 .specular = true,
                                                                 .textured = true,

@@ -24,7 +24,7 @@ ConvexRegion unitCube() {
 
 Geometry oneTriangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
   Geometry g;
-  g.addMesh(MeshInput{{a, b, c}, {}, {}, {0, 1, 2}, 0});
+  g.addMesh(MeshInput{{a, b, c}, {}, {}, {0, 1, 2}, 0, {}});
   return g;
 }
 
@@ -131,7 +131,7 @@ TEST(RegionQuery, AgreesWithSampledPointsOnRandomTriangles) {
   Geometry soup;
   soup.addMesh(clear);
   soup.addMesh(MeshInput{
-      {found.positions[0], found.positions[1], found.positions[2]}, {}, {}, {0, 1, 2}, 0});
+      {found.positions[0], found.positions[1], found.positions[2]}, {}, {}, {0, 1, 2}, 0, {}});
   const auto last = static_cast<std::uint32_t>(soup.triangles().size() - 1);
   EXPECT_FALSE(holds(soup, cube, last));
   EXPECT_TRUE(holds(soup, cube));

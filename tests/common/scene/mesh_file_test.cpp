@@ -196,7 +196,7 @@ TEST(MeshFile, FilesWithoutTrianglesAreErrors) {
 // crease angle each keeps its face normal, above it the shared vertices get
 // the mean of the two (equal areas), the others their face's.
 TEST(MeshFile, SmoothNormalsCreaseAtTheAngle) {
-  const MeshInput folded{{{0, 0, 0}, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}}, {}, {}, {0, 1, 2, 0, 3, 1}, 0};
+  const MeshInput folded{{{0, 0, 0}, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}}, {}, {}, {0, 1, 2, 0, 3, 1}, 0, {}};
   const glm::vec3 down(0, 1, 0), side(1, 0, 0);  // the faces' normals by their winding
   MeshInput sharp = folded;
   smoothNormals(sharp, 60.0f);
