@@ -13,6 +13,7 @@
 
 #include "common/base/error.h"
 #include "common/base/heap_tuning.h"
+#include "common/scene/obj_colors.h"
 
 namespace glint {
 namespace {
@@ -469,11 +470,9 @@ void readByLoadObj(const std::string& text, const std::string& mtlText, const st
   }
 }
 
-}  // namespace
-
-ObjTriangles parseObjTriangles(const std::string& text, const std::string& mtlText,
-                               const LoadLimits& limits, const std::string& where,
-                               std::size_t pieces) {
+// The text's triangles and attributes (its colours aside).
+ObjTriangles parseFaces(const std::string& text, const std::string& mtlText, const LoadLimits& limits,
+                        const std::string& where, std::size_t pieces) {
   const MaterialTable table(mtlText);
   ObjTriangles out;
   if (pieces == 0) pieces = piecesFor(text.size());
@@ -484,6 +483,16 @@ ObjTriangles parseObjTriangles(const std::string& text, const std::string& mtlTe
   readByLoadObj(text, mtlText, where, triangles, polygons);
   triangles.triangulate(polygons);
   return polygons;
+}
+
+}  // namespace
+
+ObjTriangles parseObjTriangles(const std::string& text, const std::string& mtlText,
+                               const LoadLimits& limits, const std::string& where,
+                               std::size_t pieces) {
+  ObjTriangles out = parseFaces(text, mtlText, limits, where, pieces);
+  out.attrib.colors = objVertexColors(text);  // LoadObj's own (white where absent) replaced
+  return out;
 }
 
 }  // namespace glint

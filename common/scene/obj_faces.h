@@ -14,7 +14,7 @@ namespace glint {
 // the materials of its mtllib, and its faces as triangles in file order,
 // every corner checked against the attributes the file has.
 struct ObjTriangles {
-  tinyobj::attrib_t attrib;  // vertices (xyz), normals (xyz), texcoords (uv)
+  tinyobj::attrib_t attrib;  // vertices (xyz), normals (xyz), texcoords (uv), colors (rgb: obj_colors.h)
   std::vector<tinyobj::material_t> materials;
   std::vector<tinyobj::index_t> corners;  // three a triangle, zero-based; normal, texcoord -1: none
   std::vector<int> materialOf;            // a triangle's index in `materials`, -1: none

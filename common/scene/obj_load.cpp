@@ -129,7 +129,8 @@ class FaceGrouper {
   FaceGrouper(const tinyobj::attrib_t& attrib, const std::map<int, std::size_t>& triangles)
       : attrib_(attrib),
         normals_(!attrib.normals.empty()),
-        uvs_(!attrib.texcoords.empty()) {
+        uvs_(!attrib.texcoords.empty()),
+        colors_(!attrib.colors.empty() && attrib.colors.size() == attrib.vertices.size()) {
     const std::size_t positions = attrib.vertices.size() / 3;
     reservePrefaulted(first_, positions);
     first_.resize(positions);
@@ -142,6 +143,7 @@ class FaceGrouper {
       reservePrefaulted(mesh.positions, vertices);
       if (normals_) reservePrefaulted(mesh.normals, vertices);
       if (uvs_) reservePrefaulted(mesh.uvs, vertices);
+      if (colors_) reservePrefaulted(mesh.colors, vertices);
     }
   }
 
@@ -198,6 +200,7 @@ class FaceGrouper {
     MeshInput& mesh = group.mesh;
     const auto v = static_cast<std::size_t>(idx.vertex_index);
     mesh.positions.emplace_back(attrib_.vertices[3 * v], attrib_.vertices[3 * v + 1], attrib_.vertices[3 * v + 2]);
+    if (colors_) mesh.colors.emplace_back(attrib_.colors[3 * v], attrib_.colors[3 * v + 1], attrib_.colors[3 * v + 2]);
     group.complete = group.complete && idx.normal_index >= 0;
     if (normals_) {  // a file without normals gives meshes without (so do files with too few: finish())
       const auto n = static_cast<std::size_t>(std::max(idx.normal_index, 0));
@@ -215,6 +218,7 @@ class FaceGrouper {
   const tinyobj::attrib_t& attrib_;
   const bool normals_;  // the file has normals
   const bool uvs_;      // the file has uvs
+  const bool colors_;   // the file has vertex colours, one a position
   std::vector<FirstUse> first_;  // by position index
   std::unordered_map<std::array<int, 4>, std::uint32_t, ArrayHash> others_;  // (material, v, n, t) -> vertex
   std::map<int, Group> groups_;  // by material; its nodes stay put, so last_ stays valid

@@ -536,7 +536,7 @@ TEST_F(Cli, GltfTextureTransformAsTheExtensionSays) {
 }
 
 // A mesh's vertex colours multiply its colour, blended across each
-// triangle: a PLY quad red on its left edge and blue on its right shows, in
+// triangle: a PLY (and an OBJ) quad red on its left edge and blue on its right shows, in
 // every pixel, red and blue adding up to the uncoloured quad's value (the
 // light is the same; the colour is a linear blend), red falling from left
 // to right, in the full trace, the raster and through a server.
@@ -547,36 +547,49 @@ TEST_F(Cli, VertexColorsBlendAcrossTheMesh) {
         << (colored ? "property uchar red\nproperty uchar green\nproperty uchar blue\n" : "")
         << "element face 2\nproperty list uchar int vertex_indices\nend_header\n";
     const char* corners[] = {"-1 1 0", "1 1 0", "1 -1 0", "-1 -1 0"};
-    for (int i = 0; i < 4; ++i) out << corners[i] << (!colored ? "" : i == 1 || i == 2 ? " 0 0 255" : " 255 0 0") << "\n";
+    for (int i = 0; i < 4; ++i)
+      out << corners[i] << (!colored ? "" : i == 1 || i == 2 ? " 0 0 255" : " 255 0 0") << "\n";
     out << "3 0 3 2\n3 0 2 1\n";
   };
   ply("plain.ply", false);
   ply("colored.ply", true);
+  const auto obj = [&](const std::string& name, bool colored) {
+    std::ofstream out(path(name));
+    const char* corners[] = {"-1 1 0", "1 1 0", "1 -1 0", "-1 -1 0"};
+    for (int i = 0; i < 4; ++i)
+      out << "v " << corners[i] << (!colored ? "" : i == 1 || i == 2 ? " 0 0 1" : " 1 0 0") << "\n";
+    out << "f 1 4 3\nf 1 3 2\n";
+  };
+  obj("plain.obj", false);
+  obj("colored.obj", true);
   const auto sceneOf = [&](const std::string& file) {
     return writeScene(file + ".json", R"({"glint": 1, "image": {"width": 64, "height": 64},
       "camera": {"eye": [0, 0, 3], "look_at": [0, 0, 0]}, "lights": [{"type": "point", "position": [0.5, 0.5, 3]}],
-      "objects": [{"type": "mesh", "file": ")" + file + R"("}]})");
+      "objects": [{"type": "mesh", "file": ")" +
+                                          file + R"("}]})");
   };
-  const std::string plainScene = sceneOf("plain.ply"), coloredScene = sceneOf("colored.ply");
   glint::server::test::GlintdProcess server({"--threads", "1"});
-  for (const std::string& options :
-       std::vector<std::string>{"--mask all", "--mask none", "--mask all --server " + server.address()}) {
-    ASSERT_EQ(glint("render " + plainScene + " -q " + options + " -o " + path("plain.png")).status, 0);
-    ASSERT_EQ(glint("render " + coloredScene + " -q " + options + " -o " + path("colored.png")).status, 0);
-    const Image plain = decodePng(path("plain.png")), colored = decodePng(path("colored.png"));
-    std::size_t quad = 0;
-    for (std::size_t i = 0; i < plain.rgb.size(); i += 3) {
-      if (plain.rgb[i] == 0) continue;  // the background
-      ++quad;
-      EXPECT_LE(std::abs(colored.rgb[i] + colored.rgb[i + 2] - plain.rgb[i]), 2) << options << " at " << i / 3;
-      EXPECT_EQ(colored.rgb[i + 1], 0) << options << " at " << i / 3;
+  for (const std::string& format : {std::string("ply"), std::string("obj")}) {
+    const std::string plainScene = sceneOf("plain." + format), coloredScene = sceneOf("colored." + format);
+    for (const std::string& options :
+         std::vector<std::string>{"--mask all", "--mask none", "--mask all --server " + server.address()}) {
+      ASSERT_EQ(glint("render " + plainScene + " -q " + options + " -o " + path("plain.png")).status, 0);
+      ASSERT_EQ(glint("render " + coloredScene + " -q " + options + " -o " + path("colored.png")).status, 0);
+      const Image plain = decodePng(path("plain.png")), colored = decodePng(path("colored.png"));
+      std::size_t quad = 0;
+      for (std::size_t i = 0; i < plain.rgb.size(); i += 3) {
+        if (plain.rgb[i] == 0) continue;  // the background
+        ++quad;
+        EXPECT_LE(std::abs(colored.rgb[i] + colored.rgb[i + 2] - plain.rgb[i]), 2) << options << " at " << i / 3;
+        EXPECT_EQ(colored.rgb[i + 1], 0) << options << " at " << i / 3;
+      }
+      EXPECT_GT(quad, 1500u) << options;
+      const auto red = [&colored](int x) { return colored.rgb[static_cast<std::size_t>(3 * (32 * 64 + x))]; };
+      const auto blue = [&colored](int x) { return colored.rgb[static_cast<std::size_t>(3 * (32 * 64 + x)) + 2]; };
+      EXPECT_GT(red(12), 3 * blue(12)) << options;
+      EXPECT_GT(blue(51), 3 * red(51)) << options;
+      EXPECT_LE(std::abs(red(32) - blue(32)), 0.1 * red(32) + 2) << options;
     }
-    EXPECT_GT(quad, 1500u) << options;
-    const auto red = [&colored](int x) { return colored.rgb[static_cast<std::size_t>(3 * (32 * 64 + x))]; };
-    const auto blue = [&colored](int x) { return colored.rgb[static_cast<std::size_t>(3 * (32 * 64 + x)) + 2]; };
-    EXPECT_GT(red(12), 3 * blue(12)) << options;
-    EXPECT_GT(blue(51), 3 * red(51)) << options;
-    EXPECT_LE(std::abs(red(32) - blue(32)), 0.1 * red(32) + 2) << options;
   }
 }
 

@@ -6,6 +6,8 @@
 #include <iterator>
 #include <map>
 
+#include <unistd.h>
+
 #include <glm/geometric.hpp>
 
 #include "common/base/file_source.h"
@@ -102,12 +104,16 @@ MeshInput icosphere(int levels, const glm::vec3& centre, float radius) {
   return mesh;
 }
 
+std::filesystem::path scratchPath(const std::string& name) {
+  return std::filesystem::temp_directory_path() / ("glint-" + std::to_string(::getpid()) + "-" + name);
+}
+
 std::string flatPng(int width, int height) {
   FrameImage image;
   image.width = width;
   image.height = height;
   image.rgb.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3, 200);
-  const std::filesystem::path path = std::filesystem::temp_directory_path() / "glint-flat.png";
+  const std::filesystem::path path = scratchPath("flat.png");
   writePng(path, image);
   std::ifstream in(path, std::ios::binary);
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <filesystem>
 #include <string>
 
 #include "common/render/effects.h"
@@ -30,6 +31,10 @@ std::string sourcePath(const std::string& relative);
 // A 24-bit BMP file of width x height pixels (all black); with `pixels`
 // false, only its 54-byte header.
 std::string bmp(int width, int height, bool pixels);
+
+// A file in the temporary folder named for this process (ctest runs tests
+// as processes side by side, so a fixed name would be shared).
+std::filesystem::path scratchPath(const std::string& name);
 
 // The bytes of a PNG of one colour: small to send, large once decoded.
 std::string flatPng(int width, int height);

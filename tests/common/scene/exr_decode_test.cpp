@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "common/base/error.h"
+#include "tests/support/test_support.h"
 
 namespace glint {
 namespace {
@@ -49,7 +50,7 @@ std::string readAndRemove(const std::filesystem::path& path) {
 
 // A scanline file whose data window starts at (origin, origin).
 std::string scanlineExr(Imf::RgbaChannels channels, int origin) {
-  const auto path = std::filesystem::temp_directory_path() / "glint-exr-decode-test.exr";
+  const auto path = test::scratchPath("scanline.exr");
   const Imath::Box2i window({origin, origin}, {origin + kWidth - 1, origin + kHeight - 1});
   Imf::Array2D<Imf::Rgba> p;
   fill(p);
@@ -64,7 +65,7 @@ std::string scanlineExr(Imf::RgbaChannels channels, int origin) {
 }
 
 std::string tiledExr() {
-  const auto path = std::filesystem::temp_directory_path() / "glint-exr-decode-test-tiled.exr";
+  const auto path = test::scratchPath("tiled.exr");
   Imf::Array2D<Imf::Rgba> p;
   fill(p);
   {

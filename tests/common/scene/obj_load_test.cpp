@@ -15,6 +15,7 @@
 
 #include "common/base/error.h"
 #include "common/base/file_source.h"
+#include "common/scene/obj_colors.h"
 #include "common/scene/obj_faces.h"
 #include "common/scene/obj_load.h"
 
@@ -328,6 +329,35 @@ TEST(ObjLoad, TheSpidersJpegTexturesAreRead) {
     for (const std::uint8_t v : t.image->rgb) dark += v < 8 ? 1 : 0;
     EXPECT_LT(dark, t.image->rgb.size() / 2);
   }
+}
+
+// `v x y z r g b`: colours when the first vertex line has them, each v line's
+// in order (white for one without), none otherwise; any spacing, CRLF.
+TEST(ObjLoad, VertexColorsAfterThePosition) {
+  EXPECT_EQ(objVertexColors("# c\n  v 0 0 0 1 0.5 0.25\r\nvn 0 0 1\nv\t1 0 0 0 1 0\nv 0 1 0\nvt 0 0\n"),
+            (std::vector<float>{1, 0.5f, 0.25f, 0, 1, 0, 1, 1, 1}));
+  EXPECT_TRUE(objVertexColors("v 0 0 0\nv 1 0 0 1 0 0\n").empty());
+  EXPECT_TRUE(objVertexColors("v 0 0 0 1\nvn 1 2 3\n").empty());
+  EXPECT_TRUE(objVertexColors("").empty());
+  // A mesh gets each corner's position's colour, through the callback
+  // reader (triangles) and through LoadObj (a pentagon) alike.
+  for (const char* face : {"f 1 2 3\nf 1 3 4\n", "f 1 2 3 4 5\n"}) {
+    const MeshModel m = load(std::string("v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 1 1 0 0 0 1\nv 0 1 0 1 1 1\n") +
+                             "v -0.5 0.5 0 0.5 0.5 0.5\n" + face);
+    ASSERT_EQ(m.meshes.size(), 1u);
+    const MeshInput& mesh = m.meshes[0];
+    ASSERT_EQ(mesh.colors.size(), mesh.positions.size()) << face;
+    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+      const glm::vec3 p = mesh.positions[v], c = mesh.colors[v];
+      const glm::vec3 expected = p == glm::vec3(0, 0, 0)   ? glm::vec3(1, 0, 0)
+                                 : p == glm::vec3(1, 0, 0) ? glm::vec3(0, 1, 0)
+                                 : p == glm::vec3(1, 1, 0) ? glm::vec3(0, 0, 1)
+                                 : p == glm::vec3(0, 1, 0) ? glm::vec3(1, 1, 1)
+                                                           : glm::vec3(0.5f);
+      EXPECT_EQ(c, expected) << face << " vertex " << v;
+    }
+  }
+  EXPECT_TRUE(load("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").meshes[0].colors.empty());
 }
 
 }  // namespace
