@@ -536,7 +536,7 @@ TEST_F(Cli, GltfTextureTransformAsTheExtensionSays) {
 }
 
 // A mesh's vertex colours multiply its colour, blended across each
-// triangle: a PLY (and an OBJ) quad red on its left edge and blue on its right shows, in
+// triangle: a PLY (an OBJ, a glTF's COLOR_0) quad red on its left edge and blue on its right shows, in
 // every pixel, red and blue adding up to the uncoloured quad's value (the
 // light is the same; the colour is a linear blend), red falling from left
 // to right, in the full trace, the raster and through a server.
@@ -562,6 +562,27 @@ TEST_F(Cli, VertexColorsBlendAcrossTheMesh) {
   };
   obj("plain.obj", false);
   obj("colored.obj", true);
+  const float positions[] = {-1, 1, 0, 1, 1, 0, 1, -1, 0, -1, -1, 0};
+  const float colors[] = {1, 0, 0, 0, 0, 1, 0, 0, 1, 1, 0, 0};
+  const std::uint16_t indices[] = {0, 3, 2, 0, 2, 1};
+  std::ofstream bin(path("quad.bin"), std::ios::binary);
+  bin.write(reinterpret_cast<const char*>(positions), sizeof positions);
+  bin.write(reinterpret_cast<const char*>(colors), sizeof colors);
+  bin.write(reinterpret_cast<const char*>(indices), sizeof indices);
+  bin.close();
+  const auto gltf = [&](const std::string& name, bool colored) {
+    std::ofstream(path(name)) << R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+      "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0)"
+                              << (colored ? R"(, "COLOR_0": 1)" : "") << R"(}, "indices": 2}]}],
+      "buffers": [{"uri": "quad.bin", "byteLength": 108}],
+      "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 48},
+                      {"buffer": 0, "byteOffset": 96, "byteLength": 12}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, -1, 0], "max": [1, 1, 0]},
+                    {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
+                    {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}]})";
+  };
+  gltf("plain.gltf", false);
+  gltf("colored.gltf", true);
   const auto sceneOf = [&](const std::string& file) {
     return writeScene(file + ".json", R"({"glint": 1, "image": {"width": 64, "height": 64},
       "camera": {"eye": [0, 0, 3], "look_at": [0, 0, 0]}, "lights": [{"type": "point", "position": [0.5, 0.5, 3]}],
@@ -569,7 +590,7 @@ TEST_F(Cli, VertexColorsBlendAcrossTheMesh) {
                                           file + R"("}]})");
   };
   glint::server::test::GlintdProcess server({"--threads", "1"});
-  for (const std::string& format : {std::string("ply"), std::string("obj")}) {
+  for (const std::string& format : {std::string("ply"), std::string("obj"), std::string("gltf")}) {
     const std::string plainScene = sceneOf("plain." + format), coloredScene = sceneOf("colored." + format);
     for (const std::string& options :
          std::vector<std::string>{"--mask all", "--mask none", "--mask all --server " + server.address()}) {
