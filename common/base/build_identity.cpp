@@ -15,7 +15,7 @@ namespace {
 // the geometry does not prove the light reaches (client/light_proof.h), and
 // tests OpenGL's own depth; 7: a material's colour multiplies its texture
 // (glTF's baseColorFactor; the scenes' own pixels are unchanged); 8: a
-// material's emission (glTF's emissiveFactor x emissiveTexture, MTL's Ke)
+// material's emission (glTF's emissiveFactor x emissiveTexture, MTL's Ke),
 // glTF's KHR_texture_transform and a mesh's vertex colours.
 constexpr int kTracerVersion = 8;
 

@@ -196,11 +196,20 @@ class SceneLoader {
     return images_.get(normalisePath(file.string()), file.path());
   }
 
-  const Texture& namedTexture(const JsonReader& t) const {
+  std::uint32_t textureNamed(const JsonReader& t) const {
     const std::string texName = t.string();
     const auto it = textureIndex_.find(texName);
     if (it == textureIndex_.end()) t.fail("no texture named '" + texName + "' in textures");
-    return scene_.textures[it->second];
+    return it->second;
+  }
+
+  // A solid texture is only a colour: folded into `colour`, no lookups at
+  // render time (-1); any other is its index.
+  int foldSolid(std::uint32_t texture, glm::vec3& colour) const {
+    const Texture& tex = scene_.textures[texture];
+    if (tex.type != TextureType::kSolid) return static_cast<int>(texture);
+    colour *= tex.colors[0];
+    return -1;
   }
 
   // emission times emission_texture (either alone is the emission; default
@@ -210,13 +219,11 @@ class SceneLoader {
     mat.emission = m.vec3("emission", glm::vec3(t ? 1.0f : 0.0f));
     if (glm::any(glm::lessThan(mat.emission, glm::vec3(0.0f)))) m.find("emission")->fail("must not be negative");
     if (!t) return;
-    const Texture& tex = namedTexture(*t);
-    if (tex.type == TextureType::kChecker) t->fail("must name an image or solid texture, not a checker");
-    if (tex.type == TextureType::kSolid) {
-      mat.emission *= tex.colors[0];
-    } else {
-      mat.emissionTexture = textureIndex_.at(t->string());
+    const std::uint32_t texture = textureNamed(*t);
+    if (scene_.textures[texture].type == TextureType::kChecker) {
+      t->fail("must name an image or solid texture, not a checker");
     }
+    mat.emissionTexture = foldSolid(texture, mat.emission);
   }
 
   void readMaterials(const JsonReader& r) {
@@ -228,15 +235,7 @@ class SceneLoader {
       Material mat;
       mat.name = name;
       mat.color = m.vec3("color", glm::vec3(1.0f));
-      if (auto t = m.find("texture")) {
-        const Texture& tex = namedTexture(*t);
-        // A solid texture is only a colour: fold it in, no lookups at render time.
-        if (tex.type == TextureType::kSolid) {
-          mat.color *= tex.colors[0];
-        } else {
-          mat.texture = textureIndex_.at(t->string());
-        }
-      }
+      if (auto t = m.find("texture")) mat.texture = foldSolid(textureNamed(*t), mat.color);
       readEmission(m, mat);
       mat.ambient = m.number("ambient", 0.0f, 0.0f);
       mat.diffuse = m.number("diffuse", 1.0f, 0.0f);

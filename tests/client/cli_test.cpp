@@ -41,6 +41,27 @@ class Cli : public ::testing::Test {
   }
   static std::string scene(const std::string& name) { return std::string(GLINT_SOURCE_DIR) + "/scenes/" + name; }
 
+  // Debian's textured glTF box in box/, and beside it box/NAME.gltf: the
+  // same with `insert` written before the first `anchor`.
+  void boxVariant(const std::string& name, const std::string& anchor, const std::string& insert) const {
+    const fs::path models = "/usr/share/assimp/models/glTF2/BoxTextured-glTF";
+    ASSERT_TRUE(fs::exists(models)) << "install assimp-testmodels (make deps)";
+    if (!fs::exists(dir_ / "box")) fs::copy(models, dir_ / "box");
+    std::ifstream in(models / "BoxTextured.gltf");
+    std::string gltf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_NE(gltf.find(anchor), std::string::npos);
+    gltf.insert(gltf.find(anchor), insert);
+    std::ofstream(dir_ / "box" / (name + ".gltf")) << gltf;
+  }
+  // A scene framing box/FILE.gltf, lit by one light.
+  std::string boxScene(const std::string& file) const {
+    return writeScene(file + ".json", R"({"glint": 1, "image": {"width": 96, "height": 72},
+      "camera": {"eye": [2, 1.5, 3], "look_at": [0, 0, 0], "fit": true},
+      "lights": [{"type": "point", "position": [3, 4, 5]}],
+      "objects": [{"type": "mesh", "file": "box/)" +
+                                          file + R"(.gltf"}]})");
+  }
+
   fs::path dir_;
 };
 
@@ -355,25 +376,11 @@ TEST_F(Cli, FitFromTheCommandLineOrTheScene) {
 // full trace and in the hybrid frame (the raster draws the matte box), as
 // the box without it in red and black in green and blue.
 TEST_F(Cli, BaseColorFactorTimesTheTexture) {
-  const fs::path models = "/usr/share/assimp/models/glTF2/BoxTextured-glTF";
-  ASSERT_TRUE(fs::exists(models)) << "install assimp-testmodels (make deps)";
-  fs::copy(models, dir_ / "box");
-  std::ifstream in(models / "BoxTextured.gltf");
-  std::string gltf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string texture = "\"baseColorTexture\"";
-  ASSERT_NE(gltf.find(texture), std::string::npos);
-  gltf.replace(gltf.find(texture), texture.size(), "\"baseColorFactor\": [1, 0, 0, 1], " + texture);
-  std::ofstream(dir_ / "box" / "Red.gltf") << gltf;
-  const auto sceneOf = [&](const char* file) {
-    return writeScene(std::string(file) + ".json", R"({"glint": 1, "image": {"width": 96, "height": 72},
-      "camera": {"eye": [2, 1.5, 3], "look_at": [0, 0, 0], "fit": true},
-      "lights": [{"type": "point", "position": [3, 4, 5]}],
-      "objects": [{"type": "mesh", "file": "box/)" + std::string(file) + R"(.gltf"}]})");
-  };
+  ASSERT_NO_FATAL_FAILURE(boxVariant("Red", "\"baseColorTexture\"", "\"baseColorFactor\": [1, 0, 0, 1], "));
   for (const char* mask : {"all", "auto"}) {
     const std::string m = std::string(" -q --mask ") + mask + " -o ";
-    ASSERT_EQ(glint("render " + sceneOf("BoxTextured") + m + path("plain.png")).status, 0);
-    ASSERT_EQ(glint("render " + sceneOf("Red") + m + path("red.png")).status, 0);
+    ASSERT_EQ(glint("render " + boxScene("BoxTextured") + m + path("plain.png")).status, 0);
+    ASSERT_EQ(glint("render " + boxScene("Red") + m + path("red.png")).status, 0);
     const Image plain = decodePng(path("plain.png")), red = decodePng(path("red.png"));
     std::size_t box = 0;
     for (std::size_t i = 0; i < plain.rgb.size(); i += 3) {
@@ -435,28 +442,15 @@ TEST_F(Cli, EmissionAddsToItsSurfaceOnly) {
 // light to red alone, the same in the full trace and the hybrid frame, and
 // through a server (the imported material travels with the mesh).
 TEST_F(Cli, GltfEmissionAsAuthored) {
-  const fs::path models = "/usr/share/assimp/models/glTF2/BoxTextured-glTF";
-  ASSERT_TRUE(fs::exists(models)) << "install assimp-testmodels (make deps)";
-  fs::copy(models, dir_ / "box");
-  std::ifstream in(models / "BoxTextured.gltf");
-  std::string gltf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string name = "\"name\": \"Texture\"";
-  ASSERT_NE(gltf.find(name), std::string::npos);
-  gltf.replace(gltf.find(name), name.size(), "\"emissiveFactor\": [0.5, 0, 0], \"emissiveTexture\": {\"index\": 0}, " + name);
-  std::ofstream(dir_ / "box" / "Glow.gltf") << gltf;
-  const auto sceneOf = [&](const char* file) {
-    return writeScene(std::string(file) + ".json", R"({"glint": 1, "image": {"width": 96, "height": 72},
-      "camera": {"eye": [2, 1.5, 3], "look_at": [0, 0, 0], "fit": true},
-      "lights": [{"type": "point", "position": [3, 4, 5]}],
-      "objects": [{"type": "mesh", "file": "box/)" + std::string(file) + R"(.gltf"}]})");
-  };
+  ASSERT_NO_FATAL_FAILURE(boxVariant("Glow", "\"name\": \"Texture\"",
+                                     "\"emissiveFactor\": [0.5, 0, 0], \"emissiveTexture\": {\"index\": 0}, "));
   glint::server::test::GlintdProcess server({"--threads", "1"});
   std::vector<int> redAdded[2];
   for (const char* mask : {"all", "auto"}) {
     const std::string m = std::string(" -q --mask ") + mask + " -o ";
-    ASSERT_EQ(glint("render " + sceneOf("BoxTextured") + m + path("plain.png")).status, 0);
-    ASSERT_EQ(glint("render " + sceneOf("Glow") + m + path("glow.png")).status, 0);
-    ASSERT_EQ(glint("render " + sceneOf("Glow") + m + path("served.png") + " --server " + server.address()).status, 0);
+    ASSERT_EQ(glint("render " + boxScene("BoxTextured") + m + path("plain.png")).status, 0);
+    ASSERT_EQ(glint("render " + boxScene("Glow") + m + path("glow.png")).status, 0);
+    ASSERT_EQ(glint("render " + boxScene("Glow") + m + path("served.png") + " --server " + server.address()).status, 0);
     const Image plain = decodePng(path("plain.png")), glow = decodePng(path("glow.png"));
     EXPECT_EQ(decodePng(path("served.png")).rgb, glow.rgb) << mask;
     std::vector<int>& added = redAdded[mask[0] == 'a' && mask[1] == 'l' ? 0 : 1];

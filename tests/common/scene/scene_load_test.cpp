@@ -259,14 +259,20 @@ TEST(SceneLoad, LimitsRejectHugeMeshesAndImagesBeforeAllocating) {
 
   files.add("junk.png", "not an image at all");
   t["textures"]["t"]["file"] = "junk.png";
-  EXPECT_NE(loadError(t.dump(), files).find("textures.t.file: not a PNG, BMP, JPEG, TGA, Radiance HDR or OpenEXR image"), std::string::npos);
+  EXPECT_NE(
+      loadError(t.dump(), files).find("textures.t.file: not a PNG, BMP, JPEG, TGA, Radiance HDR or OpenEXR image"),
+      std::string::npos);
   // Other formats stb_image knows never reach it; a PNG that is not one is unreadable.
   files.add("anim.gif", std::string("GIF89a\x01\x00\x01\x00\x00\x00\x00;", 14));
   t["textures"]["t"]["file"] = "anim.gif";
-  EXPECT_NE(loadError(t.dump(), files).find("textures.t.file: not a PNG, BMP, JPEG, TGA, Radiance HDR or OpenEXR image"), std::string::npos);
+  EXPECT_NE(
+      loadError(t.dump(), files).find("textures.t.file: not a PNG, BMP, JPEG, TGA, Radiance HDR or OpenEXR image"),
+      std::string::npos);
   files.add("broken.png", std::string("\x89PNG\r\n\x1a\n", 8) + "garbage");
   t["textures"]["t"]["file"] = "broken.png";
-  EXPECT_NE(loadError(t.dump(), files).find("textures.t.file: not a readable PNG, BMP, JPEG, TGA, Radiance HDR or OpenEXR"), std::string::npos)
+  EXPECT_NE(
+      loadError(t.dump(), files).find("textures.t.file: not a readable PNG, BMP, JPEG, TGA, Radiance HDR or OpenEXR"),
+      std::string::npos)
       << loadError(t.dump(), files);
 }
 
