@@ -22,6 +22,10 @@ class Encoder {
   // The 8-bit value: scaled, clamped to [0, 1], encoded, rounded.
   std::uint8_t byte(float linear) const;
   float scale() const { return scale_; }
+  // The light a display shows for the value byte() writes, before rounding:
+  // an sRGB display decodes every 8-bit value it is sent (a linear output's
+  // values too), so FLIP judges what a viewer of the PNG sees.
+  float displayed(float linear) const;
 
  private:
   float scale_;
@@ -30,6 +34,9 @@ class Encoder {
 
 // The sRGB transfer function (IEC 61966-2-1) of a value in [0, 1].
 float srgbEncode(float linear);
+
+// Its inverse: the linear value an sRGB display shows for an encoded one.
+float srgbDecode(float encoded);
 
 // Linear [0, 1] -> 8 bits, rounded to nearest; values outside are clamped.
 std::uint8_t toByte(float v);

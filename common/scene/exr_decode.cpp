@@ -189,31 +189,38 @@ bool looksLikeExr(std::string_view bytes) {
   return bytes.starts_with("\x76\x2f\x31\x01");
 }
 
-Image decodeExr(std::string_view bytes, const std::string& place, const std::function<void(int, int)>& admit) {
+FloatPixels decodeExrLinear(std::string_view bytes, const std::string& place,
+                            const std::function<void(int, int)>& admit) {
   const ExrReader reader(bytes, place);
   int parts = 0;
   reader.check(exr_get_count(reader.context(), &parts));
-  if (parts != 1) reader.fail("has " + std::to_string(parts) + " parts; a texture must have one");
+  if (parts != 1) reader.fail("has " + std::to_string(parts) + " parts; Glint reads images of one");
   exr_attr_box2i_t window{};
   reader.check(exr_get_data_window(reader.context(), 0, &window));
   const int64_t width = int64_t{window.max.x} - window.min.x + 1, height = int64_t{window.max.y} - window.min.y + 1;
   if (width <= 0 || height <= 0 || width > INT32_MAX || height > INT32_MAX) reader.fail("has an empty data window");
   admit(static_cast<int>(width), static_cast<int>(height));
   const std::vector<std::string> channels = colourChannels(reader);
-  std::vector<float> rgb(static_cast<std::size_t>(width * height * 3), 0.0f);
+  FloatPixels pixels{static_cast<int>(width), static_cast<int>(height),
+                     std::vector<float>(static_cast<std::size_t>(width * height * 3), 0.0f)};
   exr_decode_pipeline_t pipeline{};
   bool started = false;
   try {
     forEachChunk(reader, window, bytes.size(), [&](const exr_chunk_info_t& chunk, int64_t x, int64_t y) {
-      decodeChunk(reader, chunk, x, y, width, height, channels, rgb, pipeline, started);
+      decodeChunk(reader, chunk, x, y, width, height, channels, pixels.rgb, pipeline, started);
     });
   } catch (...) {
     if (started) exr_decoding_destroy(reader.context(), &pipeline);
     throw;
   }
   if (started) exr_decoding_destroy(reader.context(), &pipeline);
-  Image image{static_cast<int>(width), static_cast<int>(height), std::vector<std::uint8_t>(rgb.size())};
-  std::transform(rgb.begin(), rgb.end(), image.rgb.begin(), linearTexelByte);
+  return pixels;
+}
+
+Image decodeExr(std::string_view bytes, const std::string& place, const std::function<void(int, int)>& admit) {
+  const FloatPixels pixels = decodeExrLinear(bytes, place, admit);
+  Image image{pixels.width, pixels.height, std::vector<std::uint8_t>(pixels.rgb.size())};
+  std::transform(pixels.rgb.begin(), pixels.rgb.end(), image.rgb.begin(), linearTexelByte);
   return image;
 }
 

@@ -1,0 +1,298 @@
+#include "common/image/flip.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+
+#include <glm/common.hpp>
+#include <glm/vec3.hpp>
+
+#include "common/base/error.h"
+
+// The constants and the order of operations follow the paper and agree with
+// NVIDIA's reference implementation (github.com/NVlabs/flip, FLIP.h v1.6),
+// which filters separably, in single precision, clamping at the borders.
+
+namespace glint {
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+// The paper's parameters: colour exponent, the share of the colour range
+// mapped to [0, kBelowCut], the feature filter's width in degrees, the
+// feature exponent.
+constexpr float kColourExponent = 0.7f;
+constexpr float kCutShare = 0.4f;
+constexpr float kBelowCut = 0.95f;
+constexpr float kFeatureWidthDeg = 0.082f;
+constexpr float kFeatureExponent = 0.5f;
+// The contrast sensitivity functions as sums of Gaussians a sqrt(pi / b)
+// exp(-pi^2 x^2 / b), x in degrees: one each for Y and Cx, two for Cz.
+struct Csf {
+  float a;
+  float b;
+};
+constexpr Csf kCsfY{1.0f, 0.0047f}, kCsfCx{1.0f, 0.0053f}, kCsfCz1{34.1f, 0.04f}, kCsfCz2{13.5f, 0.025f};
+constexpr float kWidestB = 0.04f;
+// D65 white in XYZ, and its inverse.
+constexpr glm::vec3 kWhite{0.950428545f, 1.0f, 1.088900371f};
+constexpr glm::vec3 kInvWhite{1.052156925f, 1.0f, 0.918357670f};
+
+// One channel of an image.
+struct Plane {
+  int width = 0;
+  int height = 0;
+  std::vector<float> v;
+  float at(int x, int y) const { return v[static_cast<std::size_t>(y) * width + x]; }
+};
+
+glm::vec3 linearToXyz(const glm::vec3& c) {
+  return {(10135552.0f / 24577794.0f) * c.x + (8788810.0f / 24577794.0f) * c.y + (4435075.0f / 24577794.0f) * c.z,
+          (2613072.0f / 12288897.0f) * c.x + (8788810.0f / 12288897.0f) * c.y + (887015.0f / 12288897.0f) * c.z,
+          (1425312.0f / 73733382.0f) * c.x + (8788810.0f / 73733382.0f) * c.y + (70074185.0f / 73733382.0f) * c.z};
+}
+
+glm::vec3 xyzToLinear(const glm::vec3& c) {
+  return {3.241003275f * c.x - 1.537398934f * c.y - 0.498615861f * c.z,
+          -0.969224334f * c.x + 1.875930071f * c.y + 0.041554224f * c.z,
+          0.055639423f * c.x - 0.204011202f * c.y + 1.057148933f * c.z};
+}
+
+// YCxCz: L*a*b* without the cube root (linear in XYZ, so it may be filtered).
+glm::vec3 xyzToYcxcz(glm::vec3 c) {
+  c *= kInvWhite;
+  return {116.0f * c.y - 16.0f, 500.0f * (c.x - c.y), 200.0f * (c.y - c.z)};
+}
+
+glm::vec3 ycxczToXyz(const glm::vec3& c) {
+  const float y = (c.x + 16.0f) / 116.0f;
+  return glm::vec3(y + c.y / 500.0f, y, y - c.z / 200.0f) * kWhite;
+}
+
+glm::vec3 xyzToLab(glm::vec3 c) {
+  constexpr float delta = 6.0f / 29.0f;
+  const auto f = [](float t) {
+    return t > delta * delta * delta ? std::pow(t, 1.0f / 3.0f) : t / (3.0f * delta * delta) + 4.0f / 29.0f;
+  };
+  c *= kInvWhite;
+  const glm::vec3 t{f(c.x), f(c.y), f(c.z)};
+  return {116.0f * t.y - 16.0f, 500.0f * (t.x - t.y), 200.0f * (t.y - t.z)};
+}
+
+// The Hunt effect: chroma weighs less in the dark.
+glm::vec3 hunt(const glm::vec3& lab) {
+  return {lab.x, 0.01f * lab.x * lab.y, 0.01f * lab.x * lab.z};
+}
+
+// HyAB: city-block in lightness, Euclidean in the chroma plane.
+float hyab(const glm::vec3& a, const glm::vec3& b) {
+  const float da = a.y - b.y, db = a.z - b.z;
+  return std::abs(a.x - b.x) + std::sqrt(da * da + db * db);
+}
+
+// The largest colour difference, green against blue, raised to kColourExponent.
+float largestColourDifference() {
+  const auto huntLab = [](const glm::vec3& rgb) { return hunt(xyzToLab(linearToXyz(rgb))); };
+  return std::pow(hyab(huntLab({0.0f, 1.0f, 0.0f}), huntLab({0.0f, 0.0f, 1.0f})), kColourExponent);
+}
+
+// Convolves rows (or columns) with a centred kernel, clamping at the borders.
+Plane convolve(const Plane& in, const std::vector<float>& kernel, bool rows) {
+  Plane out{in.width, in.height, std::vector<float>(in.v.size())};
+  const int r = static_cast<int>(kernel.size() / 2);
+  for (int y = 0; y < in.height; ++y) {
+    for (int x = 0; x < in.width; ++x) {
+      float sum = 0.0f;
+      for (int i = -r; i <= r; ++i) {
+        const int sx = rows ? std::clamp(x + i, 0, in.width - 1) : x;
+        const int sy = rows ? y : std::clamp(y + i, 0, in.height - 1);
+        sum += kernel[static_cast<std::size_t>(i + r)] * in.at(sx, sy);
+      }
+      out.v[static_cast<std::size_t>(y) * in.width + x] = sum;
+    }
+  }
+  return out;
+}
+
+Plane separable(const Plane& in, const std::vector<float>& alongRows, const std::vector<float>& alongColumns) {
+  return convolve(convolve(in, alongRows, true), alongColumns, false);
+}
+
+// The three YCxCz channels of an image clamped to [0, 1].
+std::array<Plane, 3> toYcxcz(const LinearImage& image) {
+  std::array<Plane, 3> planes;
+  for (Plane& p : planes) p = {image.width, image.height, std::vector<float>(image.rgb.size() / 3)};
+  for (std::size_t i = 0; i < planes[0].v.size(); ++i) {
+    const glm::vec3 rgb = glm::clamp(glm::vec3(image.rgb[3 * i], image.rgb[3 * i + 1], image.rgb[3 * i + 2]), 0.0f, 1.0f);
+    const glm::vec3 c = xyzToYcxcz(linearToXyz(rgb));
+    for (int k = 0; k < 3; ++k) planes[static_cast<std::size_t>(k)].v[i] = c[k];
+  }
+  return planes;
+}
+
+// One Gaussian of a contrast sensitivity function sampled a pixel apart over
+// a radius that covers the widest of them to three deviations. `root` takes
+// the square root of the amplitude, for a term of a sum that is filtered
+// separably as a whole.
+std::vector<float> csfKernel(const Csf& csf, double ppd, bool root) {
+  const int r = static_cast<int>(std::ceil(3.0f * std::sqrt(kWidestB / (2.0f * kPi * kPi)) * static_cast<float>(ppd)));
+  std::vector<float> k(static_cast<std::size_t>(2 * r + 1));
+  for (int i = -r; i <= r; ++i) {
+    const float x = static_cast<float>(i) / static_cast<float>(ppd);
+    const float amplitude = csf.a * std::sqrt(kPi / csf.b);
+    k[static_cast<std::size_t>(i + r)] =
+        (root ? std::sqrt(amplitude) : amplitude) * std::exp(-kPi * kPi * x * x / csf.b);
+  }
+  return k;
+}
+
+void scale(std::vector<float>& k, float by) {
+  for (float& w : k) w *= by;
+}
+
+// The colour term of each pixel: both images filtered by the contrast
+// sensitivity functions, back to linear RGB clamped to [0, 1], then the
+// Hunt-adjusted HyAB distance in L*a*b*, compressed and mapped to [0, 1].
+std::vector<float> colourTerm(const std::array<Plane, 3>& ref, const std::array<Plane, 3>& test, double ppd) {
+  std::vector<float> kY = csfKernel(kCsfY, ppd, false), kCx = csfKernel(kCsfCx, ppd, false);
+  std::vector<float> kCz1 = csfKernel(kCsfCz1, ppd, true), kCz2 = csfKernel(kCsfCz2, ppd, true);
+  scale(kY, 1.0f / std::accumulate(kY.begin(), kY.end(), 0.0f));
+  scale(kCx, 1.0f / std::accumulate(kCx.begin(), kCx.end(), 0.0f));
+  const float s1 = std::accumulate(kCz1.begin(), kCz1.end(), 0.0f), s2 = std::accumulate(kCz2.begin(), kCz2.end(), 0.0f);
+  const float czNorm = 1.0f / std::sqrt(s1 * s1 + s2 * s2);
+  scale(kCz1, czNorm);
+  scale(kCz2, czNorm);
+  const auto filtered = [&](const std::array<Plane, 3>& p) {
+    Plane cz = separable(p[2], kCz1, kCz1);
+    const Plane cz2 = separable(p[2], kCz2, kCz2);
+    for (std::size_t i = 0; i < cz.v.size(); ++i) cz.v[i] += cz2.v[i];
+    return std::array<Plane, 3>{separable(p[0], kY, kY), separable(p[1], kCx, kCx), cz};
+  };
+  const std::array<Plane, 3> fr = filtered(ref), ft = filtered(test);
+  const float cmax = largestColourDifference(), cut = kCutShare * cmax;
+  std::vector<float> term(fr[0].v.size());
+  for (std::size_t i = 0; i < term.size(); ++i) {
+    const auto lab = [i](const std::array<Plane, 3>& p) {
+      const glm::vec3 rgb = glm::clamp(xyzToLinear(ycxczToXyz({p[0].v[i], p[1].v[i], p[2].v[i]})), 0.0f, 1.0f);
+      return hunt(xyzToLab(linearToXyz(rgb)));
+    };
+    const float d = std::pow(hyab(lab(fr), lab(ft)), kColourExponent);
+    term[i] = d < cut ? d * kBelowCut / cut : kBelowCut + (d - cut) / (cmax - cut) * (1.0f - kBelowCut);
+  }
+  return term;
+}
+
+// A Gaussian of deviation half the feature width, its first and second
+// derivatives; each derivative's positive and negative weights sum to +1
+// and -1, the Gaussian's to 1.
+struct FeatureKernels {
+  std::vector<float> g, dg, ddg;
+};
+
+FeatureKernels featureKernels(double ppd) {
+  const float sd = 0.5f * kFeatureWidthDeg * static_cast<float>(ppd);
+  const int r = static_cast<int>(std::ceil(3.0f * sd));
+  FeatureKernels k;
+  float gSum = 0.0f, dPos = 0.0f, dNeg = 0.0f, ddPos = 0.0f, ddNeg = 0.0f;
+  for (int i = -r; i <= r; ++i) {
+    const auto x = static_cast<float>(i);
+    const float g = std::exp(-(x * x) / (2.0f * sd * sd)), dg = -x * g, ddg = (x * x / (sd * sd) - 1.0f) * g;
+    k.g.push_back(g);
+    k.dg.push_back(dg);
+    k.ddg.push_back(ddg);
+    gSum += g;
+    (dg > 0.0f ? dPos : dNeg) += std::abs(dg);
+    (ddg > 0.0f ? ddPos : ddNeg) += std::abs(ddg);
+  }
+  for (std::size_t i = 0; i < k.g.size(); ++i) {
+    k.g[i] /= gSum;
+    k.dg[i] /= k.dg[i] > 0.0f ? dPos : dNeg;
+    k.ddg[i] /= k.ddg[i] > 0.0f ? ddPos : ddNeg;
+  }
+  return k;
+}
+
+// Edge (first derivative) and point (second derivative) magnitudes of the
+// luminance, normalised to [0, 1].
+struct Features {
+  std::vector<float> edge, point;
+};
+
+Features features(const Plane& y, const FeatureKernels& k) {
+  Plane gray = y;
+  for (float& v : gray.v) v = (v + 16.0f) / 116.0f;
+  const Plane dx = separable(gray, k.dg, k.g), dy = separable(gray, k.g, k.dg);
+  const Plane ddx = separable(gray, k.ddg, k.g), ddy = separable(gray, k.g, k.ddg);
+  Features f{std::vector<float>(gray.v.size()), std::vector<float>(gray.v.size())};
+  for (std::size_t i = 0; i < gray.v.size(); ++i) {
+    f.edge[i] = std::sqrt(dx.v[i] * dx.v[i] + dy.v[i] * dy.v[i]);
+    f.point[i] = std::sqrt(ddx.v[i] * ddx.v[i] + ddy.v[i] * ddy.v[i]);
+  }
+  return f;
+}
+
+}  // namespace
+
+FlipMap flip(const LinearImage& reference, const LinearImage& test, double pixelsPerDegree) {
+  if (reference.width != test.width || reference.height != test.height) {
+    throw InputError("images of different sizes cannot be compared (" + std::to_string(reference.width) + "x" +
+                     std::to_string(reference.height) + " and " + std::to_string(test.width) + "x" +
+                     std::to_string(test.height) + ")");
+  }
+  const std::array<Plane, 3> ref = toYcxcz(reference), tst = toYcxcz(test);
+  FlipMap map{reference.width, reference.height, colourTerm(ref, tst, pixelsPerDegree)};
+  const FeatureKernels kernels = featureKernels(pixelsPerDegree);
+  const Features fr = features(ref[0], kernels), ft = features(tst[0], kernels);
+  for (std::size_t i = 0; i < map.error.size(); ++i) {
+    const float difference = std::max(std::abs(fr.edge[i] - ft.edge[i]), std::abs(fr.point[i] - ft.point[i]));
+    const float feature = std::pow(difference / std::sqrt(2.0f), kFeatureExponent);
+    map.error[i] = std::pow(map.error[i], 1.0f - feature);
+  }
+  return map;
+}
+
+FlipStats flipStats(const FlipMap& map) {
+  if (map.error.empty()) return {};
+  std::vector<float> sorted = map.error;
+  std::sort(sorted.begin(), sorted.end());
+  const auto rank = [&sorted](double share) {
+    const auto n = static_cast<double>(sorted.size());
+    return static_cast<double>(sorted[static_cast<std::size_t>(std::max(1.0, std::ceil(share * n))) - 1]);
+  };
+  double sum = 0.0;
+  for (const float e : map.error) sum += e;
+  return {sum / static_cast<double>(map.error.size()), rank(0.95), rank(0.99)};
+}
+
+FrameImage magmaImage(const FlipMap& map) {
+  // Matplotlib's magma (sRGB values) at every 16th of its 256 entries and the
+  // last, interpolated linearly between them.
+  static constexpr std::array<glm::vec3, 17> kKnots{{{0.001462f, 0.000466f, 0.013866f},
+                                                     {0.039608f, 0.031090f, 0.133515f},
+                                                     {0.113094f, 0.065492f, 0.276784f},
+                                                     {0.211718f, 0.061992f, 0.418647f},
+                                                     {0.316654f, 0.071690f, 0.485380f},
+                                                     {0.414709f, 0.110431f, 0.504662f},
+                                                     {0.512831f, 0.148179f, 0.507648f},
+                                                     {0.613617f, 0.181811f, 0.498536f},
+                                                     {0.716387f, 0.214982f, 0.475290f},
+                                                     {0.816914f, 0.255895f, 0.436461f},
+                                                     {0.904281f, 0.319610f, 0.388137f},
+                                                     {0.960949f, 0.418323f, 0.359630f},
+                                                     {0.986700f, 0.535582f, 0.382210f},
+                                                     {0.996096f, 0.653659f, 0.446213f},
+                                                     {0.996898f, 0.769591f, 0.534892f},
+                                                     {0.992440f, 0.884330f, 0.640099f},
+                                                     {0.987053f, 0.991438f, 0.749504f}}};
+  FrameImage image{map.width, map.height, std::vector<std::uint8_t>(map.error.size() * 3)};
+  for (std::size_t p = 0; p < map.error.size(); ++p) {
+    const float at = std::clamp(map.error[p], 0.0f, 1.0f) * 255.0f;
+    const std::size_t k = std::min<std::size_t>(static_cast<std::size_t>(at / 16.0f), kKnots.size() - 2);
+    const float from = static_cast<float>(k) * 16.0f, to = k + 2 == kKnots.size() ? 255.0f : from + 16.0f;
+    const glm::vec3 c = glm::mix(kKnots[k], kKnots[k + 1], (at - from) / (to - from));
+    for (int ch = 0; ch < 3; ++ch) image.rgb[3 * p + ch] = static_cast<std::uint8_t>(std::lround(c[ch] * 255.0f));
+  }
+  return image;
+}
+
+}  // namespace glint
