@@ -15,6 +15,7 @@
 #include <CLI/CLI.hpp>
 
 #include "client/accuracy_command.h"
+#include "client/compare_command.h"
 #include "client/info_command.h"
 #include "client/offscreen_context.h"
 #include "client/render_command.h"
@@ -330,6 +331,25 @@ std::function<void()> declareAccuracy(CLI::App* accuracy) {
   return [options] { runAccuracy(*options); };
 }
 
+constexpr const char* kCompareHelp =
+    "Compare two images of one size (PNG, JPEG, BMP, TGA: 8-bit values shown through sRGB; EXR, PFM: linear): print "
+    "the mean FLIP error (the perceptual difference a viewer sees flipping between them, 0 none, 1 the most) with "
+    "its 95th and 99th percentiles, the RMSE and the PSNR, one line each; -o writes FLIP's error map.";
+
+// Declares `glint compare`'s options; returns what runs once they are parsed.
+std::function<void()> declareCompare(CLI::App* compare) {
+  auto options = std::make_shared<CompareOptions>();
+  CompareOptions& o = *options;
+  compare->add_option("reference", o.reference, "The reference image")->required()->check(CLI::ExistingFile);
+  compare->add_option("test", o.test, "The image judged against it")->required()->check(CLI::ExistingFile);
+  compare->add_option("-o,--output", o.errorMap, "Write the FLIP error map (magma: black none, yellow most) as a PNG");
+  compare
+      ->add_option("--ppd", o.pixelsPerDegree,
+                   "The viewer's pixels per degree (default 67: 0.7 m from a 0.7 m wide 3840-pixel display)")
+      ->check(CLI::Range(1.0, 1000.0));
+  return [options] { runCompare(*options); };
+}
+
 // glint's commands: a name, its help, and the function that declares its
 // options. A new command is one more row.
 struct CommandSpec {
@@ -342,6 +362,7 @@ constexpr CommandSpec kCommands[] = {
     {"view", kViewHelp, declareView},
     {"accuracy", kAccuracyHelp, declareAccuracy},
     {"info", kInfoHelp, declareInfo},
+    {"compare", kCompareHelp, declareCompare},
 };
 
 }  // namespace
