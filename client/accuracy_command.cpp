@@ -14,6 +14,8 @@
 #include "client/usage_error.h"
 #include "common/base/error.h"
 #include "common/scene/frame_limits.h"
+#include "common/image/encoding.h"
+#include "common/image/flip.h"
 #include "common/image/image_write.h"
 #include "common/render/linear_frame.h"
 #include "common/scene/load_limits.h"
@@ -30,6 +32,7 @@ constexpr int kReferenceDepth = 16;
 
 struct Sweep {
   const PreparedScene& prepared;
+  Encoder encoder;  // the scene's output: what a viewer of the images sees
   ThreadPool& pool;
   int frames;
   int tileSize;         // --tile-size
@@ -67,7 +70,7 @@ LinearImage traceRow(Sweep& sweep, const FrameSettings& frame, AccuracyRow& row)
     if (sweep.remote) {
       FrameResult r = renderFrame(*sweep.remote, frame, {.tileSize = sweep.tileSize, .window = {}, .progress = {}});
       row.rays = r.stats;
-      image = fromBytes(r.image);
+      image = decodeBytes(r.image, sweep.encoder);
     } else {
       image = renderLinear(renderer, sweep.pool, row.rays, LinearRange::kClamped);
     }
@@ -93,15 +96,21 @@ LinearImage hybridRow(Sweep& sweep, const FrameSettings& frame, const MaskSettin
   }
   row.timeMs = median(times);
   row.rays = result.rays;
-  return fromBytes(result.image);
+  return decodeBytes(result.image, sweep.encoder);
 }
 
-void writeRowImages(const fs::path& dir, const AccuracyRow& row, const LinearImage& image,
-                    const LinearImage& reference) {
+// The row's errors against the reference, and its images: the PFM, the
+// PNG, the false-colour error and FLIP's map.
+void measureRow(const fs::path& dir, const Encoder& encoder, const LinearImage& image, const LinearImage& reference,
+                AccuracyRow& row) {
+  row.error = compareImages(image, reference);
+  const FlipMap map = flip(displayedLight(reference, encoder), displayedLight(image, encoder));
+  row.flip = flipStats(map);
   const std::string stem = row.name + "-" + row.value;
   writePfm(dir / (stem + ".pfm"), image);
   writePng(dir / row.image, toBytes(image));
   writePng(dir / (stem + "-error.png"), errorImage(pixelErrors(image, reference), image.width, image.height));
+  writePng(dir / (stem + "-flip.png"), magmaImage(map));
 }
 
 AccuracyReference renderReference(Sweep& sweep, const FrameSettings& frame, int samples, const fs::path& dir,
@@ -115,7 +124,9 @@ AccuracyReference renderReference(Sweep& sweep, const FrameSettings& frame, int 
   const LinearImage halfB = renderLinear(b, sweep.pool, ignored, LinearRange::kClamped);
   reference = average(halfA, halfB);
   // Each half errs by about sqrt(2) times the whole; their difference by 2 times.
-  AccuracyReference r{samples, kReferenceDepth, compareImages(halfA, halfB).rmse / 2.0, msSince(start)};
+  AccuracyReference r{samples, kReferenceDepth, compareImages(halfA, halfB).rmse / 2.0,
+                      flipStats(flip(displayedLight(halfA, sweep.encoder), displayedLight(halfB, sweep.encoder))).mean,
+                      msSince(start)};
   writePfm(dir / "reference.pfm", reference);
   writePng(dir / "reference.png", toBytes(reference));
   return r;
@@ -161,7 +172,7 @@ void runAccuracy(const AccuracyOptions& o) {
   ThreadPool pool(resolveThreadCount(o.threads));
   std::unique_ptr<DistributedTileService> remote;
   if (o.remote.any()) remote = connectServers(o.remote, loaded.bundle);
-  Sweep sweep{prepared, pool, o.frames, o.frame.tileSize, remote.get(), o.gl, nullptr, nullptr};
+  Sweep sweep{prepared, Encoder(scene.frame.output), pool, o.frames, o.frame.tileSize, remote.get(), o.gl, nullptr, nullptr};
   LinearImage reference;
   const AccuracyReference ref = renderReference(sweep, scene.frame, o.referenceSamples, dir, reference);
 
@@ -172,19 +183,19 @@ void runAccuracy(const AccuracyOptions& o) {
     for (const std::string& value : s.values) {
       const auto [frame, mask] = withSetting(scene, s.key, value);
       AccuracyRow row{std::string(enumWord(s.key)), value, value == currentValue(s.key, scene.frame, scene.mask),
-                      0.0, {}, {}, std::string(enumWord(s.key)) + "-" + value + ".png"};
+                      0.0, {}, {}, {}, std::string(enumWord(s.key)) + "-" + value + ".png"};
       const LinearImage image =
           hybridKey(s.key) ? hybridRow(sweep, frame, mask, row) : traceRow(sweep, frame, row);
-      row.error = compareImages(image, reference);
-      writeRowImages(dir, row, image, reference);
-      std::fprintf(stderr, "[%zu/%zu] %s = %s: %.1f ms, RMSE %.5f\n", ++done, total, row.name.c_str(),
-                   row.value.c_str(), row.timeMs, row.error.rmse);
+      measureRow(dir, sweep.encoder, image, reference, row);
+      std::fprintf(stderr, "[%zu/%zu] %s = %s: %.1f ms, FLIP %.4f, RMSE %.5f\n", ++done, total, row.name.c_str(),
+                   row.value.c_str(), row.timeMs, row.flip.mean, row.error.rmse);
       rows.push_back(std::move(row));
     }
   }
   writeCsv(dir, rows);
-  const bool plotted = writePlot(dir, rows, ref.ownRmse);
-  writeReport(dir, o.scene, ref, rows, plotted);
+  const AccuracyMetric metric = o.metric.value_or(AccuracyMetric::kFlip);
+  const bool plotted = writePlot(dir, rows, ref, metric);
+  writeReport(dir, o.scene, ref, rows, metric, plotted);
   std::fprintf(stderr, "wrote %s/report.md, accuracy.csv%s and the images\n", o.outDir.c_str(),
                plotted ? ", accuracy.png" : " (no accuracy.png: gnuplot is not installed; apt-get install gnuplot-nox)");
 }

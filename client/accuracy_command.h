@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "client/accuracy_report.h"
 #include "client/frame_overrides.h"
 #include "client/headless_gl.h"
 #include "client/tile_backend.h"
@@ -23,11 +24,13 @@ struct AccuracyOptions {
   // frames, so errors below 1/255 are not seen); the reference in process.
   RemoteOptions remote;
   std::optional<gl::GlBackend> gl;  // --gl: the hybrid rows' headless OpenGL; unset: the default
+  std::optional<AccuracyMetric> metric;  // --metric: the plot's error axis and the Pareto front's; unset: flip
 };
 
 // Renders a reference and every setting of the sweep, measures each row's
-// error against the reference and its time, and writes accuracy.csv, the
-// images (PFM and PNG), the error images, the plot and report.md to outDir
+// error (RMSE, PSNR, FLIP) against the reference and its time, and writes
+// accuracy.csv, the images (PFM and PNG), the error images and FLIP maps, the
+// plot and report.md to outDir
 // (docs/accuracy.md). Throws InputError for bad input, before rendering.
 void runAccuracy(const AccuracyOptions& options);
 

@@ -4,11 +4,23 @@
 #include <string>
 #include <vector>
 
-#include "common/render/frame.h"
+#include "common/base/enum_words.h"
+#include "common/image/flip.h"
 #include "common/image/image_metrics.h"
+#include "common/render/frame.h"
 #include "common/render/ray_stats.h"
 
 namespace glint {
+
+// The error a sweep's plot, Pareto front and summary judge rows by: FLIP's
+// mean (what a viewer sees) or the RMSE of linear values.
+enum class AccuracyMetric { kFlip, kRmse };
+
+template <>
+struct EnumWords<AccuracyMetric> {
+  static constexpr std::array<std::pair<AccuracyMetric, std::string_view>, 2> kWords{
+      {{AccuracyMetric::kFlip, "flip"}, {AccuracyMetric::kRmse, "rmse"}}};
+};
 
 // One rendered setting of an accuracy sweep.
 struct AccuracyRow {
@@ -18,6 +30,7 @@ struct AccuracyRow {
   double timeMs = 0.0;        // median frame time
   RayStats rays;
   ImageError error;
+  FlipStats flip;     // of the image as a display shows it (Encoder::displayed)
   std::string image;  // file name of the row's PNG in the output folder
 };
 
@@ -26,6 +39,7 @@ struct AccuracyReference {
   int samples = 0;
   int maxDepth = 0;
   double ownRmse = 0.0;  // estimated from two half-sample references
+  double halvesFlip = 0.0;  // the mean FLIP of the two halves against each other
   double timeMs = 0.0;
 };
 
@@ -34,14 +48,19 @@ struct AccuracyReference {
 // images of different rows compare.
 FrameImage errorImage(const std::vector<float>& perPixel, int width, int height);
 
-// accuracy.csv, the plot (gnuplot's data and script, and accuracy.png when
-// gnuplot is installed; false when it is not) and report.md, in `dir`.
-void writeCsv(const std::filesystem::path& dir, const std::vector<AccuracyRow>& rows);
-bool writePlot(const std::filesystem::path& dir, const std::vector<AccuracyRow>& rows, double referenceRmse);
-void writeReport(const std::filesystem::path& dir, const std::string& scene, const AccuracyReference& reference,
-                 const std::vector<AccuracyRow>& rows, bool plotted);
+// A row's error by `metric`.
+double errorOf(const AccuracyRow& row, AccuracyMetric metric);
 
-// Rows no other row beats in both time and error.
-std::vector<bool> paretoFront(const std::vector<AccuracyRow>& rows);
+// accuracy.csv, the plot of `metric` against time (gnuplot's data and
+// script, and accuracy.png when gnuplot is installed; false when it is not)
+// and report.md, in `dir`.
+void writeCsv(const std::filesystem::path& dir, const std::vector<AccuracyRow>& rows);
+bool writePlot(const std::filesystem::path& dir, const std::vector<AccuracyRow>& rows,
+               const AccuracyReference& reference, AccuracyMetric metric);
+void writeReport(const std::filesystem::path& dir, const std::string& scene, const AccuracyReference& reference,
+                 const std::vector<AccuracyRow>& rows, AccuracyMetric metric, bool plotted);
+
+// Rows no other row beats in both time and `metric`.
+std::vector<bool> paretoFront(const std::vector<AccuracyRow>& rows, AccuracyMetric metric);
 
 }  // namespace glint

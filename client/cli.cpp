@@ -304,7 +304,8 @@ constexpr const char* kAccuracyHelp =
     "setting varied at a time (--vary KEY=V1,V2,...; KEY: samples, pattern, filter, max_depth, min_weight, "
     "mask_threshold, shadow_map; none: a default sweep of every key), and write each setting's time and error against "
     "the "
-    "reference (accuracy.csv), its images and error images, a plot and report.md to DIR.";
+    "reference (accuracy.csv: FLIP's mean, 95th and 99th percentiles, RMSE, PSNR), its images, error images and FLIP "
+    "maps, a plot of error against time and report.md to DIR.";
 
 // Declares `glint accuracy`'s options; returns what runs once they are parsed.
 std::function<void()> declareAccuracy(CLI::App* accuracy) {
@@ -328,6 +329,9 @@ std::function<void()> declareAccuracy(CLI::App* accuracy) {
       ->default_val(0);
   addServerOptions(accuracy, o.remote);
   addGlOption(accuracy, o.gl);
+  addEnumOption(accuracy, "--metric", o.metric,
+                "The plot's error axis and the Pareto front's: flip (mean FLIP, what a viewer sees; the default) or "
+                "rmse");
   return [options] { runAccuracy(*options); };
 }
 

@@ -16,8 +16,24 @@ std::uint8_t Encoder::byte(float linear) const {
 }
 
 float Encoder::displayed(float linear) const {
-  const float v = std::clamp(linear * scale_, 0.0f, 1.0f);
-  return srgb_ ? v : srgbDecode(v);
+  return srgbDecode(static_cast<float>(byte(linear)) / 255.0f);
+}
+
+float Encoder::decoded(std::uint8_t byte) const {
+  const float v = static_cast<float>(byte) / 255.0f;
+  return (srgb_ ? srgbDecode(v) : v) / scale_;
+}
+
+LinearImage displayedLight(const LinearImage& image, const Encoder& encoder) {
+  LinearImage light = image;
+  for (float& v : light.rgb) v = encoder.displayed(v);
+  return light;
+}
+
+LinearImage decodeBytes(const FrameImage& image, const Encoder& encoder) {
+  LinearImage linear{image.width, image.height, std::vector<float>(image.rgb.size())};
+  for (std::size_t i = 0; i < image.rgb.size(); ++i) linear.rgb[i] = encoder.decoded(image.rgb[i]);
+  return linear;
 }
 
 std::uint8_t toByte(float v) {

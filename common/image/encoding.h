@@ -4,6 +4,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "common/image/frame_image.h"
+#include "common/image/linear_image.h"
 #include "common/scene/scene.h"
 
 namespace glint {
@@ -22,15 +24,23 @@ class Encoder {
   // The 8-bit value: scaled, clamped to [0, 1], encoded, rounded.
   std::uint8_t byte(float linear) const;
   float scale() const { return scale_; }
-  // The light a display shows for the value byte() writes, before rounding:
-  // an sRGB display decodes every 8-bit value it is sent (a linear output's
-  // values too), so FLIP judges what a viewer of the PNG sees.
+  // The light a display shows for the value byte() writes: an sRGB display
+  // decodes every 8-bit value it is sent (a linear output's values too), so
+  // FLIP judges what a viewer of the PNG sees.
   float displayed(float linear) const;
+  // The linear value an 8-bit value stands for (byte()'s inverse, up to its
+  // rounding and clamping).
+  float decoded(std::uint8_t byte) const;
 
  private:
   float scale_;
   bool srgb_;
 };
+
+// An image's displayed light (Encoder::displayed) and an 8-bit image's
+// linear values (Encoder::decoded), pixel by pixel.
+LinearImage displayedLight(const LinearImage& image, const Encoder& encoder);
+LinearImage decodeBytes(const FrameImage& image, const Encoder& encoder);
 
 // The sRGB transfer function (IEC 61966-2-1) of a value in [0, 1].
 float srgbEncode(float linear);

@@ -14,7 +14,9 @@
 #include "client/accuracy_report.h"
 #include "client/accuracy_sweep.h"
 #include "common/base/error.h"
+#include "common/image/flip.h"
 #include "common/image/image_metrics.h"
+#include "common/image/image_read.h"
 #include "tests/support/test_support.h"
 
 namespace glint {
@@ -77,6 +79,7 @@ struct CsvRow {
   std::string value;
   double timeMs;
   double rmse;
+  double flip, flipP95, flipP99;
 };
 
 std::vector<CsvRow> readCsv(const fs::path& path) {
@@ -88,7 +91,8 @@ std::vector<CsvRow> readCsv(const fs::path& path) {
     std::vector<std::string> cells;
     std::stringstream s(line);
     for (std::string cell; std::getline(s, cell, ',');) cells.push_back(cell);
-    rows.push_back({cells.at(1), std::stod(cells.at(3)), std::stod(cells.at(9))});
+    rows.push_back({cells.at(1), std::stod(cells.at(3)), std::stod(cells.at(9)), std::stod(cells.at(14)),
+                    std::stod(cells.at(15)), std::stod(cells.at(16))});
   }
   return rows;
 }
@@ -128,7 +132,36 @@ TEST(Accuracy, ErrorFallsWithSamplesOnASmallScene) {
   EXPECT_EQ(pfmBytes, std::string("PF\n64 48\n-1.0\n").size() + 64u * 48u * 3u * sizeof(float));
   EXPECT_TRUE(fs::exists(dir / "samples-64-error.png"));
   EXPECT_TRUE(fs::exists(dir / "reference.pfm"));
+  // FLIP falls with samples too, its percentiles above its mean; it is the
+  // FLIP of the PNGs the sweep wrote, as glint compare reads them (through
+  // sRGB, as a display shows the scene's linear values).
+  EXPECT_GT(rows[0].flip, rows[1].flip);
+  for (const CsvRow& r : rows) {
+    EXPECT_GE(r.flipP95, r.flip);
+    EXPECT_GE(r.flipP99, r.flipP95);
+  }
+  const double fromPngs = flipStats(flip(displayLight(readImageFile(dir / "reference.png")),
+                                         displayLight(readImageFile(dir / "samples-16.png"))))
+                              .mean;
+  EXPECT_NEAR(rows[0].flip, fromPngs, 1e-6);
+  EXPECT_TRUE(fs::exists(dir / "samples-64-flip.png"));
+  std::ifstream script(dir / "accuracy.gp");
+  const std::string gp((std::istreambuf_iterator<char>(script)), std::istreambuf_iterator<char>());
+  EXPECT_NE(gp.find("mean FLIP against the reference"), std::string::npos);
   fs::remove_all(dir);
+}
+
+// --metric rmse: the plot's axis and the front judge RMSE.
+TEST(AccuracyReport, TheMetricChoosesThePlotAndTheFront) {
+  std::vector<AccuracyRow> rows(2);
+  rows[0].timeMs = 10.0;  // cheaper, lower RMSE, higher FLIP
+  rows[0].error.rmse = 0.01;
+  rows[0].flip.mean = 0.2;
+  rows[1].timeMs = 20.0;
+  rows[1].error.rmse = 0.02;
+  rows[1].flip.mean = 0.1;
+  EXPECT_EQ(paretoFront(rows, AccuracyMetric::kRmse), (std::vector<bool>{true, false}));
+  EXPECT_EQ(paretoFront(rows, AccuracyMetric::kFlip), (std::vector<bool>{true, true}));
 }
 
 // What runAccuracy refused `o` with ("(ran)" when it did not).
