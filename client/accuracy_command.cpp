@@ -47,7 +47,8 @@ void checkSetting(const std::string& place, FrameSettings frame) {
   const std::string samples = place + " (samples " + std::to_string(frame.sampling.samples) + ")";
   checkFrame(frame, LoadLimits{}.maxImagePixels,
              {.size = "--size", .camera = "camera.", .samples = samples.c_str(), .seed = place.c_str(),
-              .maxDepth = place.c_str(), .minWeight = place.c_str(), .adaptiveThreshold = place.c_str(), .exposure = "--exposure"});
+              .maxDepth = place.c_str(), .minWeight = place.c_str(), .adaptiveThreshold = place.c_str(),
+              .perceptualThreshold = place.c_str(), .exposure = "--exposure"});
 }
 
 FrameSettings referenceFrame(FrameSettings frame, int samples, std::uint32_t seed) {

@@ -27,9 +27,17 @@ std::string allowed(AccuracyKey key) {
       return "numbers in [0, 1]";
     case AccuracyKey::kShadowMap:
       return "whole numbers in [0, " + std::to_string(MaskSettings::kMaxShadowMap) + "]";
+    case AccuracyKey::kMaskRule:
+      return "one of " + enumWordsJoined<MaskRule>();
+    case AccuracyKey::kPerceptualThreshold:
+      return "numbers in (0, 1]";
   }
   return "";
 }
+
+// The rule a hybrid key's rows keep: the scene's if it draws with OpenGL
+// and traces by the materials, else auto.
+MaskRule hybridRule(MaskRule rule) { return rule == MaskRule::kPerceptual ? rule : MaskRule::kAuto; }
 
 bool parseNumber(const std::string& text, double& out) {
   const char* end = text.data() + text.size();
@@ -56,6 +64,10 @@ bool takes(AccuracyKey key, const std::string& value) {
     case AccuracyKey::kShadowMap:
       return parseNumber(value, number) && number == std::floor(number) && number >= 0 &&
              number <= MaskSettings::kMaxShadowMap;
+    case AccuracyKey::kMaskRule:
+      return enumFromWord<MaskRule>(value).has_value();
+    case AccuracyKey::kPerceptualThreshold:
+      return parseNumber(value, number) && number > 0.0 && number <= 1.0;
   }
   return false;
 }
@@ -90,15 +102,20 @@ Series parseVary(const std::string& text) {
 
 std::vector<Series> defaultSweep() {
   return {{AccuracyKey::kSamples, {"1", "4", "16", "64"}},
-          {AccuracyKey::kPattern, {"regular", "jittered", "adaptive"}},
+          {AccuracyKey::kPattern, {"regular", "jittered", "adaptive", "perceptual"}},
           {AccuracyKey::kFilter, {"box", "tent", "gaussian", "mitchell"}},
           {AccuracyKey::kMaxDepth, {"1", "2", "3", "5", "8"}},
           {AccuracyKey::kMinWeight, {"0.1", "0.01", "0.001", "0"}},
           {AccuracyKey::kMaskThreshold, {"0", "0.1", "0.2", "0.5", "1"}},
-          {AccuracyKey::kShadowMap, {"0", "256", "1024", "4096"}}};
+          {AccuracyKey::kShadowMap, {"0", "256", "1024", "4096"}},
+          {AccuracyKey::kMaskRule, {"auto", "perceptual"}},
+          {AccuracyKey::kPerceptualThreshold, {"0.1", "0.2", "0.3", "0.5", "0.8"}}};
 }
 
-bool hybridKey(AccuracyKey key) { return key == AccuracyKey::kMaskThreshold || key == AccuracyKey::kShadowMap; }
+bool hybridKey(AccuracyKey key) {
+  return key == AccuracyKey::kMaskThreshold || key == AccuracyKey::kShadowMap || key == AccuracyKey::kMaskRule ||
+         key == AccuracyKey::kPerceptualThreshold;
+}
 
 void applySetting(AccuracyKey key, const std::string& value, FrameSettings& frame, MaskSettings& mask) {
   switch (key) {
@@ -118,12 +135,19 @@ void applySetting(AccuracyKey key, const std::string& value, FrameSettings& fram
       frame.tracing.minWeight = std::stof(value);
       return;
     case AccuracyKey::kMaskThreshold:
-      mask.rule = MaskRule::kAuto;
+      mask.rule = hybridRule(mask.rule);
       mask.minReflectivity = std::stof(value);
       return;
     case AccuracyKey::kShadowMap:
-      mask.rule = MaskRule::kAuto;
+      mask.rule = hybridRule(mask.rule);
       mask.shadowMap = std::stoi(value);
+      return;
+    case AccuracyKey::kMaskRule:
+      mask.rule = *enumFromWord<MaskRule>(value);
+      return;
+    case AccuracyKey::kPerceptualThreshold:
+      mask.rule = MaskRule::kPerceptual;
+      frame.sampling.perceptualThreshold = std::stof(value);
       return;
   }
 }
@@ -144,6 +168,10 @@ std::string currentValue(AccuracyKey key, const FrameSettings& frame, const Mask
       return formatNumber(mask.minReflectivity);
     case AccuracyKey::kShadowMap:
       return std::to_string(mask.shadowMap);
+    case AccuracyKey::kMaskRule:
+      return std::string(enumWord(mask.rule));
+    case AccuracyKey::kPerceptualThreshold:
+      return formatNumber(frame.sampling.perceptualThreshold);
   }
   return "";
 }

@@ -12,18 +12,30 @@
 namespace glint {
 
 // The settings `glint accuracy` can vary.
-enum class AccuracyKey { kSamples, kPattern, kFilter, kMaxDepth, kMinWeight, kMaskThreshold, kShadowMap };
+enum class AccuracyKey {
+  kSamples,
+  kPattern,
+  kFilter,
+  kMaxDepth,
+  kMinWeight,
+  kMaskThreshold,
+  kShadowMap,
+  kMaskRule,
+  kPerceptualThreshold
+};
 
 template <>
 struct EnumWords<AccuracyKey> {
-  static constexpr std::array<std::pair<AccuracyKey, std::string_view>, 7> kWords{
+  static constexpr std::array<std::pair<AccuracyKey, std::string_view>, 9> kWords{
       {{AccuracyKey::kSamples, "samples"},
        {AccuracyKey::kPattern, "pattern"},
        {AccuracyKey::kFilter, "filter"},
        {AccuracyKey::kMaxDepth, "max_depth"},
        {AccuracyKey::kMinWeight, "min_weight"},
        {AccuracyKey::kMaskThreshold, "mask_threshold"},
-       {AccuracyKey::kShadowMap, "shadow_map"}}};
+       {AccuracyKey::kShadowMap, "shadow_map"},
+       {AccuracyKey::kMaskRule, "mask_rule"},
+       {AccuracyKey::kPerceptualThreshold, "perceptual_threshold"}}};
 };
 
 // One series of a sweep: one key, the values it takes in turn, every other
@@ -41,12 +53,14 @@ Series parseVary(const std::string& text);
 std::vector<Series> defaultSweep();
 
 // Whether a key's rows are hybrid frames (OpenGL draws, the tracer fills
-// the mask under the auto rule): mask_threshold and shadow_map.
+// the mask): mask_threshold, shadow_map, mask_rule and perceptual_threshold.
 bool hybridKey(AccuracyKey key);
 
-// Sets `value` of `key` in a frame and mask (mask_threshold: the auto rule's
-// reflectivity threshold; shadow_map: the shadow maps' size, 0 none). Values
-// are as parseVary checked them.
+// Sets `value` of `key` in a frame and mask (mask_threshold: the material
+// rule's reflectivity threshold and shadow_map the shadow maps' size, 0 none,
+// under the scene's rule if it is auto or perceptual, else auto; mask_rule:
+// the rule; perceptual_threshold: the sampling's, under the perceptual
+// rule). Values are as parseVary checked them.
 void applySetting(AccuracyKey key, const std::string& value, FrameSettings& frame, MaskSettings& mask);
 
 // The scene's own value of `key`, written as the sweep writes values.

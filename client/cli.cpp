@@ -189,9 +189,11 @@ void addServerOptions(CLI::App* app, RemoteOptions& remote) {
 void addFrameOptions(CLI::App* app, FrameOverrides& o) {
   addEnumOption(app, "--mask", o.mask,
                 "Which pixels are ray traced (default: the scene's): auto, objects whose materials need it, "
-                "drawn by OpenGL otherwise; all, the full ray trace; none, OpenGL only");
+                "drawn by OpenGL otherwise; perceptual, auto's pixels and the raster's visible colour edges, each "
+                "traced with one ray and the frame's samples only where the difference is visible; all, the full "
+                "ray trace; none, OpenGL only");
   app->add_option("--mask-threshold", o.maskThreshold,
-                  "Under --mask auto: materials with reflectivity above this are ray traced")
+                  "Under --mask auto or perceptual: materials with reflectivity above this are ray traced")
       ->check(CLI::Range(0.0f, 1.0f));
   app->add_option("--shadow-map", o.shadowMap,
                   "Shadow map size in texels a cube face edge (default: the scene's, 1024): surfaces OpenGL "
@@ -207,6 +209,9 @@ void addFrameOptions(CLI::App* app, FrameOverrides& o) {
                 "neighbour");
   app->add_option("--adaptive-threshold", o.adaptiveThreshold,
                   "Under --pattern adaptive: a channel difference above this (linear, default 1/64) refines");
+  app->add_option("--perceptual-threshold", o.perceptualThreshold,
+                  "Under --pattern or --mask perceptual: a colour difference (FLIP's colour term, 0-1, default 0.3) "
+                  "above this is visible and gets the frame's samples");
   addEnumOption(app, "--filter", o.filter, "Pixel filter (default: the scene's)");
   app->add_option("--seed", o.seed, "Seed of the jitter (same seed, same image)")
       ->check(CLI::Range(0u, FrameLimits::kMaxSeed));
@@ -302,7 +307,7 @@ std::function<void()> declareInfo(CLI::App* info) {
 constexpr const char* kAccuracyHelp =
     "Show what accuracy costs in time: render a converged reference of the scene, then the scene with one "
     "setting varied at a time (--vary KEY=V1,V2,...; KEY: samples, pattern, filter, max_depth, min_weight, "
-    "mask_threshold, shadow_map; none: a default sweep of every key), and write each setting's time and error against "
+    "mask_threshold, shadow_map, mask_rule, perceptual_threshold; none: a default sweep of every key), and write each setting's time and error against "
     "the "
     "reference (accuracy.csv: FLIP's mean, 95th and 99th percentiles, RMSE, PSNR), its images, error images and FLIP "
     "maps, a plot of error against time and report.md to DIR.";

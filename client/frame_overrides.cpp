@@ -17,6 +17,7 @@ void applyFrameOverrides(const FrameOverrides& o, Scene& scene) {
   if (o.height) f.height = *o.height;
   if (o.pattern) f.sampling.pattern = *o.pattern;
   if (o.adaptiveThreshold) f.sampling.adaptiveThreshold = *o.adaptiveThreshold;
+  if (o.perceptualThreshold) f.sampling.perceptualThreshold = *o.perceptualThreshold;
   if (o.samples) f.sampling.samples = *o.samples;
   if (o.filter) f.sampling.filter = *o.filter;
   if (o.seed) f.sampling.seed = *o.seed;
@@ -36,6 +37,7 @@ void applyFrameOverrides(const FrameOverrides& o, Scene& scene) {
                 .maxDepth = "--max-depth",
                 .minWeight = "--min-weight",
                 .adaptiveThreshold = "--adaptive-threshold",
+                .perceptualThreshold = "--perceptual-threshold",
                 .exposure = "--exposure"});
   } catch (const InputError& e) {
     throw UsageError(e.what());

@@ -19,6 +19,7 @@ struct FrameOverrides {
   std::optional<int> samples;
   std::optional<SamplePattern> pattern;
   std::optional<float> adaptiveThreshold;
+  std::optional<float> perceptualThreshold;
   std::optional<FilterType> filter;
   std::optional<std::uint32_t> seed;
   std::optional<int> maxDepth;

@@ -6,6 +6,7 @@
 #include <span>
 #include <string>
 
+#include "client/colour_edges.h"
 #include "client/pixel_mark.h"
 #include "client/raster_edges.h"
 #include "common/base/error.h"
@@ -67,8 +68,12 @@ void countEdges(const TileRect& window, int w, HybridResult& result) {
   }
 }
 
-FrameSettings directLightOf(FrameSettings frame) {
-  frame.tracing.maxDepth = 1;
+// The settings a traced set's tiles go with: under the perceptual rule, the
+// perceptual pattern (a ray at each pixel's centre, the frame's samples
+// where a neighbour's differs visibly); a set of direct light stops at depth 1.
+FrameSettings tracedFrame(FrameSettings frame, const MaskSettings& mask, bool directLight) {
+  if (mask.rule == MaskRule::kPerceptual) frame.sampling.pattern = SamplePattern::kPerceptual;
+  if (directLight) frame.tracing.maxDepth = 1;
   return frame;
 }
 
@@ -130,21 +135,42 @@ bool traceTiles(TileService& service, TracedSet& set, const HybridControl& contr
   return true;
 }
 
+// The window's rows of a whole frame's RGB, moved to its front.
+void cropRows(std::vector<std::uint8_t>& rgb, int frameWidth, const TileRect& window) {
+  const auto row = static_cast<std::size_t>(window.width) * 3;
+  for (int y = 0; y < window.height; ++y) {
+    const auto from = (static_cast<std::size_t>(window.y + y) * static_cast<std::size_t>(frameWidth) +
+                       static_cast<std::size_t>(window.x)) *
+                      3;
+    std::memmove(&rgb[static_cast<std::size_t>(y) * row], &rgb[from], row);
+  }
+  rgb.resize(row * static_cast<std::size_t>(window.height));
+}
+
 // Reads the raster back: each pixel's mark into result.mask, and the
 // window's colour into result.colour. The edges of what OpenGL draws are
-// traced under the rule auto when the frame takes several samples a pixel
-// (one sample at the centre would give the raster's own value).
+// traced under the rules auto and perceptual when the frame takes several
+// samples a pixel (one sample at the centre would give the raster's own
+// value); under perceptual, its visible colour edges too (read from the
+// whole frame, so that a crop decides as the frame does).
 void readRaster(const gl::RasterScene& raster, const FrameSettings& frame, const MaskSettings& mask,
                 const TileRect& window, HybridResult& result) {
   raster.target().readSurface(result.surface);
   result.mask.resize(result.surface.size());
-  if (mask.rule == MaskRule::kAuto && frame.sampling.samples > 1) {
+  const bool edges = mask.rule == MaskRule::kAuto || mask.rule == MaskRule::kPerceptual;
+  if (edges && frame.sampling.samples > 1) {
     raster.target().readDepth(result.depth);
     markRasterEdges(result.surface, result.depth, frame.width, frame.height, result.mask);
   } else {
     std::transform(result.surface.begin(), result.surface.end(), result.mask.begin(), markOf);
   }
-  raster.target().readColour(window, result.colour);
+  if (mask.rule != MaskRule::kPerceptual || frame.sampling.samples == 1) {
+    raster.target().readColour(window, result.colour);
+    return;
+  }
+  raster.target().readColour(TileRect{0, 0, frame.width, frame.height}, result.colour);
+  markColourEdges(result.colour, frame.width, frame.height, frame.sampling.perceptualThreshold, result.mask);
+  cropRows(result.colour, frame.width, window);
 }
 
 // Under the rule "all" OpenGL draws nothing: every pixel is traced.
@@ -185,7 +211,8 @@ void markFrame(const gl::Api& gl, gl::RasterScene& raster, const FrameSettings& 
 
 void markHybrid(const gl::Api& gl, gl::RasterScene& raster, const FrameSettings& frame, const MaskSettings& mask,
                 int tileSize, HybridResult& result) {
-  TracedSet sets[2] = {{false, frame, {}, {}, 0}, {true, directLightOf(frame), {}, {}, 0}};
+  TracedSet sets[2] = {{false, tracedFrame(frame, mask, false), {}, {}, 0},
+                       {true, tracedFrame(frame, mask, true), {}, {}, 0}};
   markFrame(gl, raster, frame, mask, TileRect{0, 0, frame.width, frame.height}, tileSize, sets, result);
   result.times.totalMs = result.times.rasterMs + result.times.readbackMs;
 }
@@ -201,7 +228,8 @@ bool renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
                   const HybridControl& control) {
   const Clock::time_point start = Clock::now();
   const TileRect window = crop.value_or(TileRect{0, 0, frame.width, frame.height});
-  TracedSet sets[2] = {{false, frame, {}, {}, 0}, {true, directLightOf(frame), {}, {}, 0}};
+  TracedSet sets[2] = {{false, tracedFrame(frame, mask, false), {}, {}, 0},
+                       {true, tracedFrame(frame, mask, true), {}, {}, 0}};
   markFrame(gl, raster, frame, mask, window, tileSize, sets, result);
   service.beginFrame();
   int before = 0;

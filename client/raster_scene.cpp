@@ -311,7 +311,7 @@ void RasterScene::setFrameUniforms(unsigned program, const FrameSettings& frame,
   setViewUniforms(program, projection);
   const auto at = [&](const char* name) { return gl_.GetUniformLocation(program, name); };
   gl_.Uniform1f(at("uExposureScale"), Encoder(frame.output).scale());
-  gl_.Uniform1i(at("uMarkUndecided"), mask.rule == MaskRule::kAuto ? 1 : 0);
+  gl_.Uniform1i(at("uMarkUndecided"), mask.rule == MaskRule::kAuto || mask.rule == MaskRule::kPerceptual ? 1 : 0);
   std::vector<glm::vec3> positions, colors, attenuations;
   for (const PointLight& l : scene_.lights) {
     positions.push_back(l.position);

@@ -124,7 +124,8 @@ std::vector<std::uint8_t> encodeFrameSetup(std::uint32_t frameId, const SceneHas
       static_cast<std::uint32_t>(f.sampling.samples), static_cast<std::uint8_t>(f.sampling.filter), f.sampling.seed,
       static_cast<std::uint32_t>(f.tracing.maxDepth), f.tracing.minWeight,
       f.sampling.pattern == SamplePattern::kAdaptive, f.sampling.adaptiveThreshold,
-      f.output.encoding == Encoding::kSrgb, f.output.exposure);
+      f.output.encoding == Encoding::kSrgb, f.output.exposure, f.sampling.pattern == SamplePattern::kPerceptual,
+      f.sampling.perceptualThreshold);
   return finish(b, setup, wire::Body::FrameSetup);
 }
 
@@ -194,10 +195,12 @@ FrameSettings decodeFrameSettings(const wire::FrameSetup& s, std::size_t maxPixe
   f.camera.lookAt = fromWire(s.look_at(), "look_at");
   f.camera.up = fromWire(s.up(), "up");
   f.camera.fovY = s.fov_y();
-  f.sampling.pattern = s.adaptive()   ? SamplePattern::kAdaptive
+  f.sampling.pattern = s.perceptual() ? SamplePattern::kPerceptual
+                       : s.adaptive() ? SamplePattern::kAdaptive
                        : s.jittered() ? SamplePattern::kJittered
                                       : SamplePattern::kRegular;
   f.sampling.adaptiveThreshold = s.adaptive() ? s.adaptive_threshold() : f.sampling.adaptiveThreshold;
+  f.sampling.perceptualThreshold = s.perceptual() ? s.perceptual_threshold() : f.sampling.perceptualThreshold;
   f.sampling.samples = toInt(s.samples());
   if (s.filter() > static_cast<std::uint8_t>(FilterType::kMitchell)) throw InputError("frame_setup.filter: unknown");
   f.sampling.filter = static_cast<FilterType>(s.filter());
@@ -214,6 +217,7 @@ FrameSettings decodeFrameSettings(const wire::FrameSetup& s, std::size_t maxPixe
               .maxDepth = "frame_setup.max_depth",
               .minWeight = "frame_setup.min_weight",
               .adaptiveThreshold = "frame_setup.adaptive_threshold",
+              .perceptualThreshold = "frame_setup.perceptual_threshold",
               .exposure = "frame_setup.exposure"});
   return f;
 }

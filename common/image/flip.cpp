@@ -96,6 +96,13 @@ float largestColourDifference() {
   return std::pow(hyab(huntLab({0.0f, 1.0f, 0.0f}), huntLab({0.0f, 0.0f, 1.0f})), kColourExponent);
 }
 
+// A HyAB distance compressed and mapped to [0, 1]: distances up to kCutShare
+// of the largest to [0, kBelowCut], the rest to (kBelowCut, 1].
+float colourError(float distance, float cmax) {
+  const float d = std::pow(distance, kColourExponent), cut = kCutShare * cmax;
+  return d < cut ? d * kBelowCut / cut : kBelowCut + (d - cut) / (cmax - cut) * (1.0f - kBelowCut);
+}
+
 // Convolves rows (or columns) with a centred kernel, clamping at the borders.
 Plane convolve(const Plane& in, const std::vector<float>& kernel, bool rows) {
   Plane out{in.width, in.height, std::vector<float>(in.v.size())};
@@ -169,15 +176,14 @@ std::vector<float> colourTerm(const std::array<Plane, 3>& ref, const std::array<
     return std::array<Plane, 3>{separable(p[0], kY, kY), separable(p[1], kCx, kCx), cz};
   };
   const std::array<Plane, 3> fr = filtered(ref), ft = filtered(test);
-  const float cmax = largestColourDifference(), cut = kCutShare * cmax;
+  const float cmax = largestColourDifference();
   std::vector<float> term(fr[0].v.size());
   for (std::size_t i = 0; i < term.size(); ++i) {
     const auto lab = [i](const std::array<Plane, 3>& p) {
       const glm::vec3 rgb = glm::clamp(xyzToLinear(ycxczToXyz({p[0].v[i], p[1].v[i], p[2].v[i]})), 0.0f, 1.0f);
       return hunt(xyzToLab(linearToXyz(rgb)));
     };
-    const float d = std::pow(hyab(lab(fr), lab(ft)), kColourExponent);
-    term[i] = d < cut ? d * kBelowCut / cut : kBelowCut + (d - cut) / (cmax - cut) * (1.0f - kBelowCut);
+    term[i] = colourError(hyab(lab(fr), lab(ft)), cmax);
   }
   return term;
 }
@@ -249,6 +255,15 @@ FlipMap flip(const LinearImage& reference, const LinearImage& test, double pixel
     map.error[i] = std::pow(map.error[i], 1.0f - feature);
   }
   return map;
+}
+
+glm::vec3 flipLab(const glm::vec3& displayedLinear) {
+  return hunt(xyzToLab(linearToXyz(glm::clamp(displayedLinear, 0.0f, 1.0f))));
+}
+
+float flipColourError(const glm::vec3& labA, const glm::vec3& labB) {
+  static const float cmax = largestColourDifference();
+  return colourError(hyab(labA, labB), cmax);
 }
 
 FlipStats flipStats(const FlipMap& map) {

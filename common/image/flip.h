@@ -2,6 +2,8 @@
 
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 #include "common/image/frame_image.h"
 #include "common/image/linear_image.h"
 
@@ -39,6 +41,14 @@ struct FlipStats {
 FlipMap flip(const LinearImage& reference, const LinearImage& test, double pixelsPerDegree = kFlipPixelsPerDegree);
 
 FlipStats flipStats(const FlipMap& map);
+
+// FLIP's colour term for two flat colours, without the spatial filtering
+// (which only lowers the difference of small features): the Hunt-adjusted
+// L*a*b* of a displayed linear colour, and the HyAB distance of two such
+// colours compressed and mapped to [0, 1] as the map's colour term is.
+// What a pixel's error would be at most, were it as wide as the eye resolves.
+glm::vec3 flipLab(const glm::vec3& displayedLinear);
+float flipColourError(const glm::vec3& labA, const glm::vec3& labB);
 
 // The map in the paper's colour map (magma: black 0, purple, orange, pale
 // yellow 1), as the paper shows its errors.

@@ -9,6 +9,7 @@ bool materialMasked(const Material& m, const MaskSettings& mask) {
     case MaskRule::kNone:
       return false;
     case MaskRule::kAuto:
+    case MaskRule::kPerceptual:
       break;
   }
   if (m.raytrace == RaytraceRule::kAlways) return true;

@@ -6,7 +6,7 @@
 namespace glint {
 
 // Whether the ray tracer fills the pixels of a material, by the scene's mask
-// rule (scene format, "mask"): under auto, reflectivity above
+// rule (scene format, "mask"): under auto and perceptual, reflectivity above
 // min_reflectivity or transparency above min_transparency, unless the
 // material says "raytrace": false; "raytrace": true always. all and none
 // ignore the materials.

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "common/image/encoding.h"
+#include "common/image/flip.h"
 #include "common/math/finite.h"
 #include "common/render/sampling.h"
 
@@ -56,6 +57,19 @@ void Renderer::addSamples(int x, int y, int first, int end, PixelSamples& p, Ray
   }
 }
 
+void Renderer::addCentreSample(int x, int y, PixelSamples& p, RayStats& stats) const {
+  const glm::vec3 c = tracer_.radiance(
+      camera_.generateRay({static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f}), stats);
+  if (!allFinite(c)) {
+    ++stats.nonFiniteSamples;
+    return;
+  }
+  p.sum += c;  // the filter's centre: a positive weight, 1 as every warped sample's
+  p.weightSum += 1.0f;
+  p.unweighted += c;
+  ++p.finite;
+}
+
 glm::vec3 Renderer::resolve(const PixelSamples& p) const {
   if (p.finite == 0) return prepared_.scene().background;
   // Negative lobes (Mitchell) can leave too little positive weight in a few
@@ -70,40 +84,69 @@ glm::vec3 Renderer::pixel(int x, int y, RayStats& stats) const {
   return resolve(p);
 }
 
-// The adaptive pattern: each pixel's first (jittered) sample, then the rest
-// of its jittered samples where it differs from a 4-neighbour's first sample
-// by more than the threshold in a channel. The first samples of the tile and
-// of a one-pixel border are traced as needed: they depend on the pixel alone,
-// so every tile split, thread count and server decides alike.
+// The adaptive patterns: a probe of every pixel, then the rest of its
+// jittered samples where the probe differs from a neighbour's. The probes of
+// the tile and of a one-pixel border are traced as needed: they depend on
+// the pixel alone, so every tile split, thread count and server decides
+// alike.
+//  - adaptive: the probe is the pixel's first jittered sample (samples 1 to
+//    n - 1 follow it), the 4 neighbours, a channel differing by more than
+//    adaptiveThreshold.
+//  - perceptual: the probe is a ray at the pixel's centre, where the raster
+//    shades it and the best single estimate of a smooth pixel, the 8
+//    neighbours, FLIP's colour term of the two colours as displayed above
+//    perceptualThreshold: a difference the eye sees. A refined pixel is the
+//    jittered pattern's own (its n samples; the probe, which the filter did
+//    not draw, is left out).
 void Renderer::renderAdaptive(const TileRect& rect, std::span<const std::uint8_t> mask, std::vector<glm::vec3>& out,
                               RayStats& stats) const {
+  const bool perceptual = frame_.sampling.pattern == SamplePattern::kPerceptual;
+  const Encoder encoder(frame_.output);
+  const auto displayedLab = [&encoder](const glm::vec3& c) {
+    return flipLab({encoder.displayed(c.r), encoder.displayed(c.g), encoder.displayed(c.b)});
+  };
+  struct Probe {
+    PixelSamples samples;
+    glm::vec3 key{0.0f};  // what neighbours compare: the colour, or its displayed L*a*b*
+    bool traced = false;
+  };
   const int x0 = std::max(0, rect.x - 1), y0 = std::max(0, rect.y - 1);
   const int x1 = std::min(frame_.width, rect.x + rect.width + 1), y1 = std::min(frame_.height, rect.y + rect.height + 1);
   const auto gridWidth = static_cast<std::size_t>(x1 - x0);
-  std::vector<PixelSamples> first(gridWidth * static_cast<std::size_t>(y1 - y0));
-  std::vector<bool> traced(first.size(), false);
-  const auto firstAt = [&](int x, int y) -> const PixelSamples& {
-    const std::size_t i = static_cast<std::size_t>(y - y0) * gridWidth + static_cast<std::size_t>(x - x0);
-    if (!traced[i]) addSamples(x, y, 0, 1, first[i], stats);
-    traced[i] = true;
-    return first[i];
+  std::vector<Probe> probes(gridWidth * static_cast<std::size_t>(y1 - y0));
+  const auto probeAt = [&](int x, int y) -> const Probe& {
+    Probe& p = probes[static_cast<std::size_t>(y - y0) * gridWidth + static_cast<std::size_t>(x - x0)];
+    if (p.traced) return p;
+    if (perceptual) {
+      addCentreSample(x, y, p.samples, stats);
+    } else {
+      addSamples(x, y, 0, 1, p.samples, stats);
+    }
+    p.key = perceptual ? displayedLab(resolve(p.samples)) : resolve(p.samples);
+    p.traced = true;
+    return p;
   };
-  const float threshold = frame_.sampling.adaptiveThreshold;
-  constexpr int kNeighbours[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
+  const auto differ = [&](const glm::vec3& a, const glm::vec3& b) {
+    if (perceptual) return flipColourError(a, b) > frame_.sampling.perceptualThreshold;
+    const glm::vec3 delta = glm::abs(a - b);
+    const float t = frame_.sampling.adaptiveThreshold;
+    return delta.r > t || delta.g > t || delta.b > t;
+  };
+  constexpr int kNeighbours[8][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}, {-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
+  const int neighbours = perceptual ? 8 : 4;
   std::size_t i = 0;
   for (int y = rect.y; y < rect.y + rect.height; ++y) {
     for (int x = rect.x; x < rect.x + rect.width; ++x, ++i) {
       if (!mask.empty() && !maskBit(mask, i)) continue;
-      PixelSamples p = firstAt(x, y);
-      const glm::vec3 v = resolve(p);
+      const Probe& probe = probeAt(x, y);
       bool differs = false;
-      for (const auto& d : kNeighbours) {
-        const int nx = x + d[0], ny = y + d[1];
-        if (differs || nx < 0 || ny < 0 || nx >= frame_.width || ny >= frame_.height) continue;
-        const glm::vec3 delta = glm::abs(resolve(firstAt(nx, ny)) - v);
-        differs = delta.r > threshold || delta.g > threshold || delta.b > threshold;
+      for (int k = 0; k < neighbours && !differs; ++k) {
+        const int nx = x + kNeighbours[k][0], ny = y + kNeighbours[k][1];
+        if (nx < 0 || ny < 0 || nx >= frame_.width || ny >= frame_.height) continue;
+        differs = differ(probe.key, probeAt(nx, ny).key);
       }
-      if (differs) addSamples(x, y, 1, frame_.sampling.samples, p, stats);
+      PixelSamples p = perceptual && differs ? PixelSamples{} : probe.samples;
+      if (differs) addSamples(x, y, perceptual ? 0 : 1, frame_.sampling.samples, p, stats);
       out.push_back(resolve(p));
     }
   }
@@ -111,7 +154,7 @@ void Renderer::renderAdaptive(const TileRect& rect, std::span<const std::uint8_t
 
 void Renderer::renderTileLinear(const TileRect& rect, std::span<const std::uint8_t> mask, std::vector<glm::vec3>& out,
                                 RayStats& stats) const {
-  if (frame_.sampling.pattern == SamplePattern::kAdaptive) {
+  if (frame_.sampling.pattern == SamplePattern::kAdaptive || frame_.sampling.pattern == SamplePattern::kPerceptual) {
     renderAdaptive(rect, mask, out, stats);
     return;
   }

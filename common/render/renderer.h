@@ -42,7 +42,7 @@ class Renderer {
                         RayStats& stats) const;
 
   // Linear colour of pixel (x, y): the filtered average of its samples
-  // (regular and jittered patterns; the adaptive one needs its neighbours:
+  // (regular and jittered patterns; the adaptive ones need their neighbours:
   // renderTileLinear).
   glm::vec3 pixel(int x, int y, RayStats& stats) const;
 
@@ -67,6 +67,8 @@ class Renderer {
   CameraSample cameraSample(int x, int y, const SampleLayout::Pixel& key, int sample) const;
   // Traces samples first to end - 1 of pixel (x, y) into p.
   void addSamples(int x, int y, int first, int end, PixelSamples& p, RayStats& stats) const;
+  // One ray through the pixel's centre into p, with weight 1.
+  void addCentreSample(int x, int y, PixelSamples& p, RayStats& stats) const;
   glm::vec3 resolve(const PixelSamples& p) const;
   void renderAdaptive(const TileRect& rect, std::span<const std::uint8_t> mask, std::vector<glm::vec3>& out,
                       RayStats& stats) const;

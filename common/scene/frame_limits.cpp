@@ -36,7 +36,7 @@ std::optional<FrameProblem> frameProblem(const FrameSettings& f, std::size_t max
   }
   if (!validSampleCount(f.sampling.pattern, f.sampling.samples)) {
     return FrameProblem{FrameField::kSamples, "the regular pattern takes 1, 2 or a square number (4, 9, 16, ...) "
-                                              "of samples; the jittered and adaptive patterns take any number"};
+                                              "of samples; the other patterns take any number"};
   }
   if (f.sampling.seed > L::kMaxSeed) return FrameProblem{FrameField::kSeed, range(0, L::kMaxSeed)};
   if (f.tracing.maxDepth < 1 || f.tracing.maxDepth > L::kMaxDepth) {
@@ -47,6 +47,9 @@ std::optional<FrameProblem> frameProblem(const FrameSettings& f, std::size_t max
   }
   if (!(f.sampling.adaptiveThreshold > 0.0f && f.sampling.adaptiveThreshold <= 1.0f)) {
     return FrameProblem{FrameField::kAdaptiveThreshold, "must be in (0, 1]"};
+  }
+  if (!(f.sampling.perceptualThreshold > 0.0f && f.sampling.perceptualThreshold <= 1.0f)) {
+    return FrameProblem{FrameField::kPerceptualThreshold, "must be in (0, 1]"};
   }
   if (!(std::abs(f.output.exposure) <= L::kMaxExposure)) {
     return FrameProblem{FrameField::kExposure, range(-static_cast<long long>(L::kMaxExposure), static_cast<long long>(L::kMaxExposure)) + " (EV)"};
@@ -72,6 +75,8 @@ void checkFrame(const FrameSettings& frame, std::size_t maxPixels, const FrameFi
       throw InputError(std::string(names.minWeight) + ": " + p->what);
     case FrameField::kAdaptiveThreshold:
       throw InputError(std::string(names.adaptiveThreshold) + ": " + p->what);
+    case FrameField::kPerceptualThreshold:
+      throw InputError(std::string(names.perceptualThreshold) + ": " + p->what);
     case FrameField::kExposure:
       throw InputError(std::string(names.exposure) + ": " + p->what);
   }

@@ -23,7 +23,17 @@ struct FrameLimits {
 // Which setting a problem is about, so that each caller names it its own way
 // (the scene file's "sampling.samples", the wire's "frame_setup.samples", the
 // command line's "--samples").
-enum class FrameField { kSize, kCamera, kSamples, kMaxDepth, kMinWeight, kSeed, kAdaptiveThreshold, kExposure };
+enum class FrameField {
+  kSize,
+  kCamera,
+  kSamples,
+  kMaxDepth,
+  kMinWeight,
+  kSeed,
+  kAdaptiveThreshold,
+  kPerceptualThreshold,
+  kExposure
+};
 
 struct FrameProblem {
   FrameField field;
@@ -31,7 +41,7 @@ struct FrameProblem {
 };
 
 // Whether a pattern accepts this sample count (regular: a k x k grid, or 2;
-// jittered and adaptive: any count from 1).
+// jittered, adaptive and perceptual: any count from 1).
 bool validSampleCount(SamplePattern pattern, int samples);
 
 // The first problem with a frame's settings, or none.
@@ -46,6 +56,7 @@ struct FrameFieldNames {
   const char* maxDepth;
   const char* minWeight;
   const char* adaptiveThreshold;
+  const char* perceptualThreshold;
   const char* exposure;
 };
 

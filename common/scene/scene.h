@@ -16,17 +16,25 @@ namespace glint {
 
 // kAdaptive: one sample per pixel, then the jittered pattern's full count
 // where the pixel differs from a neighbour by more than adaptiveThreshold.
-enum class SamplePattern { kRegular, kJittered, kAdaptive };
+// kPerceptual: one ray at each pixel's centre, then the jittered pattern's
+// full count where it differs visibly from one of its eight neighbours'
+// (FLIP's colour term above perceptualThreshold).
+enum class SamplePattern { kRegular, kJittered, kAdaptive, kPerceptual };
 enum class FilterType { kBox, kTent, kGaussian, kMitchell };
-enum class MaskRule { kAuto, kAll, kNone };
+// kPerceptual: auto's pixels, traced with the perceptual pattern, and the
+// raster's pixels on a visible edge of its colours (client/hybrid_frame.h).
+enum class MaskRule { kAuto, kAll, kNone, kPerceptual };
 // How linear colour becomes an 8-bit value: kLinear stores it as it is (the
 // thesis's frame buffer), kSrgb applies the sRGB transfer function.
 enum class Encoding { kLinear, kSrgb };
 
 template <>
 struct EnumWords<SamplePattern> {
-  static constexpr std::array<std::pair<SamplePattern, std::string_view>, 3> kWords{
-      {{SamplePattern::kRegular, "regular"}, {SamplePattern::kJittered, "jittered"}, {SamplePattern::kAdaptive, "adaptive"}}};
+  static constexpr std::array<std::pair<SamplePattern, std::string_view>, 4> kWords{
+      {{SamplePattern::kRegular, "regular"},
+       {SamplePattern::kJittered, "jittered"},
+       {SamplePattern::kAdaptive, "adaptive"},
+       {SamplePattern::kPerceptual, "perceptual"}}};
 };
 template <>
 struct EnumWords<FilterType> {
@@ -42,8 +50,8 @@ struct EnumWords<Encoding> {
 };
 template <>
 struct EnumWords<MaskRule> {
-  static constexpr std::array<std::pair<MaskRule, std::string_view>, 3> kWords{
-      {{MaskRule::kAuto, "auto"}, {MaskRule::kAll, "all"}, {MaskRule::kNone, "none"}}};
+  static constexpr std::array<std::pair<MaskRule, std::string_view>, 4> kWords{
+      {{MaskRule::kAuto, "auto"}, {MaskRule::kAll, "all"}, {MaskRule::kNone, "none"}, {MaskRule::kPerceptual, "perceptual"}}};
 };
 
 struct SamplingSettings {
@@ -52,6 +60,9 @@ struct SamplingSettings {
   FilterType filter = FilterType::kBox;
   std::uint32_t seed = 0;
   float adaptiveThreshold = 1.0f / 64.0f;  // per channel, linear; adaptive pattern only
+  // A visible difference: FLIP's colour term (0 none, 1 the most) of two
+  // displayed colours; the perceptual pattern and mask rule only.
+  float perceptualThreshold = 0.3f;
 };
 
 struct TracingSettings {

@@ -111,7 +111,7 @@ class SceneLoader {
   }
 
   void readSampling(const JsonReader& r) {
-    r.allowKeys({"pattern", "samples", "filter", "seed", "adaptive_threshold"});
+    r.allowKeys({"pattern", "samples", "filter", "seed", "adaptive_threshold", "perceptual_threshold"});
     SamplingSettings& s = scene_.frame.sampling;
     if (auto p = r.find("pattern")) {
       s.pattern = choice<SamplePattern>(*p);
@@ -122,6 +122,7 @@ class SceneLoader {
     }
     if (auto seed = r.find("seed")) s.seed = static_cast<std::uint32_t>(seed->integer(0, FrameLimits::kMaxSeed));
     if (auto t = r.find("adaptive_threshold")) s.adaptiveThreshold = t->number(0.0f, 1.0f, true);
+    if (auto t = r.find("perceptual_threshold")) s.perceptualThreshold = t->number(0.0f, 1.0f, true);
   }
 
   // The frame's settings together (the size against the pixel limit, the
@@ -136,6 +137,7 @@ class SceneLoader {
                        .maxDepth = "tracing.max_depth",
                        .minWeight = "tracing.min_weight",
                        .adaptiveThreshold = "sampling.adaptive_threshold",
+                       .perceptualThreshold = "sampling.perceptual_threshold",
                        .exposure = "image.exposure"});
   }
 

@@ -60,6 +60,7 @@ TEST(FrameLimits, CheckFrameUsesTheCallersNames) {
                               .maxDepth = "--max-depth",
                               .minWeight = "--min-weight",
                               .adaptiveThreshold = "--adaptive-threshold",
+                              .perceptualThreshold = "--perceptual-threshold",
                               .exposure = "--exposure"};
   FrameSettings f = goodFrame();
   f.tracing.maxDepth = 65;
