@@ -304,7 +304,7 @@ TEST_F(Cli, EveryRenderingCommandTakesTheSameFrameOptions) {
     const Result help = glint(std::string(command) + " --help");
     EXPECT_EQ(help.status, 0) << command;
     for (const char* option : {"--mask ", "--mask-threshold", "--shadow-map", "--tile-size", "--samples", "--pattern",
-                               "--adaptive-threshold", "--filter", "--seed", "--max-depth", "--min-weight", "--size",
+                               "--adaptive-threshold", "--perceptual-threshold", "--filter", "--seed", "--max-depth", "--min-weight", "--size",
                                "--eye", "--look-at", "--up", "--fov", "--encoding", "--exposure"}) {
       EXPECT_NE(help.output.find(option), std::string::npos) << command << " lacks " << option;
     }

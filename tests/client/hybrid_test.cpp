@@ -48,11 +48,12 @@ MaskSettings rule(MaskRule rule, int shadowMap = 0) {
   return mask;
 }
 
-HybridResult hybrid(const Scene& scene, TileService& service, const FrameSettings& frame, const MaskSettings& mask) {
+HybridResult hybrid(const Scene& scene, TileService& service, const FrameSettings& frame, const MaskSettings& mask,
+                    int tileSize = 32) {
   gl::OffscreenContext context(frame.width, frame.height);
   gl::RasterScene raster(context.api(), scene);
   HybridResult result;
-  renderHybrid(context.api(), raster, service, frame, mask, 32, result);
+  renderHybrid(context.api(), raster, service, frame, mask, tileSize, result);
   return result;
 }
 
@@ -430,6 +431,55 @@ TEST(Hybrid, MaskedPixelsEqualTheFullTrace) {
   const FrameImage here = renderFrame(local, encoded, {}).image;
   EXPECT_EQ(renderFrame(remote, encoded, {}).image.rgb, here.rgb);
   EXPECT_NE(here.rgb, full.rgb);
+}
+
+// The perceptual rule: its traced pixels are the tracer's own with the
+// perceptual pattern (the masked ones the full trace's, the others its
+// direct light: each pixel's decision hangs on its neighbours' probes alone),
+// alike in process, through glintd and for any tile size; it casts fewer
+// rays than auto (the share falls as the image grows: edges are a smaller
+// part of it), and traces the raster's visible colour edges, which auto
+// leaves to OpenGL (the glass scene's checker floor).
+TEST(Hybrid, PerceptualRuleTracesItsPixelsAlikeEverywhere) {
+  const SceneSetup s = load("scenes/room.json");
+  const PreparedScene prepared(s.loaded.scene, BvhSettings{});
+  ThreadPool pool(2);
+  LocalTileService local(prepared, pool);
+  FrameSettings perceptual = s.frame;
+  perceptual.sampling.pattern = SamplePattern::kPerceptual;
+  const FrameImage full = renderFrame(local, perceptual, {}).image;
+  perceptual.tracing.maxDepth = 1;
+  const FrameImage direct = renderFrame(local, perceptual, {}).image;
+  server::setLogging(false);
+  server::ServerOptions o;
+  o.listen = "127.0.0.1:0";
+  o.threads = 2;
+  o.handleSignals = false;
+  server::BackgroundServer glintd(o);
+  DistributedTileService remote(resolveServers({glintd.address()}), s.loaded.bundle);
+  MaskSettings mask = prepared.scene().mask;
+  mask.rule = MaskRule::kPerceptual;
+  const HybridResult here = hybrid(prepared.scene(), local, s.frame, mask);
+  int differing = 0;
+  for (std::size_t i = 0; i < here.mask.size(); ++i) {
+    if (here.mask[i] == kRasterPixel) continue;
+    const FrameImage& expected = tracedWithDirectLight(here.mask[i]) ? direct : full;
+    for (int k = 0; k < 3; ++k) differing += here.image.rgb[3 * i + k] != expected.rgb[3 * i + k] ? 1 : 0;
+  }
+  EXPECT_EQ(differing, 0);
+  EXPECT_GT(here.maskedPixels, 5000u);
+  EXPECT_EQ(hybrid(prepared.scene(), local, s.frame, mask, 7).image.rgb, here.image.rgb);
+  EXPECT_EQ(hybrid(prepared.scene(), remote, s.frame, mask).image.rgb, here.image.rgb);
+  const HybridResult automatic = hybrid(prepared.scene(), local, s.frame, prepared.scene().mask);
+  EXPECT_LT(here.rays.total(), automatic.rays.total());  // 75 % at this size; 42 % at 640 x 480 (bench)
+
+  const SceneSetup glass = load("scenes/glass.json");
+  const PreparedScene glassScene(glass.loaded.scene, BvhSettings{});
+  LocalTileService glassService(glassScene, pool);
+  MaskSettings glassMask = glassScene.scene().mask;
+  const std::size_t autoEdges = hybrid(glassScene.scene(), glassService, glass.frame, glassMask).rasterEdgePixels;
+  glassMask.rule = MaskRule::kPerceptual;
+  EXPECT_GT(hybrid(glassScene.scene(), glassService, glass.frame, glassMask).rasterEdgePixels, autoEdges + 300);
 }
 
 // Counts the tiles a service is given.

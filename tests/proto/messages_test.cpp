@@ -118,15 +118,20 @@ TEST(Messages, FrameSetupRoundTrips) {
     EXPECT_EQ(back.tracing.maxDepth, f.tracing.maxDepth);
     EXPECT_EQ(back.tracing.minWeight, f.tracing.minWeight);
   }
-  for (const SamplePattern pattern : {SamplePattern::kRegular, SamplePattern::kJittered, SamplePattern::kAdaptive}) {
+  for (const SamplePattern pattern :
+       {SamplePattern::kRegular, SamplePattern::kJittered, SamplePattern::kAdaptive, SamplePattern::kPerceptual}) {
     FrameSettings f = someFrame();
     f.sampling.pattern = pattern;
     f.sampling.samples = 4;
     f.sampling.adaptiveThreshold = 0.125f;
+    f.sampling.perceptualThreshold = 0.0625f;
     const FrameSettings back = decodeFrameSettings(*decode(encodeFrameSetup(1, h, f)).body_as_FrameSetup(), 1 << 28);
     EXPECT_EQ(back.sampling.pattern, pattern);
     if (pattern == SamplePattern::kAdaptive) {
       EXPECT_EQ(back.sampling.adaptiveThreshold, 0.125f);
+    }
+    if (pattern == SamplePattern::kPerceptual) {
+      EXPECT_EQ(back.sampling.perceptualThreshold, 0.0625f);
     }
   }
   {  // the output encoding travels
@@ -147,6 +152,16 @@ TEST(Messages, FrameSetupRoundTrips) {
       FAIL() << "took an adaptive threshold of 0";
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find("frame_setup.adaptive_threshold: must be in (0, 1]"), std::string::npos)
+          << e.what();
+    }
+    f.sampling.pattern = SamplePattern::kPerceptual;
+    f.sampling.adaptiveThreshold = 0.125f;
+    f.sampling.perceptualThreshold = 2.0f;
+    try {
+      decodeFrameSettings(*decode(encodeFrameSetup(1, h, f)).body_as_FrameSetup(), 1 << 28);
+      FAIL() << "took a perceptual threshold of 2";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("frame_setup.perceptual_threshold: must be in (0, 1]"), std::string::npos)
           << e.what();
     }
   }

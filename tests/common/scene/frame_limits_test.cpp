@@ -86,6 +86,14 @@ TEST(FrameLimits, CheckFrameUsesTheCallersNames) {
   } catch (const InputError& e) {
     EXPECT_STREQ(e.what(), "--exposure: must be in [-32, 32] (EV)");
   }
+  f = goodFrame();
+  f.sampling.perceptualThreshold = 0.0f;
+  try {
+    checkFrame(f, FrameLimits::kMaxPixels, names);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "--perceptual-threshold: must be in (0, 1]");
+  }
 }
 
 }  // namespace
