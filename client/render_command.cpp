@@ -256,6 +256,7 @@ std::optional<LinearImage> renderFrames(const RenderRun& run, TileBackend& backe
       stats->write({.frame = f,
                     .width = frame.width,
                     .height = frame.height,
+                    .samples = frame.sampling.samples,
                     .crop = options.crop,
                     .maskedPixels = r.maskedPixels,
                     .shadowEdgePixels = r.shadowEdgePixels,

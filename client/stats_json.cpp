@@ -47,6 +47,11 @@ nlohmann::json toJson(const FrameRecord& r) {
       {"total_ms", r.totalMs},
   };
   if (r.crop) j["crop"] = {r.crop->x, r.crop->y, r.crop->x + r.crop->width, r.crop->y + r.crop->height};
+  // What the frame traced of what a full trace would: its pixels, and its
+  // camera rays against the full trace's pixels x samples.
+  const double pixels = r.crop ? static_cast<double>(r.crop->pixelCount()) : double(r.width) * double(r.height);
+  j["traced_share"] = pixels > 0 ? static_cast<double>(r.maskedPixels) / pixels : 0.0;
+  j["primary_share"] = pixels > 0 ? static_cast<double>(r.rays.primary) / (pixels * r.samples) : 0.0;
   if (r.plan) j["effects"] = toJson(*r.plan);
   if (r.hybrid) {
     j["raster_ms"] = r.hybrid->rasterMs;

@@ -20,6 +20,7 @@ struct FrameRecord {
   int frame = 0;
   int width = 0;
   int height = 0;
+  int samples = 1;               // the frame's samples a pixel
   std::optional<TileRect> crop;  // --crop: the window rendered
   std::size_t maskedPixels = 0;
   std::size_t shadowEdgePixels = 0;  // of maskedPixels, traced where the shadow maps could not decide

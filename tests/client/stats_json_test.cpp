@@ -21,6 +21,23 @@ TEST(StatsJson, InProcessRecordHasNoNetwork) {
   EXPECT_EQ(j["masked_pixels"], 32);
 }
 
+// 100 of 400 pixels traced, with 300 camera rays of the 1,600 a 4-sample
+// full trace casts.
+TEST(StatsJson, SharesOfTheFullTrace) {
+  FrameRecord r;
+  r.width = 20;
+  r.height = 20;
+  r.samples = 4;
+  r.maskedPixels = 100;
+  r.rays.primary = 300;
+  nlohmann::json j = toJson(r);
+  EXPECT_DOUBLE_EQ(j["traced_share"].get<double>(), 0.25);
+  EXPECT_DOUBLE_EQ(j["primary_share"].get<double>(), 300.0 / 1600.0);
+  r.crop = TileRect{0, 0, 10, 10};  // of the window rendered
+  j = toJson(r);
+  EXPECT_DOUBLE_EQ(j["traced_share"].get<double>(), 1.0);
+}
+
 TEST(StatsJson, RemoteRecordNamesTheConnection) {
   FrameRecord r;
   r.remote = true;
