@@ -37,12 +37,13 @@
 #include "tests/bench/load_section.h"
 #include "tests/bench/gl_backend_section.h"
 #include "tests/bench/mesh_file_section.h"
+#include "tests/bench/perceptual_section.h"
 
 namespace glint::bench {
 
 // The sections, in the order they run (all by default).
-constexpr std::array<const char*, 10> kSections{"bvh",  "room",        "accuracy", "protocol", "hybrid", "gl",
-                                                "load", "distributed", "meshfile", "embree"};
+constexpr std::array<const char*, 11> kSections{"bvh",  "room",        "accuracy", "protocol", "hybrid",    "perceptual",
+                                                "gl",   "load",        "distributed", "meshfile", "embree"};
 
 namespace {
 
@@ -458,6 +459,7 @@ int main(int argc, char** argv) {
     if (o.wants("accuracy")) bench::accuracySection(o, room, pool);
     if (o.wants("protocol")) bench::protocolSection(o, room);
     if (o.wants("hybrid")) bench::hybridSection(o);
+    if (o.wants("perceptual")) bench::perceptualSection(o.scenes, o.quick);
     if (o.wants("gl")) bench::glBackendSection(o.scenes, o.quick);
     if (o.wants("load")) bench::loadSection(o.scenes, o.quick);
     if (o.wants("distributed")) bench::distributedSection(o.scenes, o.quick);
