@@ -170,8 +170,8 @@ std::string currentValue(AccuracyKey key, const FrameSettings& frame, const Mask
       return std::to_string(mask.shadowMap);
     case AccuracyKey::kMaskRule:
       return std::string(enumWord(mask.rule));
-    case AccuracyKey::kPerceptualThreshold:
-      return formatNumber(frame.sampling.perceptualThreshold);
+    case AccuracyKey::kPerceptualThreshold:  // the scene's own only where its rule uses it
+      return mask.rule == MaskRule::kPerceptual ? formatNumber(frame.sampling.perceptualThreshold) : "";
   }
   return "";
 }

@@ -63,7 +63,8 @@ bool hybridKey(AccuracyKey key);
 // rule). Values are as parseVary checked them.
 void applySetting(AccuracyKey key, const std::string& value, FrameSettings& frame, MaskSettings& mask);
 
-// The scene's own value of `key`, written as the sweep writes values.
+// The scene's own value of `key`, written as the sweep writes values (none,
+// "", for perceptual_threshold under another rule than perceptual).
 std::string currentValue(AccuracyKey key, const FrameSettings& frame, const MaskSettings& mask);
 
 }  // namespace glint

@@ -102,9 +102,10 @@ void installCallbacks(GLFWwindow* window) {
     Controls& c = controlsOf(w);
     if (key == GLFW_KEY_Q || key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(w, GLFW_TRUE);
     if (key == GLFW_KEY_M) {
-      c.rule = c.rule == MaskRule::kAuto  ? MaskRule::kAll
-               : c.rule == MaskRule::kAll ? MaskRule::kNone
-                                          : MaskRule::kAuto;
+      c.rule = c.rule == MaskRule::kAuto         ? MaskRule::kPerceptual
+               : c.rule == MaskRule::kPerceptual ? MaskRule::kAll
+               : c.rule == MaskRule::kAll        ? MaskRule::kNone
+                                                 : MaskRule::kAuto;
     }
     if (key == GLFW_KEY_O) c.overlay = !c.overlay;
     if (key == GLFW_KEY_P) c.provenance = !c.provenance;

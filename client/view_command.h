@@ -23,8 +23,8 @@ struct ViewOptions {
 };
 
 // Opens a window on the scene: left drag orbits around the camera's target,
-// right drag pans, the wheel zooms; M cycles the mask rule (auto, all,
-// none), O shows the mask over the image, Q or Escape closes. While the
+// right drag pans, the wheel zooms; M cycles the mask rule (auto,
+// perceptual, all, none), O shows the mask over the image, Q or Escape closes. While the
 // camera moves each frame is a one-sample preview; when it rests, the frame
 // with the scene's samples follows (equal to glint render's). The window may
 // be resized; the frame follows its size. The title shows the frame time and
