@@ -15,8 +15,9 @@ struct CompareOptions {
 };
 
 // Prints how far TEST is from REFERENCE (images of one size, any format
-// readImageFile reads): the mean FLIP with its 95th and 99th percentiles, the
-// RMSE and the PSNR, one line each. Throws InputError for unreadable files or
+// readImageFile reads): the mean FLIP (HDR-FLIP when both hold linear
+// floats, LDR-FLIP of what a display shows otherwise) with its 95th and 99th
+// percentiles, the RMSE and the PSNR, one line each. Throws InputError for unreadable files or
 // sizes that differ, UsageError for a map that is not a .png.
 void runCompare(const CompareOptions& options);
 

@@ -15,9 +15,7 @@ std::uint8_t Encoder::byte(float linear) const {
   return toByte(srgb_ ? srgbEncode(v) : v);
 }
 
-float Encoder::displayed(float linear) const {
-  return srgbDecode(static_cast<float>(byte(linear)) / 255.0f);
-}
+float Encoder::displayed(float linear) const { return displayedByte(byte(linear)); }
 
 float Encoder::decoded(std::uint8_t byte) const {
   const float v = static_cast<float>(byte) / 255.0f;
@@ -47,6 +45,15 @@ float srgbEncode(float linear) {
 
 float srgbDecode(float encoded) {
   return encoded <= 0.04045f ? encoded / 12.92f : power((encoded + 0.055f) / 1.055f, 2.4f);
+}
+
+float displayedByte(std::uint8_t byte) {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> t{};
+    for (int v = 0; v < 256; ++v) t[static_cast<std::size_t>(v)] = srgbDecode(static_cast<float>(v) / 255.0f);
+    return t;
+  }();
+  return table[byte];
 }
 
 }  // namespace glint

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include <glm/vec3.hpp>
@@ -47,6 +48,8 @@ float srgbEncode(float linear);
 
 // Its inverse: the linear value an sRGB display shows for an encoded one.
 float srgbDecode(float encoded);
+// srgbDecode(byte / 255) of each 8-bit value.
+float displayedByte(std::uint8_t byte);
 
 // Linear [0, 1] -> 8 bits, rounded to nearest; values outside are clamped.
 std::uint8_t toByte(float v);

@@ -9,10 +9,14 @@
 #include <glm/vec3.hpp>
 
 #include "common/base/error.h"
+#include "common/math/power.h"
 
 // The constants and the order of operations follow the paper and agree with
 // NVIDIA's reference implementation (github.com/NVlabs/flip, FLIP.h v1.6),
 // which filters separably, in single precision, clamping at the borders.
+// The colour space's powers are power()'s (common/math/power.h): the
+// perceptual pattern decides pixels by VisibleDifference, and a pixel must
+// not depend on the machine's libm.
 
 namespace glint {
 namespace {
@@ -72,7 +76,7 @@ glm::vec3 ycxczToXyz(const glm::vec3& c) {
 glm::vec3 xyzToLab(glm::vec3 c) {
   constexpr float delta = 6.0f / 29.0f;
   const auto f = [](float t) {
-    return t > delta * delta * delta ? std::pow(t, 1.0f / 3.0f) : t / (3.0f * delta * delta) + 4.0f / 29.0f;
+    return t > delta * delta * delta ? cubeRoot(t) : t / (3.0f * delta * delta) + 4.0f / 29.0f;
   };
   c *= kInvWhite;
   const glm::vec3 t{f(c.x), f(c.y), f(c.z)};
@@ -93,13 +97,13 @@ float hyab(const glm::vec3& a, const glm::vec3& b) {
 // The largest colour difference, green against blue, raised to kColourExponent.
 float largestColourDifference() {
   const auto huntLab = [](const glm::vec3& rgb) { return hunt(xyzToLab(linearToXyz(rgb))); };
-  return std::pow(hyab(huntLab({0.0f, 1.0f, 0.0f}), huntLab({0.0f, 0.0f, 1.0f})), kColourExponent);
+  return power(hyab(huntLab({0.0f, 1.0f, 0.0f}), huntLab({0.0f, 0.0f, 1.0f})), kColourExponent);
 }
 
 // A HyAB distance compressed and mapped to [0, 1]: distances up to kCutShare
 // of the largest to [0, kBelowCut], the rest to (kBelowCut, 1].
 float colourError(float distance, float cmax) {
-  const float d = std::pow(distance, kColourExponent), cut = kCutShare * cmax;
+  const float d = power(distance, kColourExponent), cut = kCutShare * cmax;
   return d < cut ? d * kBelowCut / cut : kBelowCut + (d - cut) / (cmax - cut) * (1.0f - kBelowCut);
 }
 
@@ -257,13 +261,73 @@ FlipMap flip(const LinearImage& reference, const LinearImage& test, double pixel
   return map;
 }
 
+namespace {
+
+// ACES as Narkowicz fits it, with its 0.6 pre-exposure cancelled:
+// (a c^2 + b c) / (d c^2 + e c + f) per channel.
+constexpr float kAces[6] = {0.6f * 0.6f * 2.51f, 0.6f * 0.03f, 0.0f, 0.6f * 0.6f * 2.43f, 0.6f * 0.59f, 0.14f};
+
+float aces(float c) {
+  return (kAces[0] * c * c + kAces[1] * c + kAces[2]) / (kAces[3] * c * c + kAces[4] * c + kAces[5]);
+}
+
+LinearImage exposedAndToneMapped(const LinearImage& image, float exposure) {
+  LinearImage out = image;
+  const float scale = std::exp2(exposure);
+  for (float& v : out.rgb) v = std::clamp(aces(v * scale), 0.0f, 1.0f);
+  return out;
+}
+
+}  // namespace
+
+HdrExposures hdrExposures(const LinearImage& reference) {
+  // The larger root of aces(x) = 0.85: where the curve reaches 0.85.
+  constexpr float t = 0.85f;
+  const float a = kAces[0] - t * kAces[3], b = kAces[1] - t * kAces[4], c = kAces[2] - t * kAces[5];
+  const float half = -0.5f * b / a, x = half + std::sqrt(half * half - c / a);
+  std::vector<float> luminance(reference.rgb.size() / 3);
+  for (std::size_t i = 0; i < luminance.size(); ++i) {
+    luminance[i] = 0.2126f * reference.rgb[3 * i] + 0.7152f * reference.rgb[3 * i + 1] + 0.0722f * reference.rgb[3 * i + 2];
+  }
+  if (luminance.empty()) return {};
+  const float brightest = *std::max_element(luminance.begin(), luminance.end());
+  const auto middle = luminance.begin() + static_cast<std::ptrdiff_t>(luminance.size() / 2);
+  std::nth_element(luminance.begin(), middle, luminance.end());
+  if (!(*middle > 0.0f) || !std::isfinite(brightest)) return {};
+  HdrExposures e{std::log2(x / brightest), std::log2(x / *middle), 0};
+  e.count = static_cast<int>(std::max(2.0f, std::ceil(e.stop - e.start)));
+  return e;
+}
+
+FlipMap hdrFlip(const LinearImage& reference, const LinearImage& test, const HdrExposures& exposures,
+                double pixelsPerDegree) {
+  FlipMap worst;
+  const float step = (exposures.stop - exposures.start) / static_cast<float>(exposures.count - 1);
+  for (int i = 0; i < exposures.count; ++i) {
+    const float e = exposures.start + static_cast<float>(i) * step;
+    const FlipMap map =
+        flip(exposedAndToneMapped(reference, e), exposedAndToneMapped(test, e), pixelsPerDegree);
+    if (i == 0) worst = map;
+    for (std::size_t p = 0; p < map.error.size(); ++p) worst.error[p] = std::max(worst.error[p], map.error[p]);
+  }
+  return worst;
+}
+
 glm::vec3 flipLab(const glm::vec3& displayedLinear) {
   return hunt(xyzToLab(linearToXyz(glm::clamp(displayedLinear, 0.0f, 1.0f))));
 }
 
-float flipColourError(const glm::vec3& labA, const glm::vec3& labB) {
+VisibleDifference::VisibleDifference(float threshold) {
+  // colourError's inverse: the distance whose compressed value is the threshold.
   static const float cmax = largestColourDifference();
-  return colourError(hyab(labA, labB), cmax);
+  const float cut = kCutShare * cmax;
+  const float compressed = threshold < kBelowCut ? threshold * cut / kBelowCut
+                                                 : cut + (threshold - kBelowCut) / (1.0f - kBelowCut) * (cmax - cut);
+  distance_ = power(compressed, 1.0f / kColourExponent);
+}
+
+bool VisibleDifference::operator()(const glm::vec3& labA, const glm::vec3& labB) const {
+  return hyab(labA, labB) > distance_;
 }
 
 FlipStats flipStats(const FlipMap& map) {

@@ -40,15 +40,47 @@ struct FlipStats {
 // sizes differ) seen at `pixelsPerDegree`.
 FlipMap flip(const LinearImage& reference, const LinearImage& test, double pixelsPerDegree = kFlipPixelsPerDegree);
 
+// HDR-FLIP (Andersson, Nilsson, Shirley, Akenine-Moller, "Visualizing
+// Errors in Rendered High Dynamic Range Images", Eurographics 2021 short
+// papers): LDR-FLIP of both images exposed by 2^e and tone mapped by ACES
+// (Narkowicz's fit) at exposures e from `start` to `stop`, `count` of them,
+// each pixel's largest error. The range comes from the reference: at
+// `start` its brightest pixel, at `stop` its median luminance, maps to the
+// tone curve's 0.85; one exposure a stop apart, two at least.
+struct HdrExposures {
+  float start = 0.0f;
+  float stop = 0.0f;
+  int count = 0;
+};
+
+// The exposures for `reference`; none (count 0) when its median luminance
+// is not positive, where the range is undefined.
+HdrExposures hdrExposures(const LinearImage& reference);
+
+// `exposures.count` must be 2 or more.
+FlipMap hdrFlip(const LinearImage& reference, const LinearImage& test, const HdrExposures& exposures,
+                double pixelsPerDegree = kFlipPixelsPerDegree);
+
 FlipStats flipStats(const FlipMap& map);
 
 // FLIP's colour term for two flat colours, without the spatial filtering
-// (which only lowers the difference of small features): the Hunt-adjusted
-// L*a*b* of a displayed linear colour, and the HyAB distance of two such
-// colours compressed and mapped to [0, 1] as the map's colour term is.
-// What a pixel's error would be at most, were it as wide as the eye resolves.
+// (which only lowers the difference of small features): what a pixel's
+// error would be at most, were it as wide as the eye resolves. flipLab is
+// the Hunt-adjusted L*a*b* of a displayed linear colour; VisibleDifference
+// asks whether the HyAB distance of two such colours, compressed and mapped
+// to [0, 1] as the map's colour term is, exceeds a threshold, by comparing
+// the distance with the one the threshold maps to (the term grows with the
+// distance): one power for the threshold, none a pair.
 glm::vec3 flipLab(const glm::vec3& displayedLinear);
-float flipColourError(const glm::vec3& labA, const glm::vec3& labB);
+
+class VisibleDifference {
+ public:
+  explicit VisibleDifference(float threshold);
+  bool operator()(const glm::vec3& labA, const glm::vec3& labB) const;
+
+ private:
+  float distance_;
+};
 
 // The map in the paper's colour map (magma: black 0, purple, orange, pale
 // yellow 1), as the paper shows its errors.

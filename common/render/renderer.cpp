@@ -126,8 +126,9 @@ void Renderer::renderAdaptive(const TileRect& rect, std::span<const std::uint8_t
     p.traced = true;
     return p;
   };
+  const VisibleDifference visible(frame_.sampling.perceptualThreshold);
   const auto differ = [&](const glm::vec3& a, const glm::vec3& b) {
-    if (perceptual) return flipColourError(a, b) > frame_.sampling.perceptualThreshold;
+    if (perceptual) return visible(a, b);
     const glm::vec3 delta = glm::abs(a - b);
     const float t = frame_.sampling.adaptiveThreshold;
     return delta.r > t || delta.g > t || delta.b > t;

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "common/base/error.h"
+#include "common/image/encoding.h"
 #include "common/image/image_read.h"
 #include "tests/support/test_support.h"
 
@@ -62,6 +63,21 @@ TEST(Flip, MeanAgreesWithTheReferenceImplementation) {
   }
 }
 
+// HDR-FLIP on two EXR renders of the room at +2 EV (16 samples against 1,
+// linear, the brightest pixels above 1): NVIDIA's tool 1.6 (`flip -r
+// room_full.exr -t room_one_sample.exr`) prints start exposure -1.2532, stop
+// 0.5584, 2 exposures and a mean of 0.080763.
+TEST(Flip, HdrFlipAgreesWithTheReferenceImplementation) {
+  const LinearImage reference = readImageFile(test::sourcePath("tests/data/flip/room_full.exr")).values;
+  const LinearImage test = readImageFile(test::sourcePath("tests/data/flip/room_one_sample.exr")).values;
+  const HdrExposures e = hdrExposures(reference);
+  EXPECT_NEAR(e.start, -1.2532, 1e-4);
+  EXPECT_NEAR(e.stop, 0.5584, 1e-4);
+  EXPECT_EQ(e.count, 2);
+  EXPECT_NEAR(flipStats(hdrFlip(reference, test, e)).mean, 0.080763, 1e-4 * 0.080763);
+  EXPECT_EQ(hdrExposures(flat(4, 4, 0, 0, 0)).count, 0);  // no median luminance: no range
+}
+
 // HyAB in L*a*b*: a colour further from the reference scores more.
 TEST(Flip, ErrorGrowsWithColourDistance) {
   const LinearImage grey = flat(32, 32, 0.2f, 0.2f, 0.2f);
@@ -107,6 +123,27 @@ TEST(Flip, IsolatedPointsRaiseTheError) {
   const FlipMap map = flip(grey, dot);
   EXPECT_GT(map.error[16 * 32 + 16], 0.3f);
   EXPECT_EQ(map.error[2 * 32 + 2], 0.0f);
+}
+
+// The perceptual pattern's test: grey 128 against 130 (8-bit, through sRGB)
+// is below a just noticeable difference, black against white far above;
+// at the threshold 1, green against blue (the largest difference) is not
+// above it, and anything is above 0.
+TEST(Flip, VisibleDifferenceFollowsTheColourTerm) {
+  const auto lab = [](float byte) {
+    const float v = srgbDecode(byte / 255.0f);
+    return flipLab({v, v, v});
+  };
+  EXPECT_FALSE(VisibleDifference(0.3f)(lab(128), lab(130)));
+  EXPECT_TRUE(VisibleDifference(0.02f)(lab(128), lab(130)));
+  EXPECT_TRUE(VisibleDifference(1e-6f)(lab(128), lab(129)));
+  // Black against white: HyAB 100, compressed 100^0.7 = 25.1 of green
+  // against blue's 41.4, above the cut at 0.4 of it (16.6): 0.95 + 0.05 x
+  // (25.1 - 16.6) / (41.4 - 16.6) = 0.967, from the paper's mapping.
+  EXPECT_TRUE(VisibleDifference(0.96f)(lab(0), lab(255)));
+  EXPECT_FALSE(VisibleDifference(0.975f)(lab(0), lab(255)));
+  EXPECT_FALSE(VisibleDifference(1.0f)(flipLab({0, 1, 0}), flipLab({0, 0, 1})));
+  EXPECT_TRUE(VisibleDifference(0.99f)(flipLab({0, 1, 0}), flipLab({0, 0, 1})));
 }
 
 TEST(Flip, PercentilesAreNearestRanks) {

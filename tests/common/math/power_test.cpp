@@ -111,6 +111,29 @@ TEST(Power, ExponentialIsTheNearestFloat) {
   EXPECT_TRUE(std::isnan(exponential(std::numeric_limits<float>::quiet_NaN())));
 }
 
+// FLIP's L*a*b* takes cube roots of values in (0, 1.1]; across the floats'
+// range too. The nearest float, from long double cbrtl, but within an ulp
+// where the root lies within 2^-40 of a midpoint.
+TEST(Power, CubeRootIsTheNearestFloat) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> unit(0.0f, 1.1f);
+  std::uniform_real_distribution<float> exponent(-149.0f, 127.0f);
+  int exact = 0;
+  const int n = 200000;
+  for (int i = 0; i < n; ++i) {
+    const float x = i % 2 == 0 ? std::max(unit(rng), 1e-30f) : std::exp2(exponent(rng));
+    const float want = static_cast<float>(std::cbrt(static_cast<long double>(x)));
+    const std::int64_t ulps = static_cast<std::int64_t>(floatToBits(cubeRoot(x))) - floatToBits(want);
+    ASSERT_LE(std::abs(ulps), 1) << std::hexfloat << x;
+    exact += ulps == 0 ? 1 : 0;
+  }
+  EXPECT_EQ(exact, n);
+  EXPECT_EQ(cubeRoot(0.0f), 0.0f);
+  EXPECT_EQ(cubeRoot(8.0f), 2.0f);
+  EXPECT_EQ(cubeRoot(-8.0f), -2.0f);
+  EXPECT_TRUE(std::isinf(cubeRoot(std::numeric_limits<float>::infinity())));
+}
+
 TEST(Power, SpecialValuesAreStdPows) {
   const float inf = std::numeric_limits<float>::infinity();
   const float nan = std::numeric_limits<float>::quiet_NaN();

@@ -3,7 +3,10 @@
 standard library only; the test's expected values come from NVIDIA's FLIP
 tool (github.com/NVlabs/flip, v1.6) run on these files. room_full.png and room_hybrid.png are Glint's own renders:
   glint render scenes/room.json --size 96x64 --samples 16 -o room_full.png
-  glint render scenes/room.json --size 96x64 --mask auto -o room_hybrid.png"""
+  glint render scenes/room.json --size 96x64 --mask auto -o room_hybrid.png
+and the EXR pair for HDR-FLIP:
+  glint render scenes/room.json --size 96x64 --samples 16 --mask all --exposure 2 -o room_full.exr
+  glint render scenes/room.json --size 96x64 --samples 1 --mask all --exposure 2 -o room_one_sample.exr"""
 import struct
 import zlib
 
