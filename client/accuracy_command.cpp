@@ -100,22 +100,29 @@ LinearImage hybridRow(Sweep& sweep, const FrameSettings& frame, const MaskSettin
   return decodeBytes(result.image, sweep.encoder);
 }
 
+// The reference, as traced and as a display shows it (FLIP's input).
+struct Reference {
+  LinearImage linear;
+  LinearImage displayed;
+};
+
 // The row's errors against the reference, and its images: the PFM, the
 // PNG, the false-colour error and FLIP's map.
-void measureRow(const fs::path& dir, const Encoder& encoder, const LinearImage& image, const LinearImage& reference,
+void measureRow(const fs::path& dir, const Encoder& encoder, const LinearImage& image, const Reference& reference,
                 AccuracyRow& row) {
-  row.error = compareImages(image, reference);
-  const FlipMap map = flip(displayedLight(reference, encoder), displayedLight(image, encoder));
+  row.error = compareImages(image, reference.linear);
+  const FlipMap map = flip(reference.displayed, displayedLight(image, encoder));
   row.flip = flipStats(map);
   const std::string stem = row.name + "-" + row.value;
   writePfm(dir / (stem + ".pfm"), image);
   writePng(dir / row.image, toBytes(image));
-  writePng(dir / (stem + "-error.png"), errorImage(pixelErrors(image, reference), image.width, image.height));
+  writePng(dir / (stem + "-error.png"),
+           errorImage(pixelErrors(image, reference.linear), image.width, image.height));
   writePng(dir / (stem + "-flip.png"), magmaImage(map));
 }
 
 AccuracyReference renderReference(Sweep& sweep, const FrameSettings& frame, int samples, const fs::path& dir,
-                                  LinearImage& reference) {
+                                  Reference& reference) {
   const auto start = Clock::now();
   RayStats ignored;
   std::fprintf(stderr, "reference: 2 x %d jittered samples, max depth %d ...\n", samples / 2, kReferenceDepth);
@@ -123,13 +130,14 @@ AccuracyReference renderReference(Sweep& sweep, const FrameSettings& frame, int 
   const Renderer b(sweep.prepared, referenceFrame(frame, samples / 2, frame.sampling.seed + 1));
   const LinearImage halfA = renderLinear(a, sweep.pool, ignored, LinearRange::kClamped);
   const LinearImage halfB = renderLinear(b, sweep.pool, ignored, LinearRange::kClamped);
-  reference = average(halfA, halfB);
+  reference.linear = average(halfA, halfB);
+  reference.displayed = displayedLight(reference.linear, sweep.encoder);
   // Each half errs by about sqrt(2) times the whole; their difference by 2 times.
   AccuracyReference r{samples, kReferenceDepth, compareImages(halfA, halfB).rmse / 2.0,
                       flipStats(flip(displayedLight(halfA, sweep.encoder), displayedLight(halfB, sweep.encoder))).mean,
                       msSince(start)};
-  writePfm(dir / "reference.pfm", reference);
-  writePng(dir / "reference.png", toBytes(reference));
+  writePfm(dir / "reference.pfm", reference.linear);
+  writePng(dir / "reference.png", toBytes(reference.linear));
   return r;
 }
 
@@ -174,7 +182,7 @@ void runAccuracy(const AccuracyOptions& o) {
   std::unique_ptr<DistributedTileService> remote;
   if (o.remote.any()) remote = connectServers(o.remote, loaded.bundle);
   Sweep sweep{prepared, Encoder(scene.frame.output), pool, o.frames, o.frame.tileSize, remote.get(), o.gl, nullptr, nullptr};
-  LinearImage reference;
+  Reference reference;
   const AccuracyReference ref = renderReference(sweep, scene.frame, o.referenceSamples, dir, reference);
 
   std::size_t total = 0, done = 0;

@@ -21,10 +21,10 @@ std::size_t markColourEdges(std::span<const std::uint8_t> rgb, int width, int he
     lab[i] = asBefore ? lab[i - 1] : flipLab({displayedByte(c[0]), displayedByte(c[1]), displayedByte(c[2])});
   }
   const VisibleDifference visible(threshold);
-  const std::vector<std::uint8_t> own(marks.begin(), marks.end());
   std::size_t marked = 0;
   const auto visit = [&](std::size_t p, std::size_t q) {
-    if (own[p] == kMaskedPixel || own[q] == kMaskedPixel) return;
+    // Only raster marks become edges, so a masked mark here is the raster's own.
+    if (marks[p] == kMaskedPixel || marks[q] == kMaskedPixel) return;
     if (!visible(lab[p], lab[q])) return;
     for (const std::size_t i : {p, q}) {
       if (marks[i] != kRasterPixel) continue;

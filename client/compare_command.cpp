@@ -28,7 +28,7 @@ FlipMap flipOf(const ImageFile& reference, const ImageFile& test, double ppd, st
     }
   }
   how = "";
-  return flip(displayLight(reference), displayLight(test), ppd);
+  return flip(displayedLight(reference), displayedLight(test), ppd);
 }
 
 }  // namespace
@@ -46,7 +46,7 @@ void runCompare(const CompareOptions& options) {
   // the other holds floats.
   const bool sameKind = reference.eightBit == test.eightBit;
   const ImageError error = sameKind ? compareImages(test.values, reference.values)
-                                    : compareImages(displayLight(test), displayLight(reference));
+                                    : compareImages(displayedLight(test), displayedLight(reference));
   std::printf("FLIP %.6f (%s95th percentile %.6f, 99th %.6f; %.1f pixels per degree)\n", stats.mean, how.c_str(),
               stats.p95, stats.p99, options.pixelsPerDegree);
   std::printf("RMSE %.6f%s\n", error.rmse, sameKind ? "" : " (of displayed light: one file is 8-bit, one float)");

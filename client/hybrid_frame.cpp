@@ -1,6 +1,7 @@
 #include "client/hybrid_frame.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstring>
 #include <span>
@@ -75,6 +76,12 @@ FrameSettings tracedFrame(FrameSettings frame, const MaskSettings& mask, bool di
   if (mask.rule == MaskRule::kPerceptual) frame.sampling.pattern = SamplePattern::kPerceptual;
   if (directLight) frame.tracing.maxDepth = 1;
   return frame;
+}
+
+// A frame's two traced sets, empty: the masked pixels, then direct light.
+std::array<TracedSet, 2> tracedSets(const FrameSettings& frame, const MaskSettings& mask) {
+  return {TracedSet{false, tracedFrame(frame, mask, false), {}, {}, 0},
+          TracedSet{true, tracedFrame(frame, mask, true), {}, {}, 0}};
 }
 
 // Lays one traced tile's pixels over the window's image (rows from the top).
@@ -211,8 +218,7 @@ void markFrame(const gl::Api& gl, gl::RasterScene& raster, const FrameSettings& 
 
 void markHybrid(const gl::Api& gl, gl::RasterScene& raster, const FrameSettings& frame, const MaskSettings& mask,
                 int tileSize, HybridResult& result) {
-  TracedSet sets[2] = {{false, tracedFrame(frame, mask, false), {}, {}, 0},
-                       {true, tracedFrame(frame, mask, true), {}, {}, 0}};
+  std::array<TracedSet, 2> sets = tracedSets(frame, mask);
   markFrame(gl, raster, frame, mask, TileRect{0, 0, frame.width, frame.height}, tileSize, sets, result);
   result.times.totalMs = result.times.rasterMs + result.times.readbackMs;
 }
@@ -228,8 +234,7 @@ bool renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
                   const HybridControl& control) {
   const Clock::time_point start = Clock::now();
   const TileRect window = crop.value_or(TileRect{0, 0, frame.width, frame.height});
-  TracedSet sets[2] = {{false, tracedFrame(frame, mask, false), {}, {}, 0},
-                       {true, tracedFrame(frame, mask, true), {}, {}, 0}};
+  std::array<TracedSet, 2> sets = tracedSets(frame, mask);
   markFrame(gl, raster, frame, mask, window, tileSize, sets, result);
   service.beginFrame();
   int before = 0;

@@ -1,6 +1,7 @@
 #include "common/image/encoding.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "common/math/power.h"
@@ -25,6 +26,12 @@ float Encoder::decoded(std::uint8_t byte) const {
 LinearImage displayedLight(const LinearImage& image, const Encoder& encoder) {
   LinearImage light = image;
   for (float& v : light.rgb) v = encoder.displayed(v);
+  return light;
+}
+
+LinearImage displayedLight(const FrameImage& image) {
+  LinearImage light{image.width, image.height, std::vector<float>(image.rgb.size())};
+  for (std::size_t i = 0; i < image.rgb.size(); ++i) light.rgb[i] = displayedByte(image.rgb[i]);
   return light;
 }
 

@@ -1,6 +1,5 @@
 #pragma once
 
-#include <array>
 #include <cstdint>
 
 #include <glm/vec3.hpp>
@@ -38,9 +37,11 @@ class Encoder {
   bool srgb_;
 };
 
-// An image's displayed light (Encoder::displayed) and an 8-bit image's
-// linear values (Encoder::decoded), pixel by pixel.
+// An image's displayed light (Encoder::displayed), an 8-bit image's
+// (displayedByte), and an 8-bit image's linear values (Encoder::decoded),
+// pixel by pixel.
 LinearImage displayedLight(const LinearImage& image, const Encoder& encoder);
+LinearImage displayedLight(const FrameImage& image);
 LinearImage decodeBytes(const FrameImage& image, const Encoder& encoder);
 
 // The sRGB transfer function (IEC 61966-2-1) of a value in [0, 1].

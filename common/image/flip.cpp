@@ -94,16 +94,20 @@ float hyab(const glm::vec3& a, const glm::vec3& b) {
   return std::abs(a.x - b.x) + std::sqrt(da * da + db * db);
 }
 
-// The largest colour difference, green against blue, raised to kColourExponent.
+// The largest colour difference, green against blue, raised to
+// kColourExponent (worked out once).
 float largestColourDifference() {
-  const auto huntLab = [](const glm::vec3& rgb) { return hunt(xyzToLab(linearToXyz(rgb))); };
-  return power(hyab(huntLab({0.0f, 1.0f, 0.0f}), huntLab({0.0f, 0.0f, 1.0f})), kColourExponent);
+  static const float cmax = [] {
+    const auto huntLab = [](const glm::vec3& rgb) { return hunt(xyzToLab(linearToXyz(rgb))); };
+    return power(hyab(huntLab({0.0f, 1.0f, 0.0f}), huntLab({0.0f, 0.0f, 1.0f})), kColourExponent);
+  }();
+  return cmax;
 }
 
 // A HyAB distance compressed and mapped to [0, 1]: distances up to kCutShare
 // of the largest to [0, kBelowCut], the rest to (kBelowCut, 1].
-float colourError(float distance, float cmax) {
-  const float d = power(distance, kColourExponent), cut = kCutShare * cmax;
+float colourError(float distance) {
+  const float cmax = largestColourDifference(), d = power(distance, kColourExponent), cut = kCutShare * cmax;
   return d < cut ? d * kBelowCut / cut : kBelowCut + (d - cut) / (cmax - cut) * (1.0f - kBelowCut);
 }
 
@@ -180,14 +184,13 @@ std::vector<float> colourTerm(const std::array<Plane, 3>& ref, const std::array<
     return std::array<Plane, 3>{separable(p[0], kY, kY), separable(p[1], kCx, kCx), cz};
   };
   const std::array<Plane, 3> fr = filtered(ref), ft = filtered(test);
-  const float cmax = largestColourDifference();
   std::vector<float> term(fr[0].v.size());
   for (std::size_t i = 0; i < term.size(); ++i) {
     const auto lab = [i](const std::array<Plane, 3>& p) {
       const glm::vec3 rgb = glm::clamp(xyzToLinear(ycxczToXyz({p[0].v[i], p[1].v[i], p[2].v[i]})), 0.0f, 1.0f);
       return hunt(xyzToLab(linearToXyz(rgb)));
     };
-    term[i] = colourError(hyab(lab(fr), lab(ft)), cmax);
+    term[i] = colourError(hyab(lab(fr), lab(ft)));
   }
   return term;
 }
@@ -319,8 +322,7 @@ glm::vec3 flipLab(const glm::vec3& displayedLinear) {
 
 VisibleDifference::VisibleDifference(float threshold) {
   // colourError's inverse: the distance whose compressed value is the threshold.
-  static const float cmax = largestColourDifference();
-  const float cut = kCutShare * cmax;
+  const float cmax = largestColourDifference(), cut = kCutShare * cmax;
   const float compressed = threshold < kBelowCut ? threshold * cut / kBelowCut
                                                  : cut + (threshold - kBelowCut) / (1.0f - kBelowCut) * (cmax - cut);
   distance_ = power(compressed, 1.0f / kColourExponent);

@@ -98,7 +98,7 @@ ImageFile readImageFile(const std::filesystem::path& path) {
   return {std::move(values), !radiance};
 }
 
-LinearImage displayLight(const ImageFile& file) {
+LinearImage displayedLight(const ImageFile& file) {
   LinearImage light = file.values;
   if (file.eightBit) {
     for (float& v : light.rgb) v = srgbDecode(v);

@@ -22,6 +22,6 @@ ImageFile readImageFile(const std::filesystem::path& path);
 // The light a display shows for the file: an 8-bit file's values decoded by
 // sRGB, a float file's values as they are (clamped to [0, 1] by whoever
 // needs display values).
-LinearImage displayLight(const ImageFile& file);
+LinearImage displayedLight(const ImageFile& file);
 
 }  // namespace glint

@@ -68,7 +68,7 @@ void perceptualSection(const std::string& scenes, bool quick) {
     const LinearImage converged = displayedLight(reference(prepared, frame, pool, quick), encoder);
     double flips[2], times[2];
     for (int r = 0; r < 2; ++r) {
-      flips[r] = flipStats(flip(converged, displayedLight(decodeBytes(rows[r].last.image, encoder), encoder))).mean;
+      flips[r] = flipStats(flip(converged, displayedLight(rows[r].last.image))).mean;
       times[r] = median(rows[r].frameMs);
     }
     for (int r = 0; r < 2; ++r) {

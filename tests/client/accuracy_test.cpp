@@ -140,8 +140,8 @@ TEST(Accuracy, ErrorFallsWithSamplesOnASmallScene) {
     EXPECT_GE(r.flipP95, r.flip);
     EXPECT_GE(r.flipP99, r.flipP95);
   }
-  const double fromPngs = flipStats(flip(displayLight(readImageFile(dir / "reference.png")),
-                                         displayLight(readImageFile(dir / "samples-16.png"))))
+  const double fromPngs = flipStats(flip(displayedLight(readImageFile(dir / "reference.png")),
+                                         displayedLight(readImageFile(dir / "samples-16.png"))))
                               .mean;
   EXPECT_NEAR(rows[0].flip, fromPngs, 1e-6);
   EXPECT_TRUE(fs::exists(dir / "samples-64-flip.png"));

@@ -48,6 +48,17 @@ MaskSettings rule(MaskRule rule, int shadowMap = 0) {
   return mask;
 }
 
+// A glintd on loopback's next free port with `threads` tracing threads, its
+// log off.
+server::ServerOptions quietLoopback(int threads) {
+  server::setLogging(false);
+  server::ServerOptions o;
+  o.listen = "127.0.0.1:0";
+  o.threads = threads;
+  o.handleSignals = false;
+  return o;
+}
+
 HybridResult hybrid(const Scene& scene, TileService& service, const FrameSettings& frame, const MaskSettings& mask,
                     int tileSize = 32) {
   gl::OffscreenContext context(frame.width, frame.height);
@@ -392,12 +403,7 @@ TEST(Hybrid, MaskedPixelsEqualTheFullTrace) {
   direct.tracing.maxDepth = 1;
   const FrameImage directFull = renderFrame(local, direct, {}).image;
 
-  server::setLogging(false);
-  server::ServerOptions o;
-  o.listen = "127.0.0.1:0";
-  o.threads = 2;
-  o.handleSignals = false;
-  server::BackgroundServer glintd(o);
+  server::BackgroundServer glintd(quietLoopback(2));
   DistributedTileService remote(resolveServers({glintd.address()}), s.loaded.bundle);
 
   for (TileService* service : {static_cast<TileService*>(&local), static_cast<TileService*>(&remote)}) {
@@ -450,12 +456,7 @@ TEST(Hybrid, PerceptualRuleTracesItsPixelsAlikeEverywhere) {
   const FrameImage full = renderFrame(local, perceptual, {}).image;
   perceptual.tracing.maxDepth = 1;
   const FrameImage direct = renderFrame(local, perceptual, {}).image;
-  server::setLogging(false);
-  server::ServerOptions o;
-  o.listen = "127.0.0.1:0";
-  o.threads = 2;
-  o.handleSignals = false;
-  server::BackgroundServer glintd(o);
+  server::BackgroundServer glintd(quietLoopback(2));
   DistributedTileService remote(resolveServers({glintd.address()}), s.loaded.bundle);
   MaskSettings mask = prepared.scene().mask;
   mask.rule = MaskRule::kPerceptual;
@@ -763,12 +764,7 @@ TEST(Hybrid, BackgroundIsTheTracersToTheByte) {
 // the provenance image tints every traced pixel and no other.
 TEST(Hybrid, ReportCountsEveryTracedSet) {
   const SceneSetup s = load("scenes/room.json");
-  server::setLogging(false);
-  server::ServerOptions o;
-  o.listen = "127.0.0.1:0";
-  o.threads = 1;
-  o.handleSignals = false;
-  server::BackgroundServer first(o), second(o);
+  server::BackgroundServer first(quietLoopback(1)), second(quietLoopback(1));
   DistributedTileService remote(resolveServers({first.address(), second.address()}), s.loaded.bundle);
   remote.awaitServers(std::chrono::seconds(10));
   const HybridResult h = hybrid(s.loaded.scene, remote, s.frame, rule(MaskRule::kAuto, 256));

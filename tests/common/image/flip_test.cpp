@@ -20,7 +20,7 @@ LinearImage flat(int width, int height, float r, float g, float b) {
 }
 
 LinearImage fixture(const std::string& name) {
-  return displayLight(readImageFile(test::sourcePath("tests/data/flip/" + name + ".png")));
+  return displayedLight(readImageFile(test::sourcePath("tests/data/flip/" + name + ".png")));
 }
 
 double meanFlip(const LinearImage& reference, const LinearImage& test, double ppd = kFlipPixelsPerDegree) {
