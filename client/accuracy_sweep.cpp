@@ -1,5 +1,6 @@
 #include "client/accuracy_sweep.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <sstream>
@@ -31,6 +32,8 @@ std::string allowed(AccuracyKey key) {
       return "one of " + enumWordsJoined<MaskRule>();
     case AccuracyKey::kPerceptualThreshold:
       return "numbers in (0, 1]";
+    case AccuracyKey::kLightSamples:
+      return "whole numbers in [1, " + std::to_string(FrameLimits::kMaxLightSamples) + "]";
   }
   return "";
 }
@@ -68,6 +71,9 @@ bool takes(AccuracyKey key, const std::string& value) {
       return enumFromWord<MaskRule>(value).has_value();
     case AccuracyKey::kPerceptualThreshold:
       return parseNumber(value, number) && number > 0.0 && number <= 1.0;
+    case AccuracyKey::kLightSamples:
+      return parseNumber(value, number) && number == std::floor(number) && number >= 1 &&
+             number <= FrameLimits::kMaxLightSamples;
   }
   return false;
 }
@@ -100,8 +106,8 @@ Series parseVary(const std::string& text) {
   return series;
 }
 
-std::vector<Series> defaultSweep() {
-  return {{AccuracyKey::kSamples, {"1", "4", "16", "64"}},
+std::vector<Series> defaultSweep(const Scene& scene) {
+  std::vector<Series> sweep{{AccuracyKey::kSamples, {"1", "4", "16", "64"}},
           {AccuracyKey::kPattern, {"regular", "jittered", "adaptive", "perceptual"}},
           {AccuracyKey::kFilter, {"box", "tent", "gaussian", "mitchell"}},
           {AccuracyKey::kMaxDepth, {"1", "2", "3", "5", "8"}},
@@ -110,6 +116,10 @@ std::vector<Series> defaultSweep() {
           {AccuracyKey::kShadowMap, {"0", "256", "1024", "4096"}},
           {AccuracyKey::kMaskRule, {"auto", "perceptual"}},
           {AccuracyKey::kPerceptualThreshold, {"0.1", "0.2", "0.3", "0.5", "0.8"}}};
+  const bool area = std::any_of(scene.lights.begin(), scene.lights.end(),
+                                [](const Light& l) { return l.type == LightType::kArea; });
+  if (area) sweep.push_back({AccuracyKey::kLightSamples, {"1", "4", "16", "64", "256"}});
+  return sweep;
 }
 
 bool hybridKey(AccuracyKey key) {
@@ -149,6 +159,9 @@ void applySetting(AccuracyKey key, const std::string& value, FrameSettings& fram
       mask.rule = MaskRule::kPerceptual;
       frame.sampling.perceptualThreshold = std::stof(value);
       return;
+    case AccuracyKey::kLightSamples:
+      frame.sampling.lightSamples = std::stoi(value);
+      return;
   }
 }
 
@@ -172,6 +185,8 @@ std::string currentValue(AccuracyKey key, const FrameSettings& frame, const Mask
       return std::string(enumWord(mask.rule));
     case AccuracyKey::kPerceptualThreshold:  // the scene's own only where its rule uses it
       return mask.rule == MaskRule::kPerceptual ? formatNumber(frame.sampling.perceptualThreshold) : "";
+    case AccuracyKey::kLightSamples:  // 0: each light's own
+      return frame.sampling.lightSamples > 0 ? std::to_string(frame.sampling.lightSamples) : "";
   }
   return "";
 }

@@ -21,12 +21,13 @@ enum class AccuracyKey {
   kMaskThreshold,
   kShadowMap,
   kMaskRule,
-  kPerceptualThreshold
+  kPerceptualThreshold,
+  kLightSamples
 };
 
 template <>
 struct EnumWords<AccuracyKey> {
-  static constexpr std::array<std::pair<AccuracyKey, std::string_view>, 9> kWords{
+  static constexpr std::array<std::pair<AccuracyKey, std::string_view>, 10> kWords{
       {{AccuracyKey::kSamples, "samples"},
        {AccuracyKey::kPattern, "pattern"},
        {AccuracyKey::kFilter, "filter"},
@@ -35,7 +36,8 @@ struct EnumWords<AccuracyKey> {
        {AccuracyKey::kMaskThreshold, "mask_threshold"},
        {AccuracyKey::kShadowMap, "shadow_map"},
        {AccuracyKey::kMaskRule, "mask_rule"},
-       {AccuracyKey::kPerceptualThreshold, "perceptual_threshold"}}};
+       {AccuracyKey::kPerceptualThreshold, "perceptual_threshold"},
+       {AccuracyKey::kLightSamples, "light_samples"}}};
 };
 
 // One series of a sweep: one key, the values it takes in turn, every other
@@ -49,8 +51,9 @@ struct Series {
 // takes when the key is unknown or a value is not one of them.
 Series parseVary(const std::string& text);
 
-// Every key, around the thesis's settings (what `--vary` not given sweeps).
-std::vector<Series> defaultSweep();
+// Every key, around the thesis's settings (what `--vary` not given sweeps);
+// light_samples only for a scene with an area light.
+std::vector<Series> defaultSweep(const Scene& scene);
 
 // Whether a key's rows are hybrid frames (OpenGL draws, the tracer fills
 // the mask): mask_threshold, shadow_map, mask_rule and perceptual_threshold.

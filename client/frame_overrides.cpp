@@ -19,6 +19,7 @@ void applyFrameOverrides(const FrameOverrides& o, Scene& scene) {
   if (o.adaptiveThreshold) f.sampling.adaptiveThreshold = *o.adaptiveThreshold;
   if (o.perceptualThreshold) f.sampling.perceptualThreshold = *o.perceptualThreshold;
   if (o.samples) f.sampling.samples = *o.samples;
+  if (o.lightSamples) f.sampling.lightSamples = *o.lightSamples;
   if (o.filter) f.sampling.filter = *o.filter;
   if (o.seed) f.sampling.seed = *o.seed;
   if (o.maxDepth) f.tracing.maxDepth = *o.maxDepth;
@@ -38,6 +39,7 @@ void applyFrameOverrides(const FrameOverrides& o, Scene& scene) {
                 .minWeight = "--min-weight",
                 .adaptiveThreshold = "--adaptive-threshold",
                 .perceptualThreshold = "--perceptual-threshold",
+                .lightSamples = "--light-samples",
                 .exposure = "--exposure"});
   } catch (const InputError& e) {
     throw UsageError(e.what());

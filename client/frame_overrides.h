@@ -20,6 +20,7 @@ struct FrameOverrides {
   std::optional<SamplePattern> pattern;
   std::optional<float> adaptiveThreshold;
   std::optional<float> perceptualThreshold;
+  std::optional<int> lightSamples;
   std::optional<FilterType> filter;
   std::optional<std::uint32_t> seed;
   std::optional<int> maxDepth;

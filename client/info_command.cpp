@@ -80,7 +80,7 @@ void printContents(const Scene& scene) {
   std::printf("  textures   %zu (%s, %s)\n", scene.textures.size(), count(images, "image", "images").c_str(),
               count(checkers, "checker", "checkers").c_str());
   std::printf("  lights     %s\n", count(scene.lights.size(), "point light", "point lights").c_str());
-  for (const PointLight& l : scene.lights) {
+  for (const Light& l : scene.lights) {
     std::printf("             at %s, colour %s, attenuation %s\n", vec(l.position).c_str(), vec(l.color).c_str(),
                 vec(l.attenuation).c_str());
   }

@@ -313,7 +313,7 @@ void RasterScene::setFrameUniforms(unsigned program, const FrameSettings& frame,
   gl_.Uniform1f(at("uExposureScale"), Encoder(frame.output).scale());
   gl_.Uniform1i(at("uMarkUndecided"), mask.rule == MaskRule::kAuto || mask.rule == MaskRule::kPerceptual ? 1 : 0);
   std::vector<glm::vec3> positions, colors, attenuations;
-  for (const PointLight& l : scene_.lights) {
+  for (const Light& l : scene_.lights) {
     positions.push_back(l.position);
     colors.push_back(l.color);
     attenuations.push_back(l.attenuation);

@@ -54,7 +54,7 @@ void ShadowMaps::release() {
   size_ = 0;
 }
 
-void ShadowMaps::build(const std::vector<PointLight>& lights, const std::vector<bool>& casts, const Bounds3& bounds,
+void ShadowMaps::build(const std::vector<Light>& lights, const std::vector<bool>& casts, const Bounds3& bounds,
                        int size, const DepthPass& drawDepth) {
   release();
   firstLayer_.assign(lights.size(), -1);

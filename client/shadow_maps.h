@@ -34,7 +34,7 @@ class ShadowMaps {
   using DepthPass = std::function<void(const glm::mat4& viewProjection, const glm::vec3& eye, float far)>;
   // Draws the maps, `size` texels a face edge, of the lights `casts` flags,
   // for geometry within `bounds`. The default framebuffer is bound afterwards.
-  void build(const std::vector<PointLight>& lights, const std::vector<bool>& casts, const Bounds3& bounds, int size,
+  void build(const std::vector<Light>& lights, const std::vector<bool>& casts, const Bounds3& bounds, int size,
              const DepthPass& drawDepth);
   int size() const { return size_; }  // 0: not built
   // Binds the maps to texture unit `unit` and sets the shaders' shadow

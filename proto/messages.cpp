@@ -125,7 +125,7 @@ std::vector<std::uint8_t> encodeFrameSetup(std::uint32_t frameId, const SceneHas
       static_cast<std::uint32_t>(f.tracing.maxDepth), f.tracing.minWeight,
       f.sampling.pattern == SamplePattern::kAdaptive, f.sampling.adaptiveThreshold,
       f.output.encoding == Encoding::kSrgb, f.output.exposure, f.sampling.pattern == SamplePattern::kPerceptual,
-      f.sampling.perceptualThreshold);
+      f.sampling.perceptualThreshold, static_cast<std::uint32_t>(f.sampling.lightSamples));
   return finish(b, setup, wire::Body::FrameSetup);
 }
 
@@ -202,6 +202,7 @@ FrameSettings decodeFrameSettings(const wire::FrameSetup& s, std::size_t maxPixe
   f.sampling.adaptiveThreshold = s.adaptive() ? s.adaptive_threshold() : f.sampling.adaptiveThreshold;
   f.sampling.perceptualThreshold = s.perceptual() ? s.perceptual_threshold() : f.sampling.perceptualThreshold;
   f.sampling.samples = toInt(s.samples());
+  f.sampling.lightSamples = toInt(s.light_samples());
   if (s.filter() > static_cast<std::uint8_t>(FilterType::kMitchell)) throw InputError("frame_setup.filter: unknown");
   f.sampling.filter = static_cast<FilterType>(s.filter());
   f.sampling.seed = s.seed();
@@ -218,6 +219,7 @@ FrameSettings decodeFrameSettings(const wire::FrameSetup& s, std::size_t maxPixe
               .minWeight = "frame_setup.min_weight",
               .adaptiveThreshold = "frame_setup.adaptive_threshold",
               .perceptualThreshold = "frame_setup.perceptual_threshold",
+              .lightSamples = "frame_setup.light_samples",
               .exposure = "frame_setup.exposure"});
   return f;
 }

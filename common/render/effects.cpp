@@ -60,15 +60,18 @@ EffectPlan EffectPlan::derive(const Scene& scene, const FrameSettings& frame) {
     plan.materials.push_back(e);
   }
   bool anyLight = false;
-  for (const PointLight& l : scene.lights) {
+  bool anyArea = false;
+  for (const Light& l : scene.lights) {
     const bool active = hasPositive(l.color);
     plan.lights.push_back(active);
     anyLight = anyLight || active;
+    anyArea = anyArea || (active && l.type == LightType::kArea);
     if (active && (l.attenuation.y != 0.0f || l.attenuation.z != 0.0f)) plan.attenuation = true;
   }
   bool anyDirect = false;
   for (const MaterialEffects& e : plan.materials) anyDirect = anyDirect || e.direct;
   plan.shadows = anyLight && anyDirect && !selfShadowFree(scene.geometry);
+  plan.softShadows = plan.shadows && anyArea;
   plan.vertexColors = !scene.geometry.colors().empty();
   plan.antialiasing =
       frame.sampling.samples > 1 || frame.sampling.pattern != SamplePattern::kRegular;
@@ -78,7 +81,7 @@ EffectPlan EffectPlan::derive(const Scene& scene, const FrameSettings& frame) {
 std::vector<NamedEffect> namedEffects(const EffectPlan& plan) {
   return {{"shadows", plan.shadows},   {"reflection", plan.reflection}, {"refraction", plan.refraction},
           {"textures", plan.textures}, {"emission", plan.emission},     {"vertex_colors", plan.vertexColors},
-          {"attenuation", plan.attenuation}, {"antialiasing", plan.antialiasing}};
+          {"attenuation", plan.attenuation}, {"antialiasing", plan.antialiasing}, {"soft_shadows", plan.softShadows}};
 }
 
 nlohmann::json toJson(const EffectPlan& plan) {

@@ -31,6 +31,7 @@ struct EffectPlan {
   bool vertexColors = false;  // a mesh's per-vertex colours
   bool attenuation = false;   // distance fall-off of some light (other than a constant)
   bool antialiasing = false;  // samples off the pixel centre: several, or jittered
+  bool softShadows = false;   // shadow rays to points over an area light
   std::vector<MaterialEffects> materials;
   std::vector<bool> lights;   // false: the light adds nothing (black) and is skipped
 
@@ -39,7 +40,8 @@ struct EffectPlan {
 };
 
 // The plan's effects by name, in one order: shadows, reflection,
-// refraction, textures, emission, vertex_colors, attenuation, antialiasing.
+// refraction, textures, emission, vertex_colors, attenuation, antialiasing,
+// soft_shadows.
 struct NamedEffect {
   const char* name;
   bool needed;

@@ -21,7 +21,7 @@ Renderer::Renderer(const PreparedScene& prepared, const FrameSettings& frame, co
       camera_(frame.camera, frame.width, frame.height),
       filter_(frame.sampling.filter),
       sampleLayout_(frame.sampling),
-      tracer_(prepared.scene(), prepared.bvh(), frame_.tracing, plan_) {}
+      tracer_(prepared.scene(), prepared.bvh(), frame_, plan_) {}
 
 Renderer::CameraSample Renderer::cameraSample(int x, int y, const SampleLayout::Pixel& key, int sample) const {
   glm::vec2 offset{0.5f};
@@ -30,7 +30,8 @@ Renderer::CameraSample Renderer::cameraSample(int x, int y, const SampleLayout::
     offset = {0.5f + filter_.warp(u.x), 0.5f + filter_.warp(u.y)};
   }
   const float w = plan_.antialiasing ? filter_.sign(offset.x - 0.5f) * filter_.sign(offset.y - 0.5f) : 1.0f;
-  return {camera_.generateRay({static_cast<float>(x) + offset.x, static_cast<float>(y) + offset.y}), w};
+  return {camera_.generateRay({static_cast<float>(x) + offset.x, static_cast<float>(y) + offset.y}), w,
+          SampleLayout::key(key, sample)};
 }
 
 void Renderer::addSamples(int x, int y, int first, int end, PixelSamples& p, RayStats& stats) const {
@@ -44,7 +45,7 @@ void Renderer::addSamples(int x, int y, int first, int end, PixelSamples& p, Ray
     const int count = std::min(kBatch, end - from);
     for (int i = 0; i < count; ++i) batch[i] = cameraSample(x, y, key, from + i);
     for (int i = 0; i < count; ++i) {
-      const glm::vec3 c = tracer_.radiance(batch[i].ray, stats);
+      const glm::vec3 c = tracer_.radiance(batch[i].ray, batch[i].key, stats);
       if (!allFinite(c)) {
         ++stats.nonFiniteSamples;
         continue;
@@ -58,8 +59,10 @@ void Renderer::addSamples(int x, int y, int first, int end, PixelSamples& p, Ray
 }
 
 void Renderer::addCentreSample(int x, int y, PixelSamples& p, RayStats& stats) const {
-  const glm::vec3 c = tracer_.radiance(
-      camera_.generateRay({static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f}), stats);
+  constexpr int kCentreSample = -1;  // a key of its own, apart from the pattern's samples
+  const glm::vec3 c =
+      tracer_.radiance(camera_.generateRay({static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f}),
+                       SampleLayout::key(sampleLayout_.pixel(x, y), kCentreSample), stats);
   if (!allFinite(c)) {
     ++stats.nonFiniteSamples;
     return;

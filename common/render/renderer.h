@@ -63,6 +63,7 @@ class Renderer {
   struct CameraSample {
     Ray ray;
     float weight;
+    SampleKey key;
   };
   CameraSample cameraSample(int x, int y, const SampleLayout::Pixel& key, int sample) const;
   // Traces samples first to end - 1 of pixel (x, y) into p.

@@ -87,17 +87,21 @@ SampleLayout::SampleLayout(const SamplingSettings& sampling)
   }
 }
 
-SampleLayout::Pixel SampleLayout::pixel(int px, int py) const {
-  return {jittered_ ? pixelHash(seedHash_, px, py) : 0};
+glm::vec2 stratumPoint(const Stratum& s, const glm::vec2& u) {
+  return {std::min(lerpBelow(s.x0, s.x1, u.x), kOneMinusEpsilon), std::min(lerpBelow(s.y0, s.y1, u.y), kOneMinusEpsilon)};
 }
+
+float SampleKey::uniform(int dimension) const { return dimensionUniform(hash, dimension); }
+
+SampleLayout::Pixel SampleLayout::pixel(int px, int py) const { return {pixelHash(seedHash_, px, py)}; }
+
+SampleKey SampleLayout::key(const Pixel& pixel, int sample) { return {sampleHash(pixel.hash, sample)}; }
 
 glm::vec2 SampleLayout::position(const Pixel& pixel, int sample) const {
   const auto i = static_cast<std::size_t>(sample);
   if (!jittered_) return points_[i];
-  const Stratum& s = strata_[i];
   const std::uint64_t h = sampleHash(pixel.hash, sample);
-  return {std::min(lerpBelow(s.x0, s.x1, dimensionUniform(h, 0)), kOneMinusEpsilon),
-          std::min(lerpBelow(s.y0, s.y1, dimensionUniform(h, 1)), kOneMinusEpsilon)};
+  return stratumPoint(strata_[i], {dimensionUniform(h, 0), dimensionUniform(h, 1)});
 }
 
 }  // namespace glint

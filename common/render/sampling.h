@@ -19,6 +19,17 @@ struct Stratum {
   float x0, x1, y0, y1;
 };
 Stratum jitteredStratum(int samples, int sample);
+// The point at fraction u (in [0, 1)^2) of a stratum, inside it.
+glm::vec2 stratumPoint(const Stratum& s, const glm::vec2& u);
+
+// The random choices of one camera sample past its place in the pixel (the
+// points it takes on an area light): uniform(d) is hashUniform's value of
+// the sample for dimension d, so they too depend on the pixel and the sample
+// alone. Dimensions 0 and 1 are the sample's place in the pixel.
+struct SampleKey {
+  std::uint64_t hash = 0;
+  float uniform(int dimension) const;
+};
 
 // Where a frame's samples lie: position(px, py, sample) is sample `sample`
 // (0 to samples - 1) of pixel (px, py) inside the pixel's unit square, in
@@ -40,6 +51,8 @@ class SampleLayout {
 
   explicit SampleLayout(const SamplingSettings& sampling);
   Pixel pixel(int px, int py) const;
+  // Sample `sample` of the pixel (-1: the perceptual pattern's centre ray).
+  static SampleKey key(const Pixel& pixel, int sample);
   glm::vec2 position(const Pixel& pixel, int sample) const;
   glm::vec2 position(int px, int py, int sample) const { return position(pixel(px, py), sample); }
 

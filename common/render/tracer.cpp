@@ -7,62 +7,139 @@
 #include "common/render/shading.h"
 
 namespace glint {
+namespace {
 
-Tracer::Tracer(const Scene& scene, const Bvh& bvh, const TracingSettings& tracing, const EffectPlan& plan)
-    : scene_(scene), bvh_(bvh), tracing_(tracing), plan_(plan) {}
+// The first of the sample key's dimensions that area lights draw from (0 and
+// 1 place the sample in its pixel).
+constexpr int kFirstLightDimension = 4;
 
-glm::vec3 Tracer::radiance(const Ray& ray, RayStats& stats) const {
-  ++stats.primary;
-  return trace(ray, 1, 1.0f, false, stats);
+}  // namespace
+
+Tracer::Tracer(const Scene& scene, const Bvh& bvh, const FrameSettings& frame, const EffectPlan& plan)
+    : scene_(scene), bvh_(bvh), tracing_(frame.tracing), plan_(plan) {
+  for (const Light& l : scene.lights) {
+    areas_.push_back(l.type == LightType::kArea
+                         ? std::optional<AreaLightPoints>(std::in_place, l,
+                                                          areaLightSamples(l, frame.sampling.lightSamples))
+                         : std::nullopt);
+  }
 }
 
-glm::vec3 Tracer::lightIntensity(int light, float distance) const {
-  const PointLight& l = scene_.lights[light];
-  if (!plan_.attenuation) return l.color / l.attenuation.x;  // constant: no distance term
-  return attenuate(l.color, l.attenuation, distance);
+glm::vec3 Tracer::radiance(const Ray& ray, const SampleKey& key, RayStats& stats) const {
+  ++stats.primary;
+  Path path{key, stats};
+  return trace(ray, 1, 1.0f, false, path);
+}
+
+glm::vec3 Tracer::lightIntensity(const glm::vec3& color, const glm::vec3& attenuation, float distance) const {
+  if (!plan_.attenuation) return color / attenuation.x;  // constant: no distance term
+  return attenuate(color, attenuation, distance);
 }
 
 glm::vec3 Tracer::emitted(const Material& m, const glm::vec2& uv) const {
   return m.emissionTexture >= 0 ? m.emission * scene_.textures[m.emissionTexture].evaluate(uv) : m.emission;
 }
 
-glm::vec3 Tracer::shade(const SurfaceHit& s, const glm::vec3& outside, const glm::vec3& toViewer,
-                        const Material& m, const MaterialEffects& e, RayStats& stats) const {
+std::optional<Tracer::Direction> Tracer::towards(const ShadingPoint& at, const glm::vec3& position) const {
+  const glm::vec3 toLight = position - at.s.p;
+  const float distance = glm::length(toLight);
+  if (!(distance > 0.0f)) return std::nullopt;
+  const glm::vec3 l = toLight / distance;
+  // A light behind the geometric surface or the shading normal adds nothing.
+  if (glm::dot(l, at.s.ng) <= 0.0f || glm::dot(l, at.s.ns) <= 0.0f) return std::nullopt;
+  return Direction{l, distance};
+}
+
+void Tracer::addPhong(const ShadingPoint& at, const Surface& f, const Direction& d, const glm::vec3& color,
+                      const glm::vec3& attenuation, glm::vec3& result) const {
+  const glm::vec3 lightI = lightIntensity(color, attenuation, d.distance);
+  result += phongDiffuse(lightI, f.color, f.m.diffuse, at.s.ns, d.l);
+  if (f.e.specular) result += phongSpecular(lightI, f.m.specular, f.m.shininess, at.s.ns, d.l, at.toViewer);
+}
+
+void Tracer::addPointLight(const ShadingPoint& at, const Surface& f, int light, Path& path, glm::vec3& result) const {
+  const Light& l = scene_.lights[static_cast<std::size_t>(light)];
+  const std::optional<Direction> d = towards(at, l.position);
+  if (!d) return;
+  if (plan_.shadows) {
+    ++path.stats.shadow;
+    const glm::vec3 fromOrigin = l.position - at.outside;
+    const float shadowDistance = glm::length(fromOrigin);
+    if (bvh_.occluded(Ray(at.outside, fromOrigin / shadowDistance), shadowDistance)) {
+      ++path.stats.shadowBlocked;
+      return;
+    }
+  }
+  addPhong(at, f, *d, l.color, l.attenuation, result);
+}
+
+void Tracer::addAreaLight(const ShadingPoint& at, const Surface& f, int light, Path& path, glm::vec3& result) const {
+  const Light& l = scene_.lights[static_cast<std::size_t>(light)];
+  const AreaLightPoints& a = *areas_[static_cast<std::size_t>(light)];
+  glm::vec3 lit{0.0f};
+  for (const glm::vec3& c : a.centres) {
+    const std::optional<Direction> d = a.lights(c, at.s.p) ? towards(at, c) : std::nullopt;
+    if (d) addPhong(at, f, *d, a.color, l.attenuation, lit);
+  }
+  if (lit == glm::vec3(0.0f)) return;
+  result += plan_.shadows ? lit * areaVisibility(at, light, path) : lit;
+}
+
+float Tracer::areaVisibility(const ShadingPoint& at, int light, Path& path) const {
+  const AreaLightPoints& a = *areas_[static_cast<std::size_t>(light)];
+  const glm::vec3& attenuation = scene_.lights[static_cast<std::size_t>(light)].attenuation;
+  const int count = static_cast<int>(a.strata.size());
+  const int lights = static_cast<int>(scene_.lights.size());
+  const int first = kFirstLightDimension + 2 * count * ((at.depth - 1) * lights + light);
+  float open = 0.0f;
+  float total = 0.0f;
+  for (int k = 0; k < count; ++k) {
+    const glm::vec3 q =
+        a.jittered(k, {path.key.uniform(first + 2 * k), path.key.uniform(first + 2 * k + 1)});
+    const glm::vec3 fromOrigin = q - at.outside;
+    const float distance = glm::length(fromOrigin);
+    if (!(distance > 0.0f) || !a.lights(q, at.s.p)) continue;
+    const glm::vec3 l = fromOrigin / distance;
+    const float cosine = glm::dot(l, at.s.ns);
+    if (glm::dot(l, at.s.ng) <= 0.0f || cosine <= 0.0f) continue;
+    // What the point gives a diffuse surface, the weight of its verdict.
+    const float weight = cosine / (attenuation.x + (attenuation.y + attenuation.z * distance) * distance);
+    total += weight;
+    ++path.stats.shadow;
+    if (bvh_.occluded(Ray(at.outside, l), distance)) {
+      ++path.stats.shadowBlocked;
+    } else {
+      open += weight;
+    }
+  }
+  // No jittered point faces the surface (a light at grazing incidence): the
+  // centres' light stands, as the raster shades it.
+  return total > 0.0f ? open / total : 1.0f;
+}
+
+glm::vec3 Tracer::shade(const ShadingPoint& at, const Material& m, const MaterialEffects& e, Path& path) const {
   // The colour times the texture (glTF's baseColorFactor x baseColorTexture;
   // a textured material's colour is 1 unless given, and 1 x t is t exactly).
   // A mesh's vertex colours multiply both (glTF's COLOR_0).
+  const SurfaceHit& s = at.s;
   const glm::vec3 base =
       e.textured && m.texture >= 0 ? m.color * scene_.textures[m.texture].evaluate(s.uv) : m.color;
-  const glm::vec3 c = plan_.vertexColors ? base * s.color : base;
-  glm::vec3 result = phongAmbient(c, m.ambient);
+  const Surface f{plan_.vertexColors ? base * s.color : base, m, e};
+  glm::vec3 result = phongAmbient(f.color, m.ambient);
   if (e.emits) result += emitted(m, s.uv);
   if (!e.direct) return result;
   for (int i = 0; i < static_cast<int>(scene_.lights.size()); ++i) {
-    if (!plan_.lights[i]) continue;
-    const glm::vec3 toLight = scene_.lights[i].position - s.p;
-    const float distance = glm::length(toLight);
-    if (!(distance > 0.0f)) continue;
-    const glm::vec3 l = toLight / distance;
-    // A light behind the geometric surface or the shading normal adds nothing.
-    if (glm::dot(l, s.ng) <= 0.0f || glm::dot(l, s.ns) <= 0.0f) continue;
-    if (plan_.shadows) {
-      ++stats.shadow;
-      const glm::vec3 fromOrigin = scene_.lights[i].position - outside;
-      const float shadowDistance = glm::length(fromOrigin);
-      if (bvh_.occluded(Ray(outside, fromOrigin / shadowDistance), shadowDistance)) {
-        ++stats.shadowBlocked;
-        continue;
-      }
+    if (!plan_.lights[static_cast<std::size_t>(i)]) continue;
+    if (areas_[static_cast<std::size_t>(i)]) {
+      addAreaLight(at, f, i, path, result);
+    } else {
+      addPointLight(at, f, i, path, result);
     }
-    const glm::vec3 lightI = lightIntensity(i, distance);
-    result += phongDiffuse(lightI, c, m.diffuse, s.ns, l);
-    if (e.specular) result += phongSpecular(lightI, m.specular, m.shininess, s.ns, l, toViewer);
   }
   return result;
 }
 
-glm::vec3 Tracer::trace(const Ray& ray, int depth, float weight, bool inside,
-                        RayStats& stats) const {
+glm::vec3 Tracer::trace(const Ray& ray, int depth, float weight, bool inside, Path& path) const {
   const std::optional<Hit> hit = bvh_.intersect(ray, kInfinity);
   if (!hit) return scene_.background;
   const std::uint32_t material = scene_.geometry.materialOf(hit->prim);
@@ -70,7 +147,7 @@ glm::vec3 Tracer::trace(const Ray& ray, int depth, float weight, bool inside,
   const MaterialEffects& e = plan_.materials[material];
   const SurfaceHit s = scene_.geometry.surface(ray, *hit, e.textured, plan_.vertexColors);
   const glm::vec3 outside = offsetRayOrigin(s.p, s.error, s.ng);
-  glm::vec3 color = shade(s, outside, -ray.d, m, e, stats);
+  glm::vec3 color = shade(ShadingPoint{s, outside, -ray.d, depth}, m, e, path);
   if (depth >= tracing_.maxDepth || !(e.reflects || e.refracts)) return color;
 
   float kr = m.reflectivity;
@@ -90,13 +167,12 @@ glm::vec3 Tracer::trace(const Ray& ray, int depth, float weight, bool inside,
   }
   const float minWeight = tracing_.minWeight;
   if (e.reflects && kr > 0.0f && weight * kr >= minWeight) {
-    ++stats.reflection;
-    color += kr * trace(Ray(outside, mirrorDirection(ray.d, s.ns, s.ng)), depth + 1, weight * kr, inside, stats);
+    ++path.stats.reflection;
+    color += kr * trace(Ray(outside, mirrorDirection(ray.d, s.ns, s.ng)), depth + 1, weight * kr, inside, path);
   }
   if (e.refracts && kt > 0.0f && weight * kt >= minWeight) {
-    ++stats.refraction;
-    color += kt * trace(Ray(offsetRayOrigin(s.p, s.error, -s.ng), refracted), depth + 1, weight * kt, !inside,
-                        stats);
+    ++path.stats.refraction;
+    color += kt * trace(Ray(offsetRayOrigin(s.p, s.error, -s.ng), refracted), depth + 1, weight * kt, !inside, path);
   }
   return color;
 }

@@ -2,7 +2,11 @@
 
 #include <glm/vec3.hpp>
 
+#include <optional>
+#include <vector>
+
 #include "common/geometry/bvh.h"
+#include "common/render/area_light.h"
 #include "common/render/effects.h"
 #include "common/render/ray_stats.h"
 #include "common/scene/scene.h"
@@ -10,8 +14,9 @@
 namespace glint {
 
 // Whitted back ray tracing (the thesis's RT unit): at each hit, shadow rays
-// to the point lights and the Phong model, then a reflected and a refracted
-// ray weighted by the material. Recursion stops at max_depth (primary ray =
+// to the lights and the Phong model, then a reflected and a refracted ray
+// weighted by the material. An area light's shadow rays go to points drawn
+// from the camera sample's key (common/render/area_light.h). Recursion stops at max_depth (primary ray =
 // depth 1) or when a ray's path weight would fall below min_weight. Only the
 // paths the effect plan allows are run.
 //
@@ -20,21 +25,52 @@ namespace glint {
 // closed mesh renders the same whichever way its triangles are wound.
 class Tracer {
  public:
-  Tracer(const Scene& scene, const Bvh& bvh, const TracingSettings& tracing, const EffectPlan& plan);
+  Tracer(const Scene& scene, const Bvh& bvh, const FrameSettings& frame, const EffectPlan& plan);
   // It refers to the scene, BVH and plan it was made with.
   Tracer(const Tracer&) = delete;
   Tracer& operator=(const Tracer&) = delete;
 
-  // Radiance along a primary ray (direction unit length).
-  glm::vec3 radiance(const Ray& ray, RayStats& stats) const;
+  // Radiance along a primary ray (direction unit length) of the camera
+  // sample `key`.
+  glm::vec3 radiance(const Ray& ray, const SampleKey& key, RayStats& stats) const;
 
  private:
-  glm::vec3 trace(const Ray& ray, int depth, float weight, bool inside, RayStats& stats) const;
-  // `outside` is the origin of rays leaving s on the side of its geometric
-  // normal (shadow and reflected rays).
-  glm::vec3 shade(const SurfaceHit& s, const glm::vec3& outside, const glm::vec3& toViewer, const Material& m,
-                  const MaterialEffects& e, RayStats& stats) const;
-  glm::vec3 lightIntensity(int light, float distance) const;
+  // What the rays of one camera sample share along its path.
+  struct Path {
+    SampleKey key;
+    RayStats& stats;
+  };
+  // Where a ray leaves a hit: the surface, the origin of rays on the side of
+  // its geometric normal (shadow and reflected rays), the way to the viewer.
+  struct ShadingPoint {
+    const SurfaceHit& s;
+    glm::vec3 outside;
+    glm::vec3 toViewer;
+    int depth;
+  };
+  // A material's colour and terms at a point.
+  struct Surface {
+    glm::vec3 color;
+    const Material& m;
+    const MaterialEffects& e;
+  };
+  glm::vec3 trace(const Ray& ray, int depth, float weight, bool inside, Path& path) const;
+  glm::vec3 shade(const ShadingPoint& at, const Material& m, const MaterialEffects& e, Path& path) const;
+  // A light at `position` seen from the point: the unit direction and the
+  // distance; none when it is behind the surface.
+  struct Direction {
+    glm::vec3 l;
+    float distance;
+  };
+  std::optional<Direction> towards(const ShadingPoint& at, const glm::vec3& position) const;
+  // Adds the diffuse and specular light a point light of `color` gives.
+  void addPhong(const ShadingPoint& at, const Surface& f, const Direction& d, const glm::vec3& color,
+                const glm::vec3& attenuation, glm::vec3& result) const;
+  void addPointLight(const ShadingPoint& at, const Surface& f, int light, Path& path, glm::vec3& result) const;
+  void addAreaLight(const ShadingPoint& at, const Surface& f, int light, Path& path, glm::vec3& result) const;
+  // The share of an area light's unshadowed light that reaches the point.
+  float areaVisibility(const ShadingPoint& at, int light, Path& path) const;
+  glm::vec3 lightIntensity(const glm::vec3& color, const glm::vec3& attenuation, float distance) const;
   // The surface's own light at uv (Material::emission).
   glm::vec3 emitted(const Material& m, const glm::vec2& uv) const;
 
@@ -42,6 +78,7 @@ class Tracer {
   const Bvh& bvh_;
   TracingSettings tracing_;
   const EffectPlan& plan_;
+  std::vector<std::optional<AreaLightPoints>> areas_;  // per light: an area light's points
 };
 
 }  // namespace glint

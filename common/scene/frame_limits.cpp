@@ -51,6 +51,9 @@ std::optional<FrameProblem> frameProblem(const FrameSettings& f, std::size_t max
   if (!(f.sampling.perceptualThreshold > 0.0f && f.sampling.perceptualThreshold <= 1.0f)) {
     return FrameProblem{FrameField::kPerceptualThreshold, "must be in (0, 1]"};
   }
+  if (f.sampling.lightSamples < 0 || f.sampling.lightSamples > L::kMaxLightSamples) {
+    return FrameProblem{FrameField::kLightSamples, range(0, L::kMaxLightSamples) + " (0: each light's own)"};
+  }
   if (!(std::abs(f.output.exposure) <= L::kMaxExposure)) {
     return FrameProblem{FrameField::kExposure, range(-static_cast<long long>(L::kMaxExposure), static_cast<long long>(L::kMaxExposure)) + " (EV)"};
   }
@@ -77,6 +80,8 @@ void checkFrame(const FrameSettings& frame, std::size_t maxPixels, const FrameFi
       throw InputError(std::string(names.adaptiveThreshold) + ": " + p->what);
     case FrameField::kPerceptualThreshold:
       throw InputError(std::string(names.perceptualThreshold) + ": " + p->what);
+    case FrameField::kLightSamples:
+      throw InputError(std::string(names.lightSamples) + ": " + p->what);
     case FrameField::kExposure:
       throw InputError(std::string(names.exposure) + ": " + p->what);
   }

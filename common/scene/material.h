@@ -29,11 +29,4 @@ struct Material {
   RaytraceRule raytrace = RaytraceRule::kAuto;
 };
 
-// A point light. Intensity at distance d: color / (c + l d + q d^2).
-struct PointLight {
-  glm::vec3 position{0.0f};
-  glm::vec3 color{1.0f};
-  glm::vec3 attenuation{1.0f, 0.0f, 0.0f};  // c, l, q
-};
-
 }  // namespace glint

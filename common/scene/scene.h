@@ -9,6 +9,7 @@
 #include "common/scene/camera.h"
 #include "common/base/enum_words.h"
 #include "common/geometry/geometry.h"
+#include "common/scene/light.h"
 #include "common/scene/material.h"
 #include "common/scene/texture.h"
 
@@ -63,6 +64,8 @@ struct SamplingSettings {
   // A visible difference: FLIP's colour term (0 none, 1 the most) of two
   // displayed colours; the perceptual pattern and mask rule only.
   float perceptualThreshold = 0.3f;
+  // Points an area light takes per shadow query; 0: each light's own samples.
+  int lightSamples = 0;
 };
 
 struct TracingSettings {
@@ -106,7 +109,7 @@ struct Scene {
   glm::vec3 background{0.0f};
   std::vector<Texture> textures;
   std::vector<Material> materials;
-  std::vector<PointLight> lights;
+  std::vector<Light> lights;
   Geometry geometry;
   // What the loader let pass (a file an OBJ names that is missing), each once.
   std::vector<std::string> warnings;

@@ -16,9 +16,8 @@
 namespace glint {
 namespace {
 
-// The scene format's kinds of object and light (docs/scene-format.md).
+// The scene format's kinds of object (docs/scene-format.md).
 enum class ObjectKind { kSphere, kTriangle, kQuad, kMesh };
-enum class LightKind { kPoint };
 
 }  // namespace
 
@@ -28,10 +27,6 @@ struct EnumWords<ObjectKind> {
                                                                                   {ObjectKind::kTriangle, "triangle"},
                                                                                   {ObjectKind::kQuad, "quad"},
                                                                                   {ObjectKind::kMesh, "mesh"}}};
-};
-template <>
-struct EnumWords<LightKind> {
-  static constexpr std::array<std::pair<LightKind, std::string_view>, 1> kWords{{{LightKind::kPoint, "point"}}};
 };
 
 namespace {
@@ -111,7 +106,8 @@ class SceneLoader {
   }
 
   void readSampling(const JsonReader& r) {
-    r.allowKeys({"pattern", "samples", "filter", "seed", "adaptive_threshold", "perceptual_threshold"});
+    r.allowKeys({"pattern", "samples", "filter", "seed", "adaptive_threshold", "perceptual_threshold",
+                 "light_samples"});
     SamplingSettings& s = scene_.frame.sampling;
     if (auto p = r.find("pattern")) {
       s.pattern = choice<SamplePattern>(*p);
@@ -123,6 +119,7 @@ class SceneLoader {
     if (auto seed = r.find("seed")) s.seed = static_cast<std::uint32_t>(seed->integer(0, FrameLimits::kMaxSeed));
     if (auto t = r.find("adaptive_threshold")) s.adaptiveThreshold = t->number(0.0f, 1.0f, true);
     if (auto t = r.find("perceptual_threshold")) s.perceptualThreshold = t->number(0.0f, 1.0f, true);
+    if (auto n = r.find("light_samples")) s.lightSamples = n->integer(0, FrameLimits::kMaxLightSamples);
   }
 
   // The frame's settings together (the size against the pixel limit, the
@@ -138,6 +135,7 @@ class SceneLoader {
                        .minWeight = "tracing.min_weight",
                        .adaptiveThreshold = "sampling.adaptive_threshold",
                        .perceptualThreshold = "sampling.perceptual_threshold",
+                       .lightSamples = "sampling.light_samples",
                        .exposure = "image.exposure"});
   }
 
@@ -261,9 +259,14 @@ class SceneLoader {
   void readLights(const JsonReader& r) {
     for (std::size_t i = 0; i < r.arraySize(); ++i) {
       const JsonReader l = r.at(i);
-      l.allowKeys({"type", "position", "color", "attenuation"});
-      choice<LightKind>(l["type"]);  // the only kind
-      PointLight light;
+      Light light;
+      light.type = choice<LightType>(l["type"]);
+      if (light.type == LightType::kArea) {
+        l.allowKeys({"type", "position", "u", "v", "color", "attenuation", "samples"});
+        readArea(l, light);
+      } else {
+        l.allowKeys({"type", "position", "color", "attenuation"});
+      }
       light.position = l["position"].vec3();
       light.color = l.vec3("color", glm::vec3(1.0f));
       if (auto a = l.find("attenuation")) {
@@ -275,6 +278,17 @@ class SceneLoader {
       }
       scene_.lights.push_back(light);
     }
+  }
+
+  // An area light's edges (a parallelogram of some area) and sample count.
+  static void readArea(const JsonReader& l, Light& light) {
+    light.u = l["u"].vec3();
+    light.v = l["v"].vec3();
+    const glm::vec3 n = glm::cross(light.u, light.v);
+    if (!(glm::dot(n, n) > 0.0f) || !std::isfinite(glm::dot(n, n))) {
+      l["v"].fail("must not be parallel to u (the light needs an area)");
+    }
+    if (auto n = l.find("samples")) light.samples = n->integer(1, FrameLimits::kMaxLightSamples);
   }
 
   std::uint32_t material(const JsonReader& o) {

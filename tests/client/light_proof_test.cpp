@@ -113,7 +113,7 @@ MeshInput floorGrid(int n, float size) {
 Scene withLights(Geometry g, std::vector<glm::vec3> lights) {
   Scene scene;
   scene.geometry = std::move(g);
-  for (const glm::vec3& p : lights) scene.lights.push_back({p});
+  for (const glm::vec3& p : lights) scene.lights.push_back(Light{.position = p});
   return scene;
 }
 

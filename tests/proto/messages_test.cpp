@@ -134,6 +134,14 @@ TEST(Messages, FrameSetupRoundTrips) {
       EXPECT_EQ(back.sampling.perceptualThreshold, 0.0625f);
     }
   }
+  {  // the area lights' sample count travels, and is checked
+    FrameSettings f = someFrame();
+    f.sampling.lightSamples = 64;
+    EXPECT_EQ(decodeFrameSettings(*decode(encodeFrameSetup(1, h, f)).body_as_FrameSetup(), 1 << 28).sampling.lightSamples,
+              64);
+    f.sampling.lightSamples = 5000;
+    EXPECT_THROW(decodeFrameSettings(*decode(encodeFrameSetup(1, h, f)).body_as_FrameSetup(), 1 << 28), InputError);
+  }
   {  // the output encoding travels
     FrameSettings f = someFrame();
     f.output = {Encoding::kSrgb, -1.5f};

@@ -76,6 +76,24 @@ TEST(Effects, BlackLightsAndUnlitMaterialsCastNoShadowRays) {
   EXPECT_GT(f2.stats.shadow, 0u);
 }
 
+TEST(Effects, SoftShadowsOnlyWhereAnAreaLightCanBeBlocked) {
+  json j = sphereScene();
+  j["lights"][0] = {{"type", "area"}, {"position", {2, 3, 4}}, {"u", {1, 0, 0}}, {"v", {0, 1, 0}}, {"samples", 4}};
+  j["lights"][0]["v"] = {0, 0, 1};  // u x v points down, at the sphere
+  j["lights"][0]["position"] = {0, 4, 0};
+  const Scene alone = test::sceneFromJson(j.dump());
+  EXPECT_FALSE(EffectPlan::derive(alone).softShadows);  // one sphere cannot shadow itself
+  EXPECT_EQ(derivedAndFull(alone).first.stats.shadow, 0u);
+  j["objects"].push_back({{"type", "sphere"}, {"center", {0, -2, 0}}, {"radius", 0.5}, {"material", "m"}});
+  const Scene two = test::sceneFromJson(j.dump());
+  EXPECT_TRUE(EffectPlan::derive(two).softShadows);
+  EXPECT_GT(derivedAndFull(two).first.stats.shadow, 0u);
+  // Every scene of the project without an area light has no soft shadows.
+  for (const char* name : {"scenes/room.json", "scenes/glass.json", "scenes/bunny.json"}) {
+    EXPECT_FALSE(EffectPlan::derive(loadSceneFile(test::sourcePath(name))).softShadows) << name;
+  }
+}
+
 // The raster pass draws shadow maps only where a shadow can fall on a
 // surface OpenGL draws: something casts one, a lit material is left to
 // OpenGL by the mask, and the maps are not turned off.

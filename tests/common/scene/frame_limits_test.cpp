@@ -61,6 +61,7 @@ TEST(FrameLimits, CheckFrameUsesTheCallersNames) {
                               .minWeight = "--min-weight",
                               .adaptiveThreshold = "--adaptive-threshold",
                               .perceptualThreshold = "--perceptual-threshold",
+                              .lightSamples = "--light-samples",
                               .exposure = "--exposure"};
   FrameSettings f = goodFrame();
   f.tracing.maxDepth = 65;
@@ -93,6 +94,14 @@ TEST(FrameLimits, CheckFrameUsesTheCallersNames) {
     FAIL();
   } catch (const InputError& e) {
     EXPECT_STREQ(e.what(), "--perceptual-threshold: must be in (0, 1]");
+  }
+  f = goodFrame();
+  f.sampling.lightSamples = FrameLimits::kMaxLightSamples + 1;
+  try {
+    checkFrame(f, FrameLimits::kMaxPixels, names);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "--light-samples: must be in [0, 4096] (0: each light's own)");
   }
 }
 

@@ -1,0 +1,167 @@
+// Area lights in the tracer: the soft shadow of a sphere on a floor against
+// the share of the light each floor point sees, computed here in double
+// precision; the frame's light_samples; the same bytes however it is split.
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "common/base/thread_pool.h"
+#include "common/render/linear_frame.h"
+#include "common/render/prepared_scene.h"
+#include "tests/support/test_support.h"
+
+namespace glint {
+namespace {
+
+using nlohmann::json;
+
+const glm::dvec3 kSphere(0.0, 1.0, 0.0);
+constexpr double kRadius = 0.5;
+const glm::dvec3 kLight(1.5, 3.0, 0.0);
+const glm::dvec3 kU(1.5, 0.0, 0.0);
+const glm::dvec3 kV(0.0, 0.0, 1.5);  // u x v points down, at the floor
+
+json floorScene(bool sphere, int lightSamples) {
+  json objects = json::array({{{"type", "quad"},
+                               {"corners", {{-8, 0, -8}, {8, 0, -8}, {8, 0, 8}, {-8, 0, 8}}},
+                               {"material", "white"}}});
+  if (sphere) {
+    objects.push_back({{"type", "sphere"}, {"center", {kSphere.x, kSphere.y, kSphere.z}}, {"radius", kRadius},
+                       {"material", "white"}});
+  }
+  return {{"glint", 1},
+          {"image", {{"width", 96}, {"height", 72}}},
+          {"camera", {{"eye", {0, 6, 4}}, {"look_at", {-0.6, 0, 0}}, {"fov_y", 50}}},
+          {"materials", {{"white", {{"color", {1, 1, 1}}, {"diffuse", 1}}}}},
+          {"lights",
+           {{{"type", "area"},
+             {"position", {kLight.x, kLight.y, kLight.z}},
+             {"u", {kU.x, kU.y, kU.z}},
+             {"v", {kV.x, kV.y, kV.z}},
+             {"samples", lightSamples}}}},
+          {"objects", objects}};
+}
+
+bool segmentHitsSphere(const glm::dvec3& p, const glm::dvec3& q) {
+  const glm::dvec3 d = q - p;
+  const glm::dvec3 m = p - kSphere;
+  const double a = glm::dot(d, d), b = glm::dot(m, d), c = glm::dot(m, m) - kRadius * kRadius;
+  const double disc = b * b - a * c;
+  if (disc < 0.0) return false;
+  const double t = (-b - std::sqrt(disc)) / a;
+  return t > 0.0 && t < 1.0;
+}
+
+// The share of the light a floor point sees, each point of the light weighted
+// by the light it gives the floor (the cosine at p; no attenuation): a
+// 200 x 200 midpoint grid over the parallelogram.
+double visibleShare(const glm::dvec3& p) {
+  constexpr int kGrid = 200;
+  const glm::dvec3 corner = kLight - 0.5 * kU - 0.5 * kV;
+  double open = 0.0, total = 0.0;
+  for (int i = 0; i < kGrid; ++i) {
+    for (int j = 0; j < kGrid; ++j) {
+      const glm::dvec3 q = corner + (i + 0.5) / kGrid * kU + (j + 0.5) / kGrid * kV;
+      const double w = (q.y - p.y) / glm::length(q - p);
+      total += w;
+      if (!segmentHitsSphere(p, q)) open += w;
+    }
+  }
+  return open / total;
+}
+
+LinearImage renderScene(const Scene& scene, RayStats& stats, int threads = 2, int tileSize = 16) {
+  const PreparedScene prepared(scene, BvhSettings{});
+  const Renderer renderer(prepared, scene.frame);
+  ThreadPool pool(threads);
+  FrameOptions options;
+  options.tileSize = tileSize;
+  return renderLinear(renderer, pool, stats, LinearRange::kUnbounded, options);
+}
+
+TEST(AreaLight, SoftShadowFollowsTheShareOfTheLightSeen) {
+  const Scene shadowed = test::sceneFromJson(floorScene(true, 400).dump());
+  const Scene open = test::sceneFromJson(floorScene(false, 400).dump());
+  RayStats stats;
+  const LinearImage withSphere = renderScene(shadowed, stats);
+  const LinearImage without = renderScene(open, stats);
+  const Camera camera(shadowed.frame.camera, shadowed.frame.width, shadowed.frame.height);
+  int penumbra = 0, umbra = 0, lit = 0, litExact = 0;
+  double errorSum = 0.0, worst = 0.0;
+  for (int y = 0; y < withSphere.height; ++y) {
+    for (int x = 0; x < withSphere.width; ++x) {
+      const Ray ray = camera.generateRay({x + 0.5f, y + 0.5f});
+      const glm::dvec3 o(ray.o), d(ray.d);
+      // The sphere and its silhouette's pixels aside.
+      if (glm::length(glm::cross(kSphere - o, d)) < 1.05 * kRadius || !(d.y < 0.0)) continue;
+      const glm::dvec3 p = o + (-o.y / d.y) * d;
+      const std::size_t i = (static_cast<std::size_t>(y) * withSphere.width + x) * 3 + 1;
+      if (!(without.rgb[i] > 0.0f)) continue;
+      const double ratio = withSphere.rgb[i] / without.rgb[i];
+      const double expected = visibleShare(p);
+      if (expected == 1.0) {
+        ++lit;
+        litExact += ratio == 1.0 ? 1 : 0;
+        continue;
+      }
+      if (expected == 0.0) {
+        ++umbra;
+        EXPECT_EQ(ratio, 0.0) << "umbra pixel " << x << ", " << y;
+        continue;
+      }
+      ++penumbra;
+      errorSum += std::abs(ratio - expected);
+      worst = std::max(worst, std::abs(ratio - expected));
+      EXPECT_NEAR(ratio, expected, 0.04) << "pixel " << x << ", " << y;
+    }
+  }
+  EXPECT_GT(penumbra, 300);
+  EXPECT_GT(umbra, 20);
+  EXPECT_GT(lit, 2000);
+  // Where every point of the light is seen, the image is the unshadowed one
+  // to the bit (the ratio estimator); a jittered point may still graze the
+  // sphere at the penumbra's outer edge.
+  EXPECT_GE(litExact, lit * 98 / 100);
+  EXPECT_LT(errorSum / penumbra, 0.006) << "worst " << worst;
+  std::printf("penumbra %d umbra %d lit %d (exact %d) mean error %.5f worst %.4f\n", penumbra, umbra, lit, litExact,
+              errorSum / penumbra, worst);
+}
+
+TEST(AreaLight, FrameLightSamplesSetThePointsPerShadowQuery) {
+  Scene scene = test::sceneFromJson(floorScene(true, 16).dump());
+  RayStats own, four;
+  renderScene(scene, own);
+  scene.frame.sampling.lightSamples = 4;
+  renderScene(scene, four);
+  EXPECT_GT(four.shadow, 0u);
+  EXPECT_EQ(own.primary, four.primary);
+  EXPECT_NEAR(static_cast<double>(own.shadow) / static_cast<double>(four.shadow), 4.0, 0.05);
+}
+
+TEST(AreaLight, SameBytesForAnyThreadsTilesAndPattern) {
+  Scene scene = test::sceneFromJson(floorScene(true, 9).dump());
+  for (SamplePattern pattern : {SamplePattern::kRegular, SamplePattern::kJittered, SamplePattern::kAdaptive,
+                                SamplePattern::kPerceptual}) {
+    scene.frame.sampling.pattern = pattern;
+    scene.frame.sampling.samples = 4;
+    const FrameImage one = test::render(scene, 1, 64).image;
+    const FrameImage split = test::render(scene, 2, 7).image;
+    EXPECT_EQ(one.rgb, split.rgb) << enumWord(pattern);
+  }
+}
+
+TEST(AreaLight, PointLightsTakeNoSampleOfTheLight) {
+  // The same scene with a point light at the area light's centre: each lit
+  // floor point casts one shadow ray, as it always did.
+  json j = floorScene(true, 16);
+  j["lights"][0] = {{"type", "point"}, {"position", {kLight.x, kLight.y, kLight.z}}};
+  const Scene scene = test::sceneFromJson(j.dump());
+  RayStats stats;
+  renderScene(scene, stats);
+  EXPECT_LE(stats.shadow, stats.primary);
+}
+
+}  // namespace
+}  // namespace glint
