@@ -6,6 +6,7 @@
 #include <cstring>
 #include <span>
 #include <string>
+#include <thread>
 
 #include "client/colour_edges.h"
 #include "client/pixel_mark.h"
@@ -64,7 +65,11 @@ void countEdges(const TileRect& window, int w, HybridResult& result) {
     for (int x = window.x; x < window.x + window.width; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
       result.shadowEdgePixels += result.mask[i] == kShadowEdgePixel ? 1 : 0;
-      result.rasterEdgePixels += !result.surface.empty() && result.mask[i] != markOf(result.surface[i]) ? 1 : 0;
+      // The raster's edges change a mark to 3 or 1; the penumbra's to 2.
+      result.rasterEdgePixels += !result.surface.empty() && result.mask[i] != markOf(result.surface[i]) &&
+                                         result.mask[i] != kShadowEdgePixel
+                                     ? 1
+                                     : 0;
     }
   }
 }
@@ -154,6 +159,29 @@ void cropRows(std::vector<std::uint8_t>& rgb, int frameWidth, const TileRect& wi
   rgb.resize(row * static_cast<std::size_t>(window.height));
 }
 
+// Marks for tracing (with direct light, as an undecided shadow) each pixel
+// OpenGL shades whose point is not proved to see every area light whole:
+// the penumbra and umbra (client/penumbra_proof.h). Rows are cut among the
+// hardware threads; each pixel's proof stands alone.
+void markPenumbra(const gl::RasterScene& raster, const FrameSettings& frame, HybridResult& result) {
+  const int threads = static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 16u));
+  const auto rows = [&](int first, int end) {
+    for (int y = first; y < end; ++y) {
+      for (int x = 0; x < frame.width; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(frame.width) +
+                              static_cast<std::size_t>(x);
+        if (result.mask[i] != kRasterPixel || !raster.objectLit(result.surface[i] >> kPixelMarkBits)) continue;
+        const glm::vec3 p = raster.pointAt(frame, x, y, result.depth[i]);
+        if (!raster.penumbra().seesWhole(p, frame.camera.eye)) result.mask[i] = kShadowEdgePixel;
+      }
+    }
+  };
+  std::vector<std::thread> workers;
+  for (int t = 1; t < threads; ++t) workers.emplace_back(rows, frame.height * t / threads, frame.height * (t + 1) / threads);
+  rows(0, frame.height / threads);
+  for (std::thread& w : workers) w.join();
+}
+
 // Reads the raster back: each pixel's mark into result.mask, and the
 // window's colour into result.colour. The edges of what OpenGL draws are
 // traced under the rules auto and perceptual when the frame takes several
@@ -165,12 +193,14 @@ void readRaster(const gl::RasterScene& raster, const FrameSettings& frame, const
   raster.target().readSurface(result.surface);
   result.mask.resize(result.surface.size());
   const bool edges = mask.rule == MaskRule::kAuto || mask.rule == MaskRule::kPerceptual;
+  const bool penumbra = edges && raster.penumbra().active();
+  if ((edges && frame.sampling.samples > 1) || penumbra) raster.target().readDepth(result.depth);
   if (edges && frame.sampling.samples > 1) {
-    raster.target().readDepth(result.depth);
     markRasterEdges(result.surface, result.depth, frame.width, frame.height, result.mask);
   } else {
     std::transform(result.surface.begin(), result.surface.end(), result.mask.begin(), markOf);
   }
+  if (penumbra) markPenumbra(raster, frame, result);
   if (mask.rule != MaskRule::kPerceptual || frame.sampling.samples == 1) {
     raster.target().readColour(window, result.colour);
     return;

@@ -16,27 +16,6 @@
 namespace glint::gl {
 namespace {
 
-// The plane through `point` with normal n, oriented so that `inside` is on
-// its inner side.
-glm::vec4 planeThrough(const glm::vec3& point, glm::vec3 n, const glm::vec3& inside) {
-  n = glm::normalize(n);
-  if (glm::dot(n, inside - point) > 0.0f) n = -n;
-  return {n, glm::dot(n, point)};
-}
-
-// Rounding of coordinates of this magnitude, with a wide margin.
-float slackFor(const std::vector<glm::vec3>& corners) {
-  float largest = 0.0f;
-  for (const glm::vec3& c : corners)
-    largest = std::max({largest, std::abs(c.x), std::abs(c.y), std::abs(c.z)});
-  return largest * 1e-5f;
-}
-
-void finish(ConvexRegion& region) {
-  for (const glm::vec3& c : region.corners) region.box.expand(c);
-  region.slack = slackFor(region.corners);
-}
-
 // The tetrahedron between `light` and the triangle; empty when the light
 // lies (nearly) in the triangle's plane. The triangle's corners are shared:
 // its neighbours touch the tetrahedron there without entering it; its plane
@@ -57,7 +36,7 @@ std::optional<ConvexRegion> tetrahedron(const glm::vec3& light, const std::array
   }
   region.corners = {light, v[0], v[1], v[2]};
   region.shared = {v[0], v[1], v[2]};
-  finish(region);
+  finishRegion(region);
   return region;
 }
 
@@ -86,7 +65,7 @@ std::optional<ConvexRegion> pyramid(const glm::vec3& light, const Sphere& sphere
   for (float a : {-1.0f, 1.0f}) {
     for (float b : {-1.0f, 1.0f}) region.corners.push_back(sphere.centre + half * (a * u + b * w));
   }
-  finish(region);
+  finishRegion(region);
   return region;
 }
 

@@ -11,6 +11,8 @@
 
 #include "client/pixel_mark.h"
 #include "client/shadow_rects.h"
+#include "common/render/area_light.h"
+#include "common/scene/camera.h"
 #include "common/image/encoding.h"
 #include "common/base/error.h"
 #include "common/render/mask_rule.h"
@@ -91,16 +93,28 @@ void intAttribute(const Api& gl, unsigned index, std::size_t stride, std::size_t
 }  // namespace
 
 RasterScene::RasterScene(const Api& api, const Scene& scene)
-    : gl_(api), scene_(scene), plan_(EffectPlan::derive(scene)), target_(api), shadowMaps_(api) {
-  if (scene.lights.size() > kMaxLights) {
-    throw InputError("the OpenGL path draws at most " + std::to_string(kMaxLights) + " lights; the scene has " +
-                     std::to_string(scene.lights.size()) + " (--mask all traces them all)");
+    : gl_(api),
+      scene_(scene),
+      plan_(EffectPlan::derive(scene)),
+      target_(api),
+      shadowMaps_(api),
+      penumbra_(scene, plan_) {
+  std::vector<bool> casts(scene.lights.size(), false);
+  for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+    if (scene.lights[i].type != LightType::kPoint) continue;
+    pointLights_.push_back(scene.lights[i]);
+    pointCasts_.push_back(plan_.lights[i]);
+    casts[i] = plan_.lights[i];
+  }
+  if (pointLights_.size() > kMaxLights) {
+    throw InputError("the OpenGL path draws at most " + std::to_string(kMaxLights) + " point lights; the scene has " +
+                     std::to_string(pointLights_.size()) + " (--mask all traces them all)");
   }
   for (std::uint32_t i = 0; i < scene.geometry.primitiveCount(); ++i) bounds_.expand(scene.geometry.primitiveBounds(i));
   uploadTextures();
   uploadMeshes();
   uploadSpheres();
-  if (plan_.shadows) assignSpots(LightProof::prove(scene, plan_.lights));
+  if (plan_.shadows) assignSpots(LightProof::prove(scene, casts));
 }
 
 RasterScene::~RasterScene() {
@@ -260,7 +274,7 @@ RasterScene::Projection RasterScene::projection(const FrameSettings& frame) cons
   perspective[0][0] = focal * static_cast<float>(frame.height) / static_cast<float>(frame.width);
   perspective[1][1] = focal;
   perspective[2][3] = -1.0f;
-  perspective[3][2] = far * 1e-6f;
+  perspective[3][2] = far * kNearShare;
   return {perspective * view, frame.camera.eye, far};
 }
 
@@ -312,22 +326,75 @@ void RasterScene::setFrameUniforms(unsigned program, const FrameSettings& frame,
   const auto at = [&](const char* name) { return gl_.GetUniformLocation(program, name); };
   gl_.Uniform1f(at("uExposureScale"), Encoder(frame.output).scale());
   gl_.Uniform1i(at("uMarkUndecided"), mask.rule == MaskRule::kAuto || mask.rule == MaskRule::kPerceptual ? 1 : 0);
+  setLightUniforms(program, frame);
+  gl_.Uniform1i(at("uImage"), kImageUnit);
+  gl_.Uniform1i(at("uEmissionImage"), kEmissionUnit);
+  shadowMaps_.setUniforms(program, kShadowMapUnit, pointLights_.size(), shadows_);
+}
+
+void RasterScene::setLightUniforms(unsigned program, const FrameSettings& frame) {
+  const auto at = [&](const char* name) { return gl_.GetUniformLocation(program, name); };
   std::vector<glm::vec3> positions, colors, attenuations;
-  for (const Light& l : scene_.lights) {
+  for (const Light& l : pointLights_) {
     positions.push_back(l.position);
     colors.push_back(l.color);
     attenuations.push_back(l.attenuation);
   }
-  gl_.Uniform1i(at("uLightCount"), static_cast<int>(scene_.lights.size()));
+  gl_.Uniform1i(at("uLightCount"), static_cast<int>(positions.size()));
   if (!positions.empty()) {
     const auto n = static_cast<GLsizei>(positions.size());
     gl_.Uniform3fv(at("uLightPosition"), n, glm::value_ptr(positions[0]));
     gl_.Uniform3fv(at("uLightColor"), n, glm::value_ptr(colors[0]));
     gl_.Uniform3fv(at("uLightAttenuation"), n, glm::value_ptr(attenuations[0]));
   }
-  gl_.Uniform1i(at("uImage"), kImageUnit);
-  gl_.Uniform1i(at("uEmissionImage"), kEmissionUnit);
-  shadowMaps_.setUniforms(program, kShadowMapUnit, scene_.lights.size(), shadows_);
+  // Each area light as the points its unshadowed light is the sum of.
+  std::vector<glm::vec3> normals;
+  positions.clear();
+  colors.clear();
+  attenuations.clear();
+  for (std::size_t i = 0; i < scene_.lights.size(); ++i) {
+    const Light& l = scene_.lights[i];
+    if (l.type != LightType::kArea || !plan_.lights[i]) continue;
+    const AreaLightPoints points(l, areaLightSamples(l, frame.sampling.lightSamples));
+    for (const glm::vec3& c : points.centres) {
+      positions.push_back(c);
+      colors.push_back(points.color);
+      attenuations.push_back(l.attenuation);
+      normals.push_back(points.normal);
+    }
+  }
+  if (positions.size() > kMaxAreaPoints) {
+    throw InputError("the OpenGL path draws at most " + std::to_string(kMaxAreaPoints) +
+                     " points of area lights; the scene's take " + std::to_string(positions.size()) +
+                     " (fewer light samples, or --mask all traces them all)");
+  }
+  gl_.Uniform1i(at("uAreaCount"), static_cast<int>(positions.size()));
+  if (!positions.empty()) {
+    const auto n = static_cast<GLsizei>(positions.size());
+    gl_.Uniform3fv(at("uAreaPosition"), n, glm::value_ptr(positions[0]));
+    gl_.Uniform3fv(at("uAreaColor"), n, glm::value_ptr(colors[0]));
+    gl_.Uniform3fv(at("uAreaAttenuation"), n, glm::value_ptr(attenuations[0]));
+    gl_.Uniform3fv(at("uAreaNormal"), n, glm::value_ptr(normals[0]));
+  }
+}
+
+bool RasterScene::objectLit(std::uint32_t object) const {
+  // Objects are numbered from 1 (0: the background): the models, then the
+  // spheres (uploadMeshes, uploadSpheres).
+  const Geometry& g = scene_.geometry;
+  const std::size_t models = g.models().size();
+  if (object == 0 || object > models + g.spheres().size()) return false;
+  const Material& m = scene_.materials[object <= models ? g.models()[object - 1].material
+                                                        : g.spheres()[object - models - 1].material];
+  return m.diffuse > 0.0f || m.specular > 0.0f;
+}
+
+glm::vec3 RasterScene::pointAt(const FrameSettings& frame, int x, int y, float depth) const {
+  const Camera camera(frame.camera, frame.width, frame.height);
+  const Ray ray = camera.generateRay({static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f});
+  const glm::vec3 forward = glm::normalize(frame.camera.lookAt - frame.camera.eye);
+  const float distance = projection(frame).far * kNearShare / depth;  // along the view axis
+  return ray.o + (distance / glm::dot(ray.d, forward)) * ray.d;
 }
 
 void RasterScene::setUvTransform(int location, const std::optional<UvTransform>& transform) {
@@ -362,7 +429,7 @@ void RasterScene::setMaterialUniforms(unsigned program, const Material& m) {
 bool RasterScene::prepareShadows(const MaskSettings& mask) {
   if (!rasterShadows(scene_, plan_, mask)) return false;
   if (shadowMaps_.size() != mask.shadowMap) {
-    shadowMaps_.build(scene_.lights, plan_.lights, bounds_, mask.shadowMap,
+    shadowMaps_.build(pointLights_, pointCasts_, bounds_, mask.shadowMap,
                       [this](const glm::mat4& vp, const glm::vec3& eye, float far) { drawDepth({vp, eye, far}); });
   }
   return true;

@@ -11,6 +11,7 @@
 
 #include "client/gl_api.h"
 #include "client/light_proof.h"
+#include "client/penumbra_proof.h"
 #include "client/raster_shaders.h"
 #include "client/raster_target.h"
 #include "client/shadow_rects.h"
@@ -42,6 +43,15 @@ class RasterScene {
   double draw(const FrameSettings& frame, const MaskSettings& mask);
   const RasterTarget& target() const { return target_; }
 
+  // Where the area lights are seen whole (their unshadowed light, which the
+  // raster draws, is the tracer's).
+  const PenumbraProof& penumbra() const { return penumbra_; }
+  // Whether the object a surface value names (object << kPixelMarkBits) is
+  // lit by the lights: its material has a diffuse or specular term.
+  bool objectLit(std::uint32_t object) const;
+  // The point a pixel's centre shows at the depth the target holds for it.
+  glm::vec3 pointAt(const FrameSettings& frame, int x, int y, float depth) const;
+
  private:
   struct Batch {
     unsigned vao = 0;
@@ -68,6 +78,7 @@ class RasterScene {
   // near plane, 0 at infinity, in a float: the same relative precision at
   // every distance); the near plane clips nothing (depth clamping). The
   // shadow maps use the far plane for their own, linear depth.
+  static constexpr float kNearShare = 1e-6f;  // the near plane's distance, of the far plane's
   struct Projection {
     glm::mat4 viewProjection;
     glm::vec3 eye;
@@ -81,6 +92,8 @@ class RasterScene {
   void setFrameUniforms(unsigned program, const FrameSettings& frame, const Projection& projection,
                         const MaskSettings& mask);
   void setMaterialUniforms(unsigned program, const Material& material);
+  // The point lights', and the area lights' points (frame's light samples).
+  void setLightUniforms(unsigned program, const FrameSettings& frame);
   // A texture's uv transform (identity for none) into a mat3x2 uniform.
   void setUvTransform(int location, const std::optional<UvTransform>& transform);
   void setViewUniforms(unsigned program, const Projection& projection);
@@ -126,6 +139,9 @@ class RasterScene {
   Bounds3 bounds_;  // every primitive's, for the far plane
   RasterTarget target_;
   ShadowMaps shadowMaps_;
+  std::vector<Light> pointLights_;  // the scene's point lights, in order: the shader's lights and maps
+  std::vector<bool> pointCasts_;    // per point light: it casts shadows (the plan's lights)
+  PenumbraProof penumbra_;
 };
 
 }  // namespace glint::gl

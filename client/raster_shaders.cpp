@@ -32,7 +32,8 @@ std::string ShaderVariant::defines() const {
 }
 
 std::string fragmentPrelude(const ShaderVariant& variant) {
-  return "#version 330\n#define MAX_LIGHTS " + std::to_string(kMaxLights) + "\n#define SHADOW_RADIUS " +
+  return "#version 330\n#define MAX_LIGHTS " + std::to_string(kMaxLights) + "\n#define MAX_AREA_POINTS " +
+         std::to_string(kMaxAreaPoints) + "\n#define SHADOW_RADIUS " +
          std::to_string(kShadowRadius) + "\n" + variant.defines();
 }
 
@@ -48,6 +49,11 @@ uniform int uLightCount;
 uniform vec3 uLightPosition[MAX_LIGHTS];
 uniform vec3 uLightColor[MAX_LIGHTS];
 uniform vec3 uLightAttenuation[MAX_LIGHTS];
+uniform int uAreaCount;                      // area lights' points (AreaLightPoints' centres)
+uniform vec3 uAreaPosition[MAX_AREA_POINTS];
+uniform vec3 uAreaColor[MAX_AREA_POINTS];
+uniform vec3 uAreaAttenuation[MAX_AREA_POINTS];
+uniform vec3 uAreaNormal[MAX_AREA_POINTS];  // towards the light's lit side
 uniform vec3 uColor;                         // the material's colour (times its texture)
 uniform vec4 uTerms;                         // ambient, diffuse, specular, shininess
 uniform vec3 uCheckerColor0;
@@ -227,6 +233,18 @@ float shadowVisibility(int light, vec3 p, vec3 ng) {
 }
 #endif
 
+// Adds the diffuse and specular light of a point light of intensity lightI
+// in direction l (unit, facing the surface), term by term as the tracer.
+void addPhong(inout vec3 result, vec3 lightI, vec3 c, vec3 ns, vec3 l, vec3 toViewer) {
+  float nl = dot(ns, l);
+  result += lightI * c * (uTerms.y * nl);
+#ifdef SPECULAR
+  vec3 r = 2.0 * nl * ns - l;
+  float vr = dot(toViewer, r);
+  if (vr > 0.0) result += lightI * (uTerms.z * pow(vr, uTerms.w));
+#endif
+}
+
 vec3 shade(vec3 p, vec3 ng, vec3 ns, vec2 uv) {
   vec3 c = surfaceColour(uv);
   vec3 result = c * uTerms.x;
@@ -252,14 +270,19 @@ vec3 shade(vec3 p, vec3 ng, vec3 ns, vec2 uv) {
     float visible = 1.0;
 #endif
     vec3 a = uLightAttenuation[i];
-    vec3 lightI = visible * uLightColor[i] / (a.x + a.y * d + a.z * d * d);
-    float nl = dot(ns, l);
-    result += lightI * c * (uTerms.y * nl);
-#ifdef SPECULAR
-    vec3 r = 2.0 * nl * ns - l;
-    float vr = dot(toViewer, r);
-    if (vr > 0.0) result += lightI * (uTerms.z * pow(vr, uTerms.w));
-#endif
+    addPhong(result, visible * uLightColor[i] / (a.x + a.y * d + a.z * d * d), c, ns, l, toViewer);
+  }
+  // Area lights unshadowed: where they may be blocked the pixel is traced
+  // (client/penumbra_proof.h).
+  for (int i = 0; i < uAreaCount; ++i) {
+    if (dot(p - uAreaPosition[i], uAreaNormal[i]) <= 0.0) continue;
+    vec3 toLight = uAreaPosition[i] - p;
+    float d = length(toLight);
+    if (!(d > 0.0)) continue;
+    vec3 l = toLight / d;
+    if (dot(l, ng) <= 0.0 || dot(l, ns) <= 0.0) continue;
+    vec3 a = uAreaAttenuation[i];
+    addPhong(result, uAreaColor[i] / (a.x + a.y * d + a.z * d * d), c, ns, l, toViewer);
   }
 #endif
   return result;

@@ -84,6 +84,21 @@ bool primitiveSeparated(const Geometry& geometry, std::uint32_t prim, const Conv
 
 }  // namespace
 
+glm::vec4 planeThrough(const glm::vec3& point, glm::vec3 n, const glm::vec3& inside) {
+  n = glm::normalize(n);
+  if (glm::dot(n, inside - point) > 0.0f) n = -n;
+  return {n, glm::dot(n, point)};
+}
+
+void finishRegion(ConvexRegion& region) {
+  float largest = 0.0f;
+  for (const glm::vec3& c : region.corners) {
+    region.box.expand(c);
+    largest = std::max({largest, std::abs(c.x), std::abs(c.y), std::abs(c.z)});
+  }
+  region.slack = largest * 1e-5f;
+}
+
 std::vector<std::uint32_t> primitivesInRegion(const Bvh& bvh, const Geometry& geometry,
                                               const ConvexRegion& region, std::uint32_t skip) {
   std::vector<std::uint32_t> found;

@@ -32,6 +32,13 @@ struct ConvexRegion {
   bool openBase = false;
 };
 
+// The plane through `point` with normal n (any length), oriented so that
+// `inside` is on its inner side: a ConvexRegion's plane.
+glm::vec4 planeThrough(const glm::vec3& point, glm::vec3 n, const glm::vec3& inside);
+// Sets a region's box from its corners and its slack from their magnitude
+// (their rounding, with a wide margin).
+void finishRegion(ConvexRegion& region);
+
 // The primitives other than `skip` that may reach into `region`: a
 // conservative answer, from separating planes only (the region's own planes,
 // a triangle's plane, a sphere's distance, a BVH box's faces). Empty proves

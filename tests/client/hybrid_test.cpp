@@ -483,6 +483,57 @@ TEST(Hybrid, PerceptualRuleTracesItsPixelsAlikeEverywhere) {
   EXPECT_GT(hybrid(glassScene.scene(), glassService, glass.frame, glassMask).rasterEdgePixels, autoEdges + 300);
 }
 
+// An area light's soft shadows on surfaces OpenGL draws: the raster shades
+// its unshadowed light, the pixels not proved to see it whole are traced
+// (with direct light, as an undecided shadow), and the frame is the full
+// trace's within 8/255 while casting a fraction of its shadow rays;
+// the traced pixels are the full trace's to the byte, here, split into other
+// tiles and through a glintd.
+TEST(Hybrid, AreaLightsTracedOnlyWhereTheLightMayBeBlocked) {
+  const SceneSetup s = load("scenes/soft-shadows.json");
+  const PreparedScene prepared(s.loaded.scene, BvhSettings{});
+  ThreadPool pool(2);
+  LocalTileService local(prepared, pool);
+  const FrameResult full = renderFrame(local, s.frame, {});
+  FrameSettings directFrame = s.frame;
+  directFrame.tracing.maxDepth = 1;
+  const FrameImage direct = renderFrame(local, directFrame, {}).image;
+  const MaskSettings mask = prepared.scene().mask;
+  const HybridResult here = hybrid(prepared.scene(), local, s.frame, mask);
+  int differing = 0;
+  for (std::size_t i = 0; i < here.mask.size(); ++i) {
+    if (here.mask[i] == kRasterPixel) continue;
+    const FrameImage& expected = tracedWithDirectLight(here.mask[i]) ? direct : full.image;
+    for (int k = 0; k < 3; ++k) differing += here.image.rgb[3 * i + k] != expected.rgb[3 * i + k] ? 1 : 0;
+  }
+  // One sample at each pixel's centre, where OpenGL shades: the soft shadow
+  // OpenGL's pixels and the traced ones make is the full trace's. (With the
+  // scene's tent filter the full trace's pixel also holds its neighbours'
+  // light, which differs by up to 14/255 where the penumbra starts at the
+  // cube's foot.)
+  FrameSettings centre = s.frame;
+  centre.sampling = {SamplePattern::kRegular, 1, FilterType::kBox, 0};
+  const FrameImage fullCentre = renderFrame(local, centre, {}).image;
+  const HybridResult hybridCentre = hybrid(prepared.scene(), local, centre, mask);
+  int worst = 0;
+  for (std::size_t i = 0; i < here.mask.size(); ++i) {
+    worst = std::max(worst, channelDifference(hybridCentre.image, fullCentre, i));
+  }
+  std::printf("soft shadows: %zu pixels traced for the area light, shadow rays %llu of the full trace's %llu; "
+              "at the pixel centres at most %d/255 from the full trace\n",
+              here.shadowEdgePixels, static_cast<unsigned long long>(here.rays.shadow),
+              static_cast<unsigned long long>(full.stats.shadow), worst);
+  EXPECT_LE(worst, 8);
+  EXPECT_EQ(differing, 0);
+  EXPECT_GT(here.shadowEdgePixels, 500u);  // the penumbra and umbra are traced
+  EXPECT_LT(here.shadowEdgePixels, here.mask.size() / 3);
+  EXPECT_LT(here.rays.shadow * 100, full.stats.shadow * 35);
+  EXPECT_EQ(hybrid(prepared.scene(), local, s.frame, mask, 7).image.rgb, here.image.rgb);
+  server::BackgroundServer glintd(quietLoopback(2));
+  DistributedTileService remote(resolveServers({glintd.address()}), s.loaded.bundle);
+  EXPECT_EQ(hybrid(prepared.scene(), remote, s.frame, mask).image.rgb, here.image.rgb);
+}
+
 // Counts the tiles a service is given.
 class CountingService : public TileService {
  public:
