@@ -38,12 +38,13 @@
 #include "tests/bench/gl_backend_section.h"
 #include "tests/bench/mesh_file_section.h"
 #include "tests/bench/perceptual_section.h"
+#include "tests/bench/soft_shadow_section.h"
 
 namespace glint::bench {
 
 // The sections, in the order they run (all by default).
-constexpr std::array<const char*, 11> kSections{"bvh",  "room",        "accuracy", "protocol", "hybrid",    "perceptual",
-                                                "gl",   "load",        "distributed", "meshfile", "embree"};
+constexpr std::array<const char*, 12> kSections{"bvh",  "room", "accuracy", "protocol",    "hybrid",   "perceptual",
+                                                "soft", "gl",   "load",     "distributed", "meshfile", "embree"};
 
 namespace {
 
@@ -460,6 +461,7 @@ int main(int argc, char** argv) {
     if (o.wants("protocol")) bench::protocolSection(o, room);
     if (o.wants("hybrid")) bench::hybridSection(o);
     if (o.wants("perceptual")) bench::perceptualSection(o.scenes, o.quick);
+    if (o.wants("soft")) bench::softShadowSection(o.scenes, o.quick);
     if (o.wants("gl")) bench::glBackendSection(o.scenes, o.quick);
     if (o.wants("load")) bench::loadSection(o.scenes, o.quick);
     if (o.wants("distributed")) bench::distributedSection(o.scenes, o.quick);
