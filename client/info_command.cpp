@@ -79,10 +79,13 @@ void printContents(const Scene& scene) {
   }
   std::printf("  textures   %zu (%s, %s)\n", scene.textures.size(), count(images, "image", "images").c_str(),
               count(checkers, "checker", "checkers").c_str());
-  std::printf("  lights     %s\n", count(scene.lights.size(), "point light", "point lights").c_str());
+  std::printf("  lights     %s\n", count(scene.lights.size(), "light", "lights").c_str());
   for (const Light& l : scene.lights) {
-    std::printf("             at %s, colour %s, attenuation %s\n", vec(l.position).c_str(), vec(l.color).c_str(),
-                vec(l.attenuation).c_str());
+    const std::string area = l.type == LightType::kArea ? " edges " + vec(l.u) + " " + vec(l.v) + ", " +
+                                                              std::to_string(l.samples) + " samples,"
+                                                        : "";
+    std::printf("             %s at %s,%s colour %s, attenuation %s\n", std::string(enumWord(l.type)).c_str(),
+                vec(l.position).c_str(), area.c_str(), vec(l.color).c_str(), vec(l.attenuation).c_str());
   }
 }
 

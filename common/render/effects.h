@@ -50,8 +50,9 @@ std::vector<NamedEffect> namedEffects(const EffectPlan& plan);
 
 nlohmann::json toJson(const EffectPlan& plan);
 
-// Whether the raster pass needs shadow maps: shadows can occur, the mask
-// leaves a lit material to OpenGL, and the maps are not turned off.
+// Whether the raster pass needs shadow maps: shadows can occur, a point
+// light casts them, the mask leaves a lit material to OpenGL, and the maps
+// are not turned off.
 bool rasterShadows(const Scene& scene, const EffectPlan& plan, const MaskSettings& mask);
 
 }  // namespace glint

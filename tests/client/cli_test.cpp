@@ -334,7 +334,7 @@ TEST_F(Cli, InfoDescribesTheSceneAndWhatTheHybridFrameTraces) {
   ASSERT_EQ(info.status, 0) << info.output;
   for (const char* line : {"image      64x48, 1 regular samples a pixel", "bounds     min (-3, -1, -2), max (3, 1, 2)",
                            "objects    1 mesh, 1 sphere; 2 triangles (0 dropped: cannot be hit), 4 vertices",
-                           "materials  2, 1 traced under the mask rule auto: mirror", "lights     1 point light",
+                           "materials  2, 1 traced under the mask rule auto: mirror", "lights     1 light\n             point at (",
                            "effects    simulated: shadows reflection; left out: refraction textures"}) {
     EXPECT_NE(info.output.find(line), std::string::npos) << line << "\n" << info.output;
   }
