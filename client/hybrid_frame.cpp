@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "client/colour_edges.h"
+#include "client/focus_blur.h"
 #include "client/pixel_mark.h"
 #include "client/raster_edges.h"
 #include "common/base/error.h"
@@ -65,11 +66,13 @@ void countEdges(const TileRect& window, int w, HybridResult& result) {
     for (int x = window.x; x < window.x + window.width; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
       result.shadowEdgePixels += result.mask[i] == kShadowEdgePixel ? 1 : 0;
-      // The raster's edges change a mark to 3 or 1; the penumbra's to 2.
-      result.rasterEdgePixels += !result.surface.empty() && result.mask[i] != markOf(result.surface[i]) &&
-                                         result.mask[i] != kShadowEdgePixel
-                                     ? 1
-                                     : 0;
+      // The raster's edges change a mark to 3 or 1; the penumbra's to 2; a
+      // lens's blur to 1 (where it reaches an edge, the pixel counts as out
+      // of focus).
+      const std::uint8_t mark = result.mask[i];
+      const bool blurred = result.outOfFocusPixels > 0 && mark == kMaskedPixel;
+      result.rasterEdgePixels +=
+          !result.surface.empty() && mark != markOf(result.surface[i]) && mark != kShadowEdgePixel && !blurred ? 1 : 0;
     }
   }
 }
@@ -194,13 +197,15 @@ void readRaster(const gl::RasterScene& raster, const FrameSettings& frame, const
   result.mask.resize(result.surface.size());
   const bool edges = mask.rule == MaskRule::kAuto || mask.rule == MaskRule::kPerceptual;
   const bool penumbra = edges && raster.penumbra().active();
-  if ((edges && frame.sampling.samples > 1) || penumbra) raster.target().readDepth(result.depth);
+  const bool lens = edges && frame.camera.aperture > 0.0f;
+  if ((edges && frame.sampling.samples > 1) || penumbra || lens) raster.target().readDepth(result.depth);
   if (edges && frame.sampling.samples > 1) {
     markRasterEdges(result.surface, result.depth, frame.width, frame.height, result.mask);
   } else {
     std::transform(result.surface.begin(), result.surface.end(), result.mask.begin(), markOf);
   }
   if (penumbra) markPenumbra(raster, frame, result);
+  result.outOfFocusPixels = lens ? markOutOfFocus(frame, raster.nearPlane(frame), result.depth, result.mask) : 0;
   if (mask.rule != MaskRule::kPerceptual || frame.sampling.samples == 1) {
     raster.target().readColour(window, result.colour);
     return;

@@ -32,6 +32,7 @@ struct HybridResult {
   std::size_t maskedPixels = 0;      // traced pixels, all sets together
   std::size_t shadowEdgePixels = 0;  // traced because the shadow maps could not decide
   std::size_t rasterEdgePixels = 0;  // traced because they straddle an edge of what OpenGL draws
+  std::size_t outOfFocusPixels = 0;  // traced because the lens blurs them (or a blur may reach them)
   int tiles = 0;                     // tiles sent to the tile service (each traced set apart)
   RayStats rays;
   HybridTimes times;

@@ -393,7 +393,7 @@ glm::vec3 RasterScene::pointAt(const FrameSettings& frame, int x, int y, float d
   const Camera camera(frame.camera, frame.width, frame.height);
   const Ray ray = camera.generateRay({static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f});
   const glm::vec3 forward = glm::normalize(frame.camera.lookAt - frame.camera.eye);
-  const float distance = projection(frame).far * kNearShare / depth;  // along the view axis
+  const float distance = nearPlane(frame) / depth;  // along the view axis
   return ray.o + (distance / glm::dot(ray.d, forward)) * ray.d;
 }
 

@@ -49,6 +49,9 @@ class RasterScene {
   // Whether the object a surface value names (object << kPixelMarkBits) is
   // lit by the lights: its material has a diffuse or specular term.
   bool objectLit(std::uint32_t object) const;
+  // The near plane of the frame's depth (depth = near / distance along the
+  // view axis).
+  float nearPlane(const FrameSettings& frame) const { return projection(frame).far * kNearShare; }
   // The point a pixel's centre shows at the depth the target holds for it.
   glm::vec3 pointAt(const FrameSettings& frame, int x, int y, float depth) const;
 

@@ -259,6 +259,7 @@ std::optional<LinearImage> renderFrames(const RenderRun& run, TileBackend& backe
                     .samples = frame.sampling.samples,
                     .crop = options.crop,
                     .maskedPixels = r.maskedPixels,
+                    .outOfFocusPixels = r.outOfFocusPixels,
                     .shadowEdgePixels = r.shadowEdgePixels,
                     .rasterEdgePixels = r.rasterEdgePixels,
                     .tiles = r.tiles,

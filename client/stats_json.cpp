@@ -57,6 +57,7 @@ nlohmann::json toJson(const FrameRecord& r) {
     j["raster_ms"] = r.hybrid->rasterMs;
     j["shadow_map_ms"] = r.hybrid->shadowMapMs;
     j["shadow_edge_pixels"] = r.shadowEdgePixels;
+    j["out_of_focus_pixels"] = r.outOfFocusPixels;
     j["raster_edge_pixels"] = r.rasterEdgePixels;
     j["readback_ms"] = r.hybrid->readbackMs;
     j["compose_ms"] = r.hybrid->composeMs;

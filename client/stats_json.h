@@ -23,6 +23,7 @@ struct FrameRecord {
   int samples = 1;               // the frame's samples a pixel
   std::optional<TileRect> crop;  // --crop: the window rendered
   std::size_t maskedPixels = 0;
+  std::size_t outOfFocusPixels = 0;  // of maskedPixels, traced because the lens blurs them
   std::size_t shadowEdgePixels = 0;  // of maskedPixels, traced where the shadow maps could not decide
   std::size_t rasterEdgePixels = 0;  // of maskedPixels, traced because they straddle an edge of the raster
   int tiles = 0;

@@ -125,7 +125,8 @@ std::vector<std::uint8_t> encodeFrameSetup(std::uint32_t frameId, const SceneHas
       static_cast<std::uint32_t>(f.tracing.maxDepth), f.tracing.minWeight,
       f.sampling.pattern == SamplePattern::kAdaptive, f.sampling.adaptiveThreshold,
       f.output.encoding == Encoding::kSrgb, f.output.exposure, f.sampling.pattern == SamplePattern::kPerceptual,
-      f.sampling.perceptualThreshold, static_cast<std::uint32_t>(f.sampling.lightSamples));
+      f.sampling.perceptualThreshold, static_cast<std::uint32_t>(f.sampling.lightSamples), f.camera.aperture,
+      f.camera.focusDistance);
   return finish(b, setup, wire::Body::FrameSetup);
 }
 
@@ -195,6 +196,8 @@ FrameSettings decodeFrameSettings(const wire::FrameSetup& s, std::size_t maxPixe
   f.camera.lookAt = fromWire(s.look_at(), "look_at");
   f.camera.up = fromWire(s.up(), "up");
   f.camera.fovY = s.fov_y();
+  f.camera.aperture = s.aperture();
+  f.camera.focusDistance = s.focus_distance();
   f.sampling.pattern = s.perceptual() ? SamplePattern::kPerceptual
                        : s.adaptive() ? SamplePattern::kAdaptive
                        : s.jittered() ? SamplePattern::kJittered

@@ -72,6 +72,7 @@ EffectPlan EffectPlan::derive(const Scene& scene, const FrameSettings& frame) {
   for (const MaterialEffects& e : plan.materials) anyDirect = anyDirect || e.direct;
   plan.shadows = anyLight && anyDirect && !selfShadowFree(scene.geometry);
   plan.softShadows = plan.shadows && anyArea;
+  plan.depthOfField = frame.camera.aperture > 0.0f;
   plan.vertexColors = !scene.geometry.colors().empty();
   plan.antialiasing =
       frame.sampling.samples > 1 || frame.sampling.pattern != SamplePattern::kRegular;
@@ -81,7 +82,8 @@ EffectPlan EffectPlan::derive(const Scene& scene, const FrameSettings& frame) {
 std::vector<NamedEffect> namedEffects(const EffectPlan& plan) {
   return {{"shadows", plan.shadows},   {"reflection", plan.reflection}, {"refraction", plan.refraction},
           {"textures", plan.textures}, {"emission", plan.emission},     {"vertex_colors", plan.vertexColors},
-          {"attenuation", plan.attenuation}, {"antialiasing", plan.antialiasing}, {"soft_shadows", plan.softShadows}};
+          {"attenuation", plan.attenuation}, {"antialiasing", plan.antialiasing}, {"soft_shadows", plan.softShadows},
+          {"depth_of_field", plan.depthOfField}};
 }
 
 nlohmann::json toJson(const EffectPlan& plan) {

@@ -32,6 +32,7 @@ struct EffectPlan {
   bool attenuation = false;   // distance fall-off of some light (other than a constant)
   bool antialiasing = false;  // samples off the pixel centre: several, or jittered
   bool softShadows = false;   // shadow rays to points over an area light
+  bool depthOfField = false;  // camera rays from points over a thin lens
   std::vector<MaterialEffects> materials;
   std::vector<bool> lights;   // false: the light adds nothing (black) and is skipped
 
@@ -41,7 +42,7 @@ struct EffectPlan {
 
 // The plan's effects by name, in one order: shadows, reflection,
 // refraction, textures, emission, vertex_colors, attenuation, antialiasing,
-// soft_shadows.
+// soft_shadows, depth_of_field.
 struct NamedEffect {
   const char* name;
   bool needed;

@@ -23,6 +23,9 @@ Renderer::Renderer(const PreparedScene& prepared, const FrameSettings& frame, co
       sampleLayout_(frame.sampling),
       tracer_(prepared.scene(), prepared.bvh(), frame_, plan_) {}
 
+// Dimensions 2 and 3 of a sample's key place it on the lens.
+glm::vec2 Renderer::lensPoint(const SampleKey& key) { return {key.uniform(2), key.uniform(3)}; }
+
 Renderer::CameraSample Renderer::cameraSample(int x, int y, const SampleLayout::Pixel& key, int sample) const {
   glm::vec2 offset{0.5f};
   if (plan_.antialiasing) {
@@ -30,8 +33,10 @@ Renderer::CameraSample Renderer::cameraSample(int x, int y, const SampleLayout::
     offset = {0.5f + filter_.warp(u.x), 0.5f + filter_.warp(u.y)};
   }
   const float w = plan_.antialiasing ? filter_.sign(offset.x - 0.5f) * filter_.sign(offset.y - 0.5f) : 1.0f;
-  return {camera_.generateRay({static_cast<float>(x) + offset.x, static_cast<float>(y) + offset.y}), w,
-          SampleLayout::key(key, sample)};
+  const SampleKey sampleKey = SampleLayout::key(key, sample);
+  const glm::vec2 film{static_cast<float>(x) + offset.x, static_cast<float>(y) + offset.y};
+  return {plan_.depthOfField ? camera_.generateRay(film, lensPoint(sampleKey)) : camera_.generateRay(film), w,
+          sampleKey};
 }
 
 void Renderer::addSamples(int x, int y, int first, int end, PixelSamples& p, RayStats& stats) const {
@@ -60,9 +65,10 @@ void Renderer::addSamples(int x, int y, int first, int end, PixelSamples& p, Ray
 
 void Renderer::addCentreSample(int x, int y, PixelSamples& p, RayStats& stats) const {
   constexpr int kCentreSample = -1;  // a key of its own, apart from the pattern's samples
-  const glm::vec3 c =
-      tracer_.radiance(camera_.generateRay({static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f}),
-                       SampleLayout::key(sampleLayout_.pixel(x, y), kCentreSample), stats);
+  const SampleKey key = SampleLayout::key(sampleLayout_.pixel(x, y), kCentreSample);
+  const glm::vec2 film{static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f};
+  const glm::vec3 c = tracer_.radiance(
+      plan_.depthOfField ? camera_.generateRay(film, lensPoint(key)) : camera_.generateRay(film), key, stats);
   if (!allFinite(c)) {
     ++stats.nonFiniteSamples;
     return;

@@ -66,6 +66,7 @@ class Renderer {
     SampleKey key;
   };
   CameraSample cameraSample(int x, int y, const SampleLayout::Pixel& key, int sample) const;
+  static glm::vec2 lensPoint(const SampleKey& key);
   // Traces samples first to end - 1 of pixel (x, y) into p.
   void addSamples(int x, int y, int first, int end, PixelSamples& p, RayStats& stats) const;
   // One ray through the pixel's centre into p, with weight 1.

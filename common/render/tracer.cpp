@@ -10,7 +10,7 @@ namespace glint {
 namespace {
 
 // The first of the sample key's dimensions that area lights draw from (0 and
-// 1 place the sample in its pixel).
+// 1 place the sample in its pixel, 2 and 3 on the lens).
 constexpr int kFirstLightDimension = 4;
 
 }  // namespace

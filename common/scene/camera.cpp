@@ -15,6 +15,8 @@ std::string cameraProblem(const CameraSpec& c) {
   if (!allFinite(c.lookAt)) return "look_at: must be finite";
   if (!allFinite(c.up)) return "up: must be finite";
   if (!(c.fovY > 0.0f && c.fovY <= 179.0f)) return "fov_y: must be in (0, 179]";
+  if (!(c.aperture >= 0.0f && std::isfinite(c.aperture))) return "aperture: must be a finite number >= 0";
+  if (!(c.focusDistance > 0.0f && std::isfinite(c.focusDistance))) return "focus_distance: must be a finite number > 0";
   const glm::vec3 forward = c.lookAt - c.eye;
   if (glm::dot(forward, forward) == 0.0f) return "look_at: must differ from camera.eye";
   if (glm::dot(c.up, c.up) == 0.0f) return "up: must not be the zero vector";
@@ -40,7 +42,9 @@ CameraSpec fitCamera(const CameraSpec& spec, const Bounds3& bounds, float aspect
 Camera::Camera(const CameraSpec& spec, int width, int height)
     : eye_(spec.eye),
       width_(static_cast<float>(width)),
-      height_(static_cast<float>(height)) {
+      height_(static_cast<float>(height)),
+      aperture_(spec.aperture),
+      focusDistance_(spec.focusDistance) {
   // gluLookAt: f = normalize(center - eye), s = normalize(f x up), u = s x f.
   forward_ = glm::normalize(spec.lookAt - spec.eye);
   right_ = glm::normalize(glm::cross(forward_, spec.up));
@@ -55,6 +59,23 @@ Ray Camera::generateRay(const glm::vec2& film) const {
   const float ndcY = 1.0f - 2.0f * film.y / height_;
   const glm::vec3 d = forward_ + (ndcX * halfWidth_) * right_ + (ndcY * halfHeight_) * up_;
   return Ray(eye_, glm::normalize(d));
+}
+
+Ray Camera::generateRay(const glm::vec2& film, const glm::vec2& lens) const {
+  const Ray pinhole = generateRay(film);
+  if (aperture_ == 0.0f) return pinhole;
+  const glm::vec3 focus = eye_ + (focusDistance_ / glm::dot(pinhole.d, forward_)) * pinhole.d;
+  const float r = 0.5f * aperture_ * std::sqrt(lens.x);
+  const float phi = 6.28318530717958647692f * lens.y;
+  const glm::vec3 origin = eye_ + (r * std::cos(phi)) * right_ + (r * std::sin(phi)) * up_;
+  return Ray(origin, glm::normalize(focus - origin));
+}
+
+float Camera::circleOfConfusion(float depth) const {
+  if (aperture_ == 0.0f || !(depth > 0.0f)) return 0.0f;
+  // The blur's diameter on the plane of focus, over a pixel's size there.
+  const float pixel = 2.0f * focusDistance_ * halfHeight_ / height_;
+  return aperture_ * std::abs(depth - focusDistance_) / depth / pixel;
 }
 
 }  // namespace glint

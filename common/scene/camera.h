@@ -16,6 +16,10 @@ struct CameraSpec {
   glm::vec3 lookAt{0.0f, 0.0f, -1.0f};
   glm::vec3 up{0.0f, 1.0f, 0.0f};
   float fovY = 45.0f;  // degrees, vertical
+  // A thin lens: its diameter (scene units; 0, a pinhole) and the distance
+  // from the eye to the plane of sharp focus, along the view direction.
+  float aperture = 0.0f;
+  float focusDistance = 1.0f;
 };
 
 // What makes a camera unusable, as "field: what is wrong" ("up: must not be
@@ -39,6 +43,13 @@ class Camera {
   Camera(const CameraSpec& spec, int width, int height);
 
   Ray generateRay(const glm::vec2& film) const;
+  // Through a thin lens: from the point at `lens` (in [0, 1)^2, spread
+  // uniformly over the lens's disc) towards where the pinhole ray meets the
+  // plane of focus. With aperture 0, the pinhole ray.
+  Ray generateRay(const glm::vec2& film, const glm::vec2& lens) const;
+  // The diameter in pixels of the blur a point at `depth` along the view
+  // direction makes (the circle of confusion); 0 for a pinhole.
+  float circleOfConfusion(float depth) const;
   const glm::vec3& eye() const { return eye_; }
 
  private:
@@ -50,6 +61,8 @@ class Camera {
   float halfWidth_;
   float width_;
   float height_;
+  float aperture_;
+  float focusDistance_;
 };
 
 }  // namespace glint

@@ -77,13 +77,25 @@ class SceneLoader {
   }
 
   void readCamera(const JsonReader& r) {
-    r.allowKeys({"eye", "look_at", "up", "fov_y", "file", "fit"});
+    r.allowKeys({"eye", "look_at", "up", "fov_y", "file", "fit", "aperture", "focus_distance"});
     CameraSpec& c = scene_.frame.camera;
-    if (auto f = r.find("file")) return readCameraFile(r, *f);
-    c.eye = r["eye"].vec3();
-    c.lookAt = r["look_at"].vec3();
-    c.up = r.vec3("up", {0.0f, 1.0f, 0.0f});
-    c.fovY = r.number("fov_y", 45.0f, 0.0f, 179.0f, true);
+    if (auto f = r.find("file")) {
+      readCameraFile(r, *f);
+    } else {
+      c.eye = r["eye"].vec3();
+      c.lookAt = r["look_at"].vec3();
+      c.up = r.vec3("up", {0.0f, 1.0f, 0.0f});
+      c.fovY = r.number("fov_y", 45.0f, 0.0f, 179.0f, true);
+    }
+    readLens(r, c);
+  }
+
+  // The thin lens: focused at look_at unless told (the camera check names an
+  // eye at look_at).
+  static void readLens(const JsonReader& r, CameraSpec& c) {
+    c.aperture = r.number("aperture", 0.0f, 0.0f, kMax);
+    const float toTarget = glm::length(c.lookAt - c.eye);
+    c.focusDistance = r.number("focus_distance", toTarget > 0.0f ? toTarget : 1.0f, 0.0f, kMax, true);
   }
 
   // "fit": true: the camera moved along its direction to frame every object.

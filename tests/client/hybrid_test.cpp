@@ -534,6 +534,49 @@ TEST(Hybrid, AreaLightsTracedOnlyWhereTheLightMayBeBlocked) {
   EXPECT_EQ(hybrid(prepared.scene(), remote, s.frame, mask).image.rgb, here.image.rgb);
 }
 
+// A thin lens: OpenGL cannot blur, so every pixel whose point's circle of
+// confusion exceeds half a pixel is traced with the frame's settings (and
+// those a blur may reach), byte for byte the full trace's; a pinhole frame
+// of the same scene traces none for the lens.
+TEST(Hybrid, OutOfFocusPixelsAreTraced) {
+  SceneSetup s = load("scenes/soft-shadows.json");
+  s.frame.camera.aperture = 0.15f;
+  s.frame.camera.focusDistance = glm::length(glm::vec3(-0.9f, 0.8f, 0.2f) - s.frame.camera.eye);  // the sphere
+  const PreparedScene prepared(s.loaded.scene, BvhSettings{});
+  ThreadPool pool(2);
+  LocalTileService local(prepared, pool);
+  const FrameImage full = renderFrame(local, s.frame, {}).image;
+  FrameSettings directFrame = s.frame;
+  directFrame.tracing.maxDepth = 1;
+  const FrameImage direct = renderFrame(local, directFrame, {}).image;
+  const MaskSettings mask = prepared.scene().mask;
+  const HybridResult here = hybrid(prepared.scene(), local, s.frame, mask);
+  const Camera camera(s.frame.camera, s.frame.width, s.frame.height);
+  const glm::vec3 forward = glm::normalize(s.frame.camera.lookAt - s.frame.camera.eye);
+  int differing = 0, blurredLeft = 0, blurred = 0;
+  for (std::size_t i = 0; i < here.mask.size(); ++i) {
+    const int x = static_cast<int>(i % 160), y = static_cast<int>(i / 160);
+    const Ray ray = camera.generateRay({x + 0.5f, y + 0.5f});
+    const auto hit = prepared.bvh().intersect(ray, 1e30f);
+    const float depth = hit ? hit->t * glm::dot(ray.d, forward) : 1e30f;
+    if (camera.circleOfConfusion(depth) > 0.6f) {  // clear of the depth buffer's rounding
+      ++blurred;
+      blurredLeft += here.mask[i] == kRasterPixel ? 1 : 0;
+    }
+    if (here.mask[i] == kRasterPixel) continue;
+    const FrameImage& expected = tracedWithDirectLight(here.mask[i]) ? direct : full;
+    for (int k = 0; k < 3; ++k) differing += here.image.rgb[3 * i + k] != expected.rgb[3 * i + k] ? 1 : 0;
+  }
+  std::printf("lens: %d pixels blurred over half a pixel, %zu traced out of focus\n", blurred, here.outOfFocusPixels);
+  EXPECT_GT(blurred, 1000);
+  EXPECT_EQ(blurredLeft, 0);
+  EXPECT_EQ(differing, 0);
+  EXPECT_GE(here.outOfFocusPixels, static_cast<std::size_t>(blurred) / 2);
+  EXPECT_EQ(hybrid(prepared.scene(), local, s.frame, mask, 7).image.rgb, here.image.rgb);
+  s.frame.camera.aperture = 0.0f;
+  EXPECT_EQ(hybrid(prepared.scene(), local, s.frame, mask).outOfFocusPixels, 0u);
+}
+
 // Counts the tiles a service is given.
 class CountingService : public TileService {
  public:

@@ -187,6 +187,20 @@ TEST(SceneLoad, BadScenesNameThePlace) {
        "lights[0].attenuation: at least one of c, l, q must be positive"},
       {"attenuation negative", [](json& j) { j["lights"][0]["attenuation"] = {1, -1, 0}; },
        "lights[0].attenuation[1]: must be >= 0"},
+      {"area light without area",
+       [](json& j) {
+         j["lights"][0] = {{"type", "area"}, {"position", {0, 3, 0}}, {"u", {1, 0, 0}}, {"v", {2, 0, 0}}};
+       },
+       "lights[0].v: must not be parallel to u"},
+      {"area light samples", [](json& j) {
+         j["lights"][0] = {{"type", "area"}, {"position", {0, 3, 0}}, {"u", {1, 0, 0}}, {"v", {0, 0, 1}},
+                           {"samples", 0}};
+       },
+       "lights[0].samples"},
+      {"point light with edges", [](json& j) { j["lights"][0]["u"] = {1, 0, 0}; }, "lights[0]"},
+      {"negative aperture", [](json& j) { j["camera"]["aperture"] = -0.1; }, "camera.aperture"},
+      {"zero focus", [](json& j) { j["camera"]["focus_distance"] = 0; }, "camera.focus_distance"},
+      {"light samples", [](json& j) { j["sampling"]["light_samples"] = 5000; }, "sampling.light_samples"},
       {"light type", [](json& j) { j["lights"][0]["type"] = "spot"; }, "lights[0].type: 'spot' is not one of: point"},
       {"object type", [](json& j) { j["objects"][0]["type"] = "cube"; }, "objects[0].type: 'cube' is not one of"},
       {"regular 3", [](json& j) { j["sampling"] = {{"samples", 3}}; }, "sampling.samples: the regular pattern"},
