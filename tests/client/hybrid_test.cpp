@@ -68,6 +68,18 @@ HybridResult hybrid(const Scene& scene, TileService& service, const FrameSetting
   return result;
 }
 
+// The channels of a hybrid frame's traced pixels that differ from the full
+// trace of their kind: with direct light (`direct`), or in full (`full`).
+int tracedUnlikeTheTrace(const HybridResult& here, const FrameImage& direct, const FrameImage& full) {
+  int differing = 0;
+  for (std::size_t i = 0; i < here.mask.size(); ++i) {
+    if (here.mask[i] == kRasterPixel) continue;
+    const FrameImage& expected = tracedWithDirectLight(here.mask[i]) ? direct : full;
+    for (int k = 0; k < 3; ++k) differing += here.image.rgb[3 * i + k] != expected.rgb[3 * i + k] ? 1 : 0;
+  }
+  return differing;
+}
+
 // A pixel is "fully covered" when rays through its centre and four points
 // `margin` pixels off it diagonally (0.45: near its corners) hit the same
 // primitive with the same texture colour (`sameColour`): no silhouette or
@@ -461,12 +473,7 @@ TEST(Hybrid, PerceptualRuleTracesItsPixelsAlikeEverywhere) {
   MaskSettings mask = prepared.scene().mask;
   mask.rule = MaskRule::kPerceptual;
   const HybridResult here = hybrid(prepared.scene(), local, s.frame, mask);
-  int differing = 0;
-  for (std::size_t i = 0; i < here.mask.size(); ++i) {
-    if (here.mask[i] == kRasterPixel) continue;
-    const FrameImage& expected = tracedWithDirectLight(here.mask[i]) ? direct : full;
-    for (int k = 0; k < 3; ++k) differing += here.image.rgb[3 * i + k] != expected.rgb[3 * i + k] ? 1 : 0;
-  }
+  const int differing = tracedUnlikeTheTrace(here, direct, full);
   EXPECT_EQ(differing, 0);
   EXPECT_GT(here.maskedPixels, 5000u);
   EXPECT_EQ(hybrid(prepared.scene(), local, s.frame, mask, 7).image.rgb, here.image.rgb);
@@ -500,12 +507,7 @@ TEST(Hybrid, AreaLightsTracedOnlyWhereTheLightMayBeBlocked) {
   const FrameImage direct = renderFrame(local, directFrame, {}).image;
   const MaskSettings mask = prepared.scene().mask;
   const HybridResult here = hybrid(prepared.scene(), local, s.frame, mask);
-  int differing = 0;
-  for (std::size_t i = 0; i < here.mask.size(); ++i) {
-    if (here.mask[i] == kRasterPixel) continue;
-    const FrameImage& expected = tracedWithDirectLight(here.mask[i]) ? direct : full.image;
-    for (int k = 0; k < 3; ++k) differing += here.image.rgb[3 * i + k] != expected.rgb[3 * i + k] ? 1 : 0;
-  }
+  const int differing = tracedUnlikeTheTrace(here, direct, full.image);
   // One sample at each pixel's centre, where OpenGL shades: the soft shadow
   // OpenGL's pixels and the traced ones make is the full trace's. (With the
   // scene's tent filter the full trace's pixel also holds its neighbours'
@@ -553,7 +555,8 @@ TEST(Hybrid, OutOfFocusPixelsAreTraced) {
   const HybridResult here = hybrid(prepared.scene(), local, s.frame, mask);
   const Camera camera(s.frame.camera, s.frame.width, s.frame.height);
   const glm::vec3 forward = glm::normalize(s.frame.camera.lookAt - s.frame.camera.eye);
-  int differing = 0, blurredLeft = 0, blurred = 0;
+  const int differing = tracedUnlikeTheTrace(here, direct, full);
+  int blurredLeft = 0, blurred = 0;
   for (std::size_t i = 0; i < here.mask.size(); ++i) {
     const int x = static_cast<int>(i % 160), y = static_cast<int>(i / 160);
     const Ray ray = camera.generateRay({x + 0.5f, y + 0.5f});
@@ -563,9 +566,6 @@ TEST(Hybrid, OutOfFocusPixelsAreTraced) {
       ++blurred;
       blurredLeft += here.mask[i] == kRasterPixel ? 1 : 0;
     }
-    if (here.mask[i] == kRasterPixel) continue;
-    const FrameImage& expected = tracedWithDirectLight(here.mask[i]) ? direct : full;
-    for (int k = 0; k < 3; ++k) differing += here.image.rgb[3 * i + k] != expected.rgb[3 * i + k] ? 1 : 0;
   }
   std::printf("lens: %d pixels blurred over half a pixel, %zu traced out of focus\n", blurred, here.outOfFocusPixels);
   EXPECT_GT(blurred, 1000);
