@@ -168,14 +168,16 @@ void cropRows(std::vector<std::uint8_t>& rgb, int frameWidth, const TileRect& wi
 // hardware threads; each pixel's proof stands alone.
 void markPenumbra(const gl::RasterScene& raster, const FrameSettings& frame, HybridResult& result) {
   const int threads = static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 16u));
+  const gl::RasterScene::PixelPoints points = raster.pixelPoints(frame);
   const auto rows = [&](int first, int end) {
     for (int y = first; y < end; ++y) {
       for (int x = 0; x < frame.width; ++x) {
         const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(frame.width) +
                               static_cast<std::size_t>(x);
         if (result.mask[i] != kRasterPixel || !raster.objectLit(result.surface[i] >> kPixelMarkBits)) continue;
-        const glm::vec3 p = raster.pointAt(frame, x, y, result.depth[i]);
-        if (!raster.penumbra().seesWhole(p, frame.camera.eye)) result.mask[i] = kShadowEdgePixel;
+        if (!raster.penumbra().seesWhole(points.at(x, y, result.depth[i]), frame.camera.eye)) {
+          result.mask[i] = kShadowEdgePixel;
+        }
       }
     }
   };

@@ -12,7 +12,6 @@
 #include "client/pixel_mark.h"
 #include "client/shadow_rects.h"
 #include "common/render/area_light.h"
-#include "common/scene/camera.h"
 #include "common/image/encoding.h"
 #include "common/base/error.h"
 #include "common/render/mask_rule.h"
@@ -389,11 +388,14 @@ bool RasterScene::objectLit(std::uint32_t object) const {
   return m.diffuse > 0.0f || m.specular > 0.0f;
 }
 
-glm::vec3 RasterScene::pointAt(const FrameSettings& frame, int x, int y, float depth) const {
-  const Camera camera(frame.camera, frame.width, frame.height);
+RasterScene::PixelPoints RasterScene::pixelPoints(const FrameSettings& frame) const {
+  return {Camera(frame.camera, frame.width, frame.height), glm::normalize(frame.camera.lookAt - frame.camera.eye),
+          nearPlane(frame)};
+}
+
+glm::vec3 RasterScene::PixelPoints::at(int x, int y, float depth) const {
   const Ray ray = camera.generateRay({static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f});
-  const glm::vec3 forward = glm::normalize(frame.camera.lookAt - frame.camera.eye);
-  const float distance = nearPlane(frame) / depth;  // along the view axis
+  const float distance = near / depth;  // along the view axis
   return ray.o + (distance / glm::dot(ray.d, forward)) * ray.d;
 }
 

@@ -18,6 +18,7 @@
 #include "client/shadow_maps.h"
 #include "common/geometry/bounds.h"
 #include "common/render/effects.h"
+#include "common/scene/camera.h"
 #include "common/scene/scene.h"
 
 namespace glint::gl {
@@ -52,8 +53,15 @@ class RasterScene {
   // The near plane of the frame's depth (depth = near / distance along the
   // view axis).
   float nearPlane(const FrameSettings& frame) const { return projection(frame).far * kNearShare; }
-  // The point a pixel's centre shows at the depth the target holds for it.
-  glm::vec3 pointAt(const FrameSettings& frame, int x, int y, float depth) const;
+  // The points pixels' centres show at the depths the target holds for them,
+  // for one frame (made once a frame, asked once a pixel).
+  struct PixelPoints {
+    Camera camera;
+    glm::vec3 forward;
+    float near;
+    glm::vec3 at(int x, int y, float depth) const;
+  };
+  PixelPoints pixelPoints(const FrameSettings& frame) const;
 
  private:
   struct Batch {

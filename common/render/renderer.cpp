@@ -23,8 +23,10 @@ Renderer::Renderer(const PreparedScene& prepared, const FrameSettings& frame, co
       sampleLayout_(frame.sampling),
       tracer_(prepared.scene(), prepared.bvh(), frame_, plan_) {}
 
-// Dimensions 2 and 3 of a sample's key place it on the lens.
-glm::vec2 Renderer::lensPoint(const SampleKey& key) { return {key.uniform(2), key.uniform(3)}; }
+Ray Renderer::cameraRay(const glm::vec2& film, const SampleKey& key) const {
+  if (!plan_.depthOfField) return camera_.generateRay(film);
+  return camera_.generateRay(film, {key.uniform(SampleKey::kLensDimension), key.uniform(SampleKey::kLensDimension + 1)});
+}
 
 Renderer::CameraSample Renderer::cameraSample(int x, int y, const SampleLayout::Pixel& key, int sample) const {
   glm::vec2 offset{0.5f};
@@ -35,8 +37,7 @@ Renderer::CameraSample Renderer::cameraSample(int x, int y, const SampleLayout::
   const float w = plan_.antialiasing ? filter_.sign(offset.x - 0.5f) * filter_.sign(offset.y - 0.5f) : 1.0f;
   const SampleKey sampleKey = SampleLayout::key(key, sample);
   const glm::vec2 film{static_cast<float>(x) + offset.x, static_cast<float>(y) + offset.y};
-  return {plan_.depthOfField ? camera_.generateRay(film, lensPoint(sampleKey)) : camera_.generateRay(film), w,
-          sampleKey};
+  return {cameraRay(film, sampleKey), w, sampleKey};
 }
 
 void Renderer::addSamples(int x, int y, int first, int end, PixelSamples& p, RayStats& stats) const {
@@ -67,8 +68,7 @@ void Renderer::addCentreSample(int x, int y, PixelSamples& p, RayStats& stats) c
   constexpr int kCentreSample = -1;  // a key of its own, apart from the pattern's samples
   const SampleKey key = SampleLayout::key(sampleLayout_.pixel(x, y), kCentreSample);
   const glm::vec2 film{static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f};
-  const glm::vec3 c = tracer_.radiance(
-      plan_.depthOfField ? camera_.generateRay(film, lensPoint(key)) : camera_.generateRay(film), key, stats);
+  const glm::vec3 c = tracer_.radiance(cameraRay(film, key), key, stats);
   if (!allFinite(c)) {
     ++stats.nonFiniteSamples;
     return;

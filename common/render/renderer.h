@@ -66,7 +66,9 @@ class Renderer {
     SampleKey key;
   };
   CameraSample cameraSample(int x, int y, const SampleLayout::Pixel& key, int sample) const;
-  static glm::vec2 lensPoint(const SampleKey& key);
+  // The camera's ray through film position `film` (through the lens point
+  // the key draws, under depth of field).
+  Ray cameraRay(const glm::vec2& film, const SampleKey& key) const;
   // Traces samples first to end - 1 of pixel (x, y) into p.
   void addSamples(int x, int y, int first, int end, PixelSamples& p, RayStats& stats) const;
   // One ray through the pixel's centre into p, with weight 1.

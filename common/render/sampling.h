@@ -25,8 +25,12 @@ glm::vec2 stratumPoint(const Stratum& s, const glm::vec2& u);
 // The random choices of one camera sample past its place in the pixel (the
 // points it takes on an area light): uniform(d) is hashUniform's value of
 // the sample for dimension d, so they too depend on the pixel and the sample
-// alone. Dimensions 0 and 1 are the sample's place in the pixel.
+// alone.
 struct SampleKey {
+  // The dimensions' uses: 0 and 1 the place in the pixel, 2 and 3 the point
+  // on the lens, from 4 the points on area lights.
+  static constexpr int kLensDimension = 2;
+  static constexpr int kFirstLightDimension = 4;
   std::uint64_t hash = 0;
   float uniform(int dimension) const;
 };

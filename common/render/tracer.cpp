@@ -7,14 +7,6 @@
 #include "common/render/shading.h"
 
 namespace glint {
-namespace {
-
-// The first of the sample key's dimensions that area lights draw from (0 and
-// 1 place the sample in its pixel, 2 and 3 on the lens).
-constexpr int kFirstLightDimension = 4;
-
-}  // namespace
-
 Tracer::Tracer(const Scene& scene, const Bvh& bvh, const FrameSettings& frame, const EffectPlan& plan)
     : scene_(scene), bvh_(bvh), tracing_(frame.tracing), plan_(plan) {
   for (const Light& l : scene.lights) {
@@ -90,7 +82,7 @@ float Tracer::areaVisibility(const ShadingPoint& at, int light, Path& path) cons
   const glm::vec3& attenuation = scene_.lights[static_cast<std::size_t>(light)].attenuation;
   const int count = static_cast<int>(a.strata.size());
   const int lights = static_cast<int>(scene_.lights.size());
-  const int first = kFirstLightDimension + 2 * count * ((at.depth - 1) * lights + light);
+  const int first = SampleKey::kFirstLightDimension + 2 * count * ((at.depth - 1) * lights + light);
   float open = 0.0f;
   float total = 0.0f;
   for (int k = 0; k < count; ++k) {
@@ -103,7 +95,7 @@ float Tracer::areaVisibility(const ShadingPoint& at, int light, Path& path) cons
     const float cosine = glm::dot(l, at.s.ns);
     if (glm::dot(l, at.s.ng) <= 0.0f || cosine <= 0.0f) continue;
     // What the point gives a diffuse surface, the weight of its verdict.
-    const float weight = cosine / (attenuation.x + (attenuation.y + attenuation.z * distance) * distance);
+    const float weight = attenuate(glm::vec3(cosine), attenuation, distance).x;
     total += weight;
     ++path.stats.shadow;
     if (bvh_.occluded(Ray(at.outside, l), distance)) {

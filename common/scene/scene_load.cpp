@@ -296,10 +296,9 @@ class SceneLoader {
   static void readArea(const JsonReader& l, Light& light) {
     light.u = l["u"].vec3();
     light.v = l["v"].vec3();
-    const glm::vec3 n = glm::cross(light.u, light.v);
-    if (!(glm::dot(n, n) > 0.0f) || !std::isfinite(glm::dot(n, n))) {
-      l["v"].fail("must not be parallel to u (the light needs an area)");
-    }
+    const glm::vec3 normal = glm::cross(light.u, light.v);
+    const float area2 = glm::dot(normal, normal);  // the squared area
+    if (!(area2 > 0.0f) || !std::isfinite(area2)) l["v"].fail("must not be parallel to u (the light needs an area)");
     if (auto n = l.find("samples")) light.samples = n->integer(1, FrameLimits::kMaxLightSamples);
   }
 
