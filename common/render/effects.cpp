@@ -53,8 +53,10 @@ EffectPlan EffectPlan::derive(const Scene& scene, const FrameSettings& frame) {
     const float reflected = m.reflectivity + (tir ? m.transparency : 0.0f);
     e.reflects = secondary && reflected > 0.0f && reflected >= minWeight;
     e.refracts = secondary && m.transparency > 0.0f && m.transparency >= minWeight;
+    e.glossy = e.reflects && m.roughness > 0.0f;
     plan.reflection = plan.reflection || e.reflects;
     plan.refraction = plan.refraction || e.refracts;
+    plan.glossyReflection = plan.glossyReflection || e.glossy;
     plan.textures = plan.textures || e.textured;
     plan.emission = plan.emission || e.emits;
     plan.materials.push_back(e);
@@ -83,7 +85,7 @@ std::vector<NamedEffect> namedEffects(const EffectPlan& plan) {
   return {{"shadows", plan.shadows},   {"reflection", plan.reflection}, {"refraction", plan.refraction},
           {"textures", plan.textures}, {"emission", plan.emission},     {"vertex_colors", plan.vertexColors},
           {"attenuation", plan.attenuation}, {"antialiasing", plan.antialiasing}, {"soft_shadows", plan.softShadows},
-          {"depth_of_field", plan.depthOfField}};
+          {"depth_of_field", plan.depthOfField}, {"glossy_reflection", plan.glossyReflection}};
 }
 
 nlohmann::json toJson(const EffectPlan& plan) {

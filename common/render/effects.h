@@ -15,6 +15,7 @@ struct MaterialEffects {
   bool textured = false;    // checker or image texture, or an emission texture: uv lookups
   bool emits = false;       // emission > 0: light of its own
   bool reflects = false;    // a reflected ray can carry at least min_weight
+  bool glossy = false;      // reflects, with roughness > 0: the ray drawn from a lobe
   bool refracts = false;    // a refracted ray can carry at least min_weight
 };
 
@@ -33,6 +34,7 @@ struct EffectPlan {
   bool antialiasing = false;  // samples off the pixel centre: several, or jittered
   bool softShadows = false;   // shadow rays to points over an area light
   bool depthOfField = false;  // camera rays from points over a thin lens
+  bool glossyReflection = false;  // reflected rays drawn from a rough material's lobe
   std::vector<MaterialEffects> materials;
   std::vector<bool> lights;   // false: the light adds nothing (black) and is skipped
 
@@ -42,7 +44,7 @@ struct EffectPlan {
 
 // The plan's effects by name, in one order: shadows, reflection,
 // refraction, textures, emission, vertex_colors, attenuation, antialiasing,
-// soft_shadows, depth_of_field.
+// soft_shadows, depth_of_field, glossy_reflection.
 struct NamedEffect {
   const char* name;
   bool needed;

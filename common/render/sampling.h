@@ -22,13 +22,14 @@ Stratum jitteredStratum(int samples, int sample);
 // The point at fraction u (in [0, 1)^2) of a stratum, inside it.
 glm::vec2 stratumPoint(const Stratum& s, const glm::vec2& u);
 
-// The random choices of one camera sample past its place in the pixel (the
-// points it takes on an area light): uniform(d) is hashUniform's value of
-// the sample for dimension d, so they too depend on the pixel and the sample
-// alone.
+// The random choices of one camera sample past its place in the pixel (its
+// point on the lens, its points on area lights, its glossy reflections'
+// directions): uniform(d) is hashUniform's value of the sample for dimension
+// d, so they too depend on the pixel and the sample alone.
 struct SampleKey {
   // The dimensions' uses: 0 and 1 the place in the pixel, 2 and 3 the point
-  // on the lens, from 4 the points on area lights.
+  // on the lens, from 4 the points on area lights and then the glossy lobes'
+  // directions (their layout: Tracer::lightDimension and lobeDimension).
   static constexpr int kLensDimension = 2;
   static constexpr int kFirstLightDimension = 4;
   std::uint64_t hash = 0;

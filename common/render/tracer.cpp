@@ -3,6 +3,7 @@
 #include <glm/geometric.hpp>
 
 #include "common/math/float_bits.h"
+#include "common/render/glossy_lobe.h"
 #include "common/render/optics.h"
 #include "common/render/shading.h"
 
@@ -14,7 +15,26 @@ Tracer::Tracer(const Scene& scene, const Bvh& bvh, const FrameSettings& frame, c
                          ? std::optional<AreaLightPoints>(std::in_place, l,
                                                           areaLightSamples(l, frame.sampling.lightSamples))
                          : std::nullopt);
+    lightDimensions_.push_back(lightDimensionsPerDepth_);
+    if (areas_.back()) lightDimensionsPerDepth_ += 2 * static_cast<int>(areas_.back()->strata.size());
   }
+}
+
+int Tracer::lightDimension(int depth, int light) const {
+  return SampleKey::kFirstLightDimension + (depth - 1) * lightDimensionsPerDepth_ +
+         lightDimensions_[static_cast<std::size_t>(light)];
+}
+
+int Tracer::lobeDimension(int depth) const {
+  return SampleKey::kFirstLightDimension + tracing_.maxDepth * lightDimensionsPerDepth_ + 2 * (depth - 1);
+}
+
+glm::vec3 Tracer::reflectedDirection(const Ray& ray, const ShadingPoint& at, const Material& m,
+                                     const MaterialEffects& e, const Path& path) const {
+  if (!e.glossy) return mirrorDirection(ray.d, at.s.ns, at.s.ng);
+  const int first = lobeDimension(at.depth);
+  return glossyDirection(ray.d, at.s.ns, at.s.ng, m.roughness,
+                         {path.key.uniform(first), path.key.uniform(first + 1)});
 }
 
 glm::vec3 Tracer::radiance(const Ray& ray, const SampleKey& key, RayStats& stats) const {
@@ -81,8 +101,7 @@ float Tracer::areaVisibility(const ShadingPoint& at, int light, Path& path) cons
   const AreaLightPoints& a = *areas_[static_cast<std::size_t>(light)];
   const glm::vec3& attenuation = scene_.lights[static_cast<std::size_t>(light)].attenuation;
   const int count = static_cast<int>(a.strata.size());
-  const int lights = static_cast<int>(scene_.lights.size());
-  const int first = SampleKey::kFirstLightDimension + 2 * count * ((at.depth - 1) * lights + light);
+  const int first = lightDimension(at.depth, light);
   float open = 0.0f;
   float total = 0.0f;
   for (int k = 0; k < count; ++k) {
@@ -139,7 +158,8 @@ glm::vec3 Tracer::trace(const Ray& ray, int depth, float weight, bool inside, Pa
   const MaterialEffects& e = plan_.materials[material];
   const SurfaceHit s = scene_.geometry.surface(ray, *hit, e.textured, plan_.vertexColors);
   const glm::vec3 outside = offsetRayOrigin(s.p, s.error, s.ng);
-  glm::vec3 color = shade(ShadingPoint{s, outside, -ray.d, depth}, m, e, path);
+  const ShadingPoint at{s, outside, -ray.d, depth};
+  glm::vec3 color = shade(at, m, e, path);
   if (depth >= tracing_.maxDepth || !(e.reflects || e.refracts)) return color;
 
   float kr = m.reflectivity;
@@ -160,7 +180,7 @@ glm::vec3 Tracer::trace(const Ray& ray, int depth, float weight, bool inside, Pa
   const float minWeight = tracing_.minWeight;
   if (e.reflects && kr > 0.0f && weight * kr >= minWeight) {
     ++path.stats.reflection;
-    color += kr * trace(Ray(outside, mirrorDirection(ray.d, s.ns, s.ng)), depth + 1, weight * kr, inside, path);
+    color += kr * trace(Ray(outside, reflectedDirection(ray, at, m, e, path)), depth + 1, weight * kr, inside, path);
   }
   if (e.refracts && kt > 0.0f && weight * kt >= minWeight) {
     ++path.stats.refraction;

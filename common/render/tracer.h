@@ -16,7 +16,8 @@ namespace glint {
 // Whitted back ray tracing (the thesis's RT unit): at each hit, shadow rays
 // to the lights and the Phong model, then a reflected and a refracted ray
 // weighted by the material. An area light's shadow rays go to points drawn
-// from the camera sample's key (common/render/area_light.h). Recursion stops at max_depth (primary ray =
+// from the camera sample's key (common/render/area_light.h), as does a rough
+// material's reflected ray (common/render/glossy_lobe.h). Recursion stops at max_depth (primary ray =
 // depth 1) or when a ray's path weight would fall below min_weight. Only the
 // paths the effect plan allows are run.
 //
@@ -70,6 +71,14 @@ class Tracer {
   void addAreaLight(const ShadingPoint& at, const Surface& f, int light, Path& path, glm::vec3& result) const;
   // The share of an area light's unshadowed light that reaches the point.
   float areaVisibility(const ShadingPoint& at, int light, Path& path) const;
+  // The sample key's dimensions (SampleKey): from kFirstLightDimension, for
+  // each depth, each area light's two per stratum; after max_depth such
+  // blocks, two per depth for a glossy reflection's lobe.
+  int lightDimension(int depth, int light) const;
+  int lobeDimension(int depth) const;
+  // The mirror direction, or a rough material's drawn from its lobe.
+  glm::vec3 reflectedDirection(const Ray& ray, const ShadingPoint& at, const Material& m, const MaterialEffects& e,
+                               const Path& path) const;
   glm::vec3 lightIntensity(const glm::vec3& color, const glm::vec3& attenuation, float distance) const;
   // The surface's own light at uv (Material::emission).
   glm::vec3 emitted(const Material& m, const glm::vec2& uv) const;
@@ -79,6 +88,8 @@ class Tracer {
   TracingSettings tracing_;
   const EffectPlan& plan_;
   std::vector<std::optional<AreaLightPoints>> areas_;  // per light: an area light's points
+  std::vector<int> lightDimensions_;  // per light: its first dimension in a depth's block
+  int lightDimensionsPerDepth_ = 0;
 };
 
 }  // namespace glint

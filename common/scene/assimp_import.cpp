@@ -119,6 +119,7 @@ Material toMaterial(const aiMaterial& m) {
   if (m.Get(AI_MATKEY_METALLIC_FACTOR, metallic) == AI_SUCCESS) {
     m.Get(AI_MATKEY_ROUGHNESS_FACTOR, roughness);
     out.reflectivity = std::clamp(metallic * (1.0f - roughness), 0.0f, 1.0f);
+    if (out.reflectivity > 0.0f) out.roughness = std::clamp(roughness, 0.0f, 1.0f);
     highlightFromRoughness(roughness, out);
   }
   return out;

@@ -14,7 +14,7 @@ namespace glint {
 // already), the files it names through `files` (readForImport): node transforms applied, polygons triangulated, points
 // and lines left out. Materials: base colour (or diffuse) and its texture,
 // opacity as transparency, and for glTF metallic x (1 - roughness) as the
-// reflectivity. A missing texture is a warning; a file that yields no
+// reflectivity, its roughness the reflection's. A missing texture is a warning; a file that yields no
 // triangle is an error. Errors start with `place`.
 MeshModel importWithAssimp(FileSource& files, const std::string& path, std::string_view bytes,
                            const std::string& place, SceneBudget& budget);

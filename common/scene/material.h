@@ -24,6 +24,9 @@ struct Material {
   float specular = 0.0f;  // r_S
   float shininess = 1.0f;  // h
   float reflectivity = 0.0f;
+  // Width of the reflection lobe around the mirror direction, in [0, 1]:
+  // GGX's alpha is roughness^2; 0 is a perfect mirror.
+  float roughness = 0.0f;
   float transparency = 0.0f;
   float ior = 1.0f;
   RaytraceRule raytrace = RaytraceRule::kAuto;

@@ -9,7 +9,7 @@ namespace glint {
 namespace {
 
 constexpr std::string_view kMagic = "GLINTMSH";
-constexpr std::uint32_t kVersion = 2;
+constexpr std::uint32_t kVersion = 3;
 
 class Writer {
  public:
@@ -80,7 +80,7 @@ void writeMaterial(Writer& w, const Material& m) {
   w.put(static_cast<std::int32_t>(m.texture));
   w.put(m.emission);
   w.put(static_cast<std::int32_t>(m.emissionTexture));
-  for (const float v : {m.ambient, m.diffuse, m.specular, m.shininess, m.reflectivity, m.transparency, m.ior}) {
+  for (const float v : {m.ambient, m.diffuse, m.specular, m.shininess, m.reflectivity, m.roughness, m.transparency, m.ior}) {
     w.put(v);
   }
   w.put(static_cast<std::uint8_t>(m.raytrace));
@@ -96,7 +96,7 @@ Material readMaterial(Reader& r, std::size_t textures) {
   for (const int t : {m.texture, m.emissionTexture}) {
     if (t < -1 || t >= static_cast<std::int64_t>(textures)) r.fail("names a texture it does not hold");
   }
-  for (float* v : {&m.ambient, &m.diffuse, &m.specular, &m.shininess, &m.reflectivity, &m.transparency, &m.ior}) {
+  for (float* v : {&m.ambient, &m.diffuse, &m.specular, &m.shininess, &m.reflectivity, &m.roughness, &m.transparency, &m.ior}) {
     *v = r.get<float>();
   }
   const auto rule = r.get<std::uint8_t>();

@@ -11,13 +11,13 @@ namespace glint {
 // An imported mesh (glTF, PLY) as it travels to a server in place of its
 // files: the MeshModel's arrays, bit for bit, so that the server's scene is
 // the client's. Little-endian:
-//   "GLINTMSH" u32 version (2)
+//   "GLINTMSH" u32 version (3)
 //   u32 textures,  each: u32 width, u32 height, u8 filter, width*height*3 texels,
 //                        u8 has uv transform, then f32 m[4] (columns) offset[2]
 //   u32 materials, each: u32 name length, name, f32 color[3], i32 texture,
 //                        f32 emission[3], i32 emission texture,
 //                        f32 ambient diffuse specular shininess reflectivity
-//                        transparency ior, u8 raytrace
+//                        roughness transparency ior, u8 raytrace
 //   u32 meshes,    each: u32 material, u32 vertices, u8 has normals, u8 has uvs,
 //                        u8 has colours, f32 positions[3v], normals[3v], uvs[2v],
 //                        colors[3v], u32 indices, u32[indices]

@@ -243,7 +243,7 @@ class SceneLoader {
     for (const auto& [name, value] : r.raw().items()) {
       const JsonReader m(value, r.path() + "." + name);
       m.allowKeys({"color", "texture", "emission", "emission_texture", "ambient", "diffuse", "specular",
-                   "shininess", "reflectivity", "transparency", "ior", "raytrace"});
+                   "shininess", "reflectivity", "roughness", "transparency", "ior", "raytrace"});
       Material mat;
       mat.name = name;
       mat.color = m.vec3("color", glm::vec3(1.0f));
@@ -254,6 +254,7 @@ class SceneLoader {
       mat.specular = m.number("specular", 0.0f, 0.0f);
       mat.shininess = m.number("shininess", 1.0f, 0.0f);
       mat.reflectivity = m.number("reflectivity", 0.0f, 0.0f, 1.0f);
+      mat.roughness = m.number("roughness", 0.0f, 0.0f, 1.0f);
       mat.transparency = m.number("transparency", 0.0f, 0.0f, 1.0f);
       mat.ior = m.number("ior", 1.0f, 0.0f, kMax, true);
       if (auto rt = m.find("raytrace")) {

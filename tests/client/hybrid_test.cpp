@@ -2,10 +2,13 @@
 // direct light, masks exactly the objects the rule names, and the traced
 // pixels land in the frame unchanged, in process and through glintd.
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <thread>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
 
 #include "client/distributed_tile_service.h"
 #include "client/hybrid_frame.h"
@@ -32,12 +35,23 @@ struct SceneSetup {
   FrameSettings frame;
 };
 
-SceneSetup load(const char* scene, int width = 160, int height = 120) {
-  SceneSetup s{proto::loadSceneBundle(test::sourcePath(scene)), {}};
+SceneSetup loadFile(const std::string& path, int width = 160, int height = 120) {
+  SceneSetup s{proto::loadSceneBundle(path), {}};
   s.frame = s.loaded.scene.frame;
   s.frame.width = width;
   s.frame.height = height;
   return s;
+}
+
+SceneSetup load(const char* scene, int width = 160, int height = 120) {
+  return loadFile(test::sourcePath(scene), width, height);
+}
+
+// The frame traced with direct light only (what a pixel OpenGL would shade
+// gets when it is traced for its shadows).
+FrameImage directLight(TileService& service, FrameSettings frame) {
+  frame.tracing.maxDepth = 1;
+  return renderFrame(service, frame, {}).image;
 }
 
 // A mask rule with the default thresholds; without shadow maps unless asked.
@@ -411,9 +425,7 @@ TEST(Hybrid, MaskedPixelsEqualTheFullTrace) {
   ThreadPool pool(2);
   LocalTileService local(prepared, pool);
   const FrameImage full = renderFrame(local, s.frame, {}).image;
-  FrameSettings direct = s.frame;
-  direct.tracing.maxDepth = 1;
-  const FrameImage directFull = renderFrame(local, direct, {}).image;
+  const FrameImage directFull = directLight(local, s.frame);
 
   server::BackgroundServer glintd(quietLoopback(2));
   DistributedTileService remote(resolveServers({glintd.address()}), s.loaded.bundle);
@@ -502,9 +514,7 @@ TEST(Hybrid, AreaLightsTracedOnlyWhereTheLightMayBeBlocked) {
   ThreadPool pool(2);
   LocalTileService local(prepared, pool);
   const FrameResult full = renderFrame(local, s.frame, {});
-  FrameSettings directFrame = s.frame;
-  directFrame.tracing.maxDepth = 1;
-  const FrameImage direct = renderFrame(local, directFrame, {}).image;
+  const FrameImage direct = directLight(local, s.frame);
   const MaskSettings mask = prepared.scene().mask;
   const HybridResult here = hybrid(prepared.scene(), local, s.frame, mask);
   const int differing = tracedUnlikeTheTrace(here, direct, full.image);
@@ -536,6 +546,38 @@ TEST(Hybrid, AreaLightsTracedOnlyWhereTheLightMayBeBlocked) {
   EXPECT_EQ(hybrid(prepared.scene(), remote, s.frame, mask).image.rgb, here.image.rgb);
 }
 
+// A rough reflector is traced where a mirror is (the mask rule's
+// min_reflectivity), each traced pixel byte for byte the full trace's, in
+// process, through glintd and for any tile size; the reflection's lobe is
+// drawn (its pixels unlike the mirror's).
+TEST(Hybrid, RoughReflectorsAreTracedAsTheFullTrace) {
+  nlohmann::json room = nlohmann::json::parse(std::ifstream(test::sourcePath("scenes/room.json")));
+  room["materials"]["mirror"]["roughness"] = 0.3;
+  room["materials"]["floor"]["roughness"] = 0.2;
+  const std::string path = test::scratchPath("rough-room.json").string();
+  std::ofstream(path) << room.dump();
+  const SceneSetup s = loadFile(path);
+  const PreparedScene prepared(s.loaded.scene, BvhSettings{});
+  ASSERT_TRUE(EffectPlan::derive(prepared.scene(), s.frame).glossyReflection);
+  ThreadPool pool(2);
+  LocalTileService local(prepared, pool);
+  const FrameImage full = renderFrame(local, s.frame, {}).image;
+  const FrameImage direct = directLight(local, s.frame);
+  const MaskSettings mask = prepared.scene().mask;
+  const HybridResult here = hybrid(prepared.scene(), local, s.frame, mask);
+  EXPECT_EQ(tracedUnlikeTheTrace(here, direct, full), 0);
+  EXPECT_GT(here.maskedPixels, 5000u);
+  EXPECT_EQ(hybrid(prepared.scene(), local, s.frame, mask, 7).image.rgb, here.image.rgb);
+  server::BackgroundServer glintd(quietLoopback(2));
+  DistributedTileService remote(resolveServers({glintd.address()}), s.loaded.bundle);
+  EXPECT_EQ(hybrid(prepared.scene(), remote, s.frame, mask).image.rgb, here.image.rgb);
+  const SceneSetup mirror = load("scenes/room.json");
+  const PreparedScene mirrorScene(mirror.loaded.scene, BvhSettings{});
+  LocalTileService mirrorService(mirrorScene, pool);
+  EXPECT_NE(renderFrame(mirrorService, mirror.frame, {}).image.rgb, full.rgb);
+  std::remove(path.c_str());
+}
+
 // A thin lens: OpenGL cannot blur, so every pixel whose point's circle of
 // confusion exceeds half a pixel is traced with the frame's settings (and
 // those a blur may reach), byte for byte the full trace's; a pinhole frame
@@ -548,9 +590,7 @@ TEST(Hybrid, OutOfFocusPixelsAreTraced) {
   ThreadPool pool(2);
   LocalTileService local(prepared, pool);
   const FrameImage full = renderFrame(local, s.frame, {}).image;
-  FrameSettings directFrame = s.frame;
-  directFrame.tracing.maxDepth = 1;
-  const FrameImage direct = renderFrame(local, directFrame, {}).image;
+  const FrameImage direct = directLight(local, s.frame);
   const MaskSettings mask = prepared.scene().mask;
   const HybridResult here = hybrid(prepared.scene(), local, s.frame, mask);
   const Camera camera(s.frame.camera, s.frame.width, s.frame.height);

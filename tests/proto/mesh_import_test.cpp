@@ -267,5 +267,29 @@ TEST(MeshImport, ImportedMaterialsGetAmbientAndAHighlightFromRoughness) {
   EXPECT_NEAR(m.color.r, 0.6038274f, 1e-6);
 }
 
+// glTF's metallic-roughness: metallic x (1 - roughness) reflects, blurred
+// by the roughness; the blob carries both to a server.
+TEST(MeshImport, MetallicRoughnessGivesARoughReflection) {
+  const fs::path box = kModels / "glTF2/BoxTextured-glTF";
+  if (!fs::exists(box)) GTEST_SKIP() << "assimp-testmodels is not installed";
+  const fs::path dir = fs::temp_directory_path() / "glint_metal_box";
+  fs::remove_all(dir);
+  fs::copy(box, dir, fs::copy_options::recursive);
+  nlohmann::json gltf = nlohmann::json::parse(std::ifstream(dir / "BoxTextured.gltf"));
+  gltf["materials"][0]["pbrMetallicRoughness"]["metallicFactor"] = 1.0;
+  gltf["materials"][0]["pbrMetallicRoughness"]["roughnessFactor"] = 0.4;
+  std::ofstream(dir / "BoxTextured.gltf") << gltf.dump();
+  const MeshModel metal = import(dir / "BoxTextured.gltf");
+  EXPECT_FLOAT_EQ(metal.materials.at(0).reflectivity, 0.6f);
+  EXPECT_FLOAT_EQ(metal.materials.at(0).roughness, 0.4f);
+  SceneBudget budget;
+  const MeshModel there = decodeMeshBlob(encodeMeshBlob(metal), "test", budget);
+  EXPECT_EQ(there.materials.at(0).roughness, metal.materials.at(0).roughness);
+  EXPECT_EQ(there.materials.at(0).reflectivity, metal.materials.at(0).reflectivity);
+  // A surface that does not reflect takes no roughness.
+  EXPECT_EQ(import(box / "BoxTextured.gltf").materials.at(0).roughness, 0.0f);
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace glint
