@@ -15,6 +15,7 @@
 #include <CLI/CLI.hpp>
 
 #include "client/accuracy_command.h"
+#include "client/accuracy_sweep.h"
 #include "client/compare_command.h"
 #include "client/info_command.h"
 #include "client/offscreen_context.h"
@@ -307,13 +308,14 @@ std::function<void()> declareInfo(CLI::App* info) {
   return [options] { runInfo(*options); };
 }
 
-constexpr const char* kAccuracyHelp =
-    "Show what accuracy costs in time: render a converged reference of the scene, then the scene with one "
-    "setting varied at a time (--vary KEY=V1,V2,...; KEY: samples, pattern, filter, max_depth, min_weight, "
-    "mask_threshold, shadow_map, mask_rule, perceptual_threshold; none: a default sweep of every key), and write each setting's time and error against "
-    "the "
-    "reference (accuracy.csv: FLIP's mean, 95th and 99th percentiles, RMSE, PSNR), its images, error images and FLIP "
-    "maps, a plot of error against time and report.md to DIR.";
+std::string accuracyHelp() {
+  return "Show what accuracy costs in time: render a converged reference of the scene, then the scene with one "
+         "setting varied at a time (--vary KEY=V1,V2,...; KEY: " +
+         enumWordsJoined<AccuracyKey>() +
+         "; none: a default sweep of every key the scene uses), and write each setting's time and error against "
+         "the reference (accuracy.csv: FLIP's mean, 95th and 99th percentiles, RMSE, PSNR), its images, error "
+         "images and FLIP maps, a plot of error against time and report.md to DIR.";
+}
 
 // Declares `glint accuracy`'s options; returns what runs once they are parsed.
 std::function<void()> declareAccuracy(CLI::App* accuracy) {
@@ -367,13 +369,13 @@ std::function<void()> declareCompare(CLI::App* compare) {
 // options. A new command is one more row.
 struct CommandSpec {
   const char* name;
-  const char* help;
+  std::string help;
   std::function<void()> (*declare)(CLI::App*);
 };
-constexpr CommandSpec kCommands[] = {
+const CommandSpec kCommands[] = {
     {"render", kRenderHelp, declareRender},
     {"view", kViewHelp, declareView},
-    {"accuracy", kAccuracyHelp, declareAccuracy},
+    {"accuracy", accuracyHelp(), declareAccuracy},
     {"info", kInfoHelp, declareInfo},
     {"compare", kCompareHelp, declareCompare},
 };

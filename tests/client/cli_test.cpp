@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "client/accuracy_sweep.h"
 #include "common/image/encoding.h"
 #include "common/image/image_write.h"
 #include "tests/support/glint_run.h"
@@ -71,6 +72,14 @@ TEST_F(Cli, HelpExplainsEveryOption) {
   for (const char* option : {"--output", "--mask", "--threads", "--samples", "--pattern", "--filter", "--max-depth",
                              "--min-weight", "--size", "--stats", "--seed", "--bvh"}) {
     EXPECT_NE(run.output.find(option), std::string::npos) << option;
+  }
+  // glint accuracy's help names every key --vary takes.
+  const std::string top = glint("--help").output;
+  const std::size_t from = top.find("KEY: "), to = top.find("; none", from);
+  ASSERT_NE(to, std::string::npos) << top;
+  const std::string keys = ", " + top.substr(from + 5, to - from - 5) + ",";
+  for (const std::string& key : glint::enumWordList<glint::AccuracyKey>()) {
+    EXPECT_NE(keys.find(", " + key + ","), std::string::npos) << "accuracy's help lacks " << key;
   }
 }
 
