@@ -47,6 +47,7 @@ namespace glint::gl {
   X(Uniform1iv) \
   X(Uniform1f) \
   X(Uniform1fv) \
+  X(Uniform2fv) \
   X(Uniform3fv) \
   X(Uniform4fv) \
   X(UniformMatrix3x2fv) \

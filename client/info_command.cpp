@@ -1,7 +1,11 @@
 #include "client/info_command.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
+
+#include <glm/trigonometric.hpp>
 
 #include "client/hybrid_frame.h"
 #include "client/offscreen_context.h"
@@ -25,6 +29,13 @@ std::string vec(const glm::vec3& v) {
 // "1 mesh", "2 meshes".
 std::string count(std::size_t n, const char* one, const char* many) {
   return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+// A cone's half-angle from its cosine: "30 deg".
+std::string formatDegrees(float cosine) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g deg", glm::degrees(std::acos(std::clamp(cosine, -1.0f, 1.0f))));
+  return text;
 }
 
 std::string percent(std::size_t part, std::size_t whole) {
@@ -56,6 +67,26 @@ void printBounds(const Scene& scene) {
   std::printf("  fit        eye %s, look_at %s (camera \"fit\": true, or --fit)\n", vec(fit.eye).c_str(),
               vec(fit.lookAt).c_str());
 }
+// One light, as the scene gives it.
+std::string describeLight(const Light& l) {
+  const std::string kind(enumWord(l.type));
+  const std::string light = "colour " + vec(l.color);
+  const std::string falloff = ", attenuation " + vec(l.attenuation);
+  switch (l.type) {
+    case LightType::kDirectional:
+      return kind + " along " + vec(l.direction) + ", " + light;
+    case LightType::kSpot:
+      return kind + " at " + vec(l.position) + " along " + vec(l.direction) + ", cones " +
+             formatDegrees(l.cosInner) + " and " + formatDegrees(l.cosOuter) + ", " + light + falloff;
+    case LightType::kArea:
+      return kind + " at " + vec(l.position) + ", edges " + vec(l.u) + " " + vec(l.v) + ", " +
+             std::to_string(l.samples) + " samples, " + light + falloff;
+    case LightType::kPoint:
+      break;
+  }
+  return kind + " at " + vec(l.position) + ", " + light + falloff;
+}
+
 
 void printContents(const Scene& scene) {
   const Geometry& g = scene.geometry;
@@ -80,13 +111,7 @@ void printContents(const Scene& scene) {
   std::printf("  textures   %zu (%s, %s)\n", scene.textures.size(), count(images, "image", "images").c_str(),
               count(checkers, "checker", "checkers").c_str());
   std::printf("  lights     %s\n", count(scene.lights.size(), "light", "lights").c_str());
-  for (const Light& l : scene.lights) {
-    const std::string area = l.type == LightType::kArea ? " edges " + vec(l.u) + " " + vec(l.v) + ", " +
-                                                              std::to_string(l.samples) + " samples,"
-                                                        : "";
-    std::printf("             %s at %s,%s colour %s, attenuation %s\n", std::string(enumWord(l.type)).c_str(),
-                vec(l.position).c_str(), area.c_str(), vec(l.color).c_str(), vec(l.attenuation).c_str());
-  }
+  for (const Light& l : scene.lights) std::printf("             %s\n", describeLight(l).c_str());
 }
 
 // The effect plan: what the tracer simulates, what it leaves out.

@@ -98,16 +98,17 @@ RasterScene::RasterScene(const Api& api, const Scene& scene)
       target_(api),
       shadowMaps_(api),
       penumbra_(scene, plan_) {
-  std::vector<bool> casts(scene.lights.size(), false);
+  std::vector<bool> casts(scene.lights.size(), false);  // the lights with shadow maps
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
-    if (scene.lights[i].type != LightType::kPoint) continue;
-    pointLights_.push_back(scene.lights[i]);
-    pointCasts_.push_back(plan_.lights[i]);
-    casts[i] = plan_.lights[i];
+    if (scene.lights[i].type == LightType::kArea) continue;
+    punctualLights_.push_back(scene.lights[i]);
+    punctualCasts_.push_back(plan_.lights[i]);
+    casts[i] = plan_.lights[i] && punctualAt(scene.lights[i].type);
   }
-  if (pointLights_.size() > kMaxLights) {
-    throw InputError("the OpenGL path draws at most " + std::to_string(kMaxLights) + " point lights; the scene has " +
-                     std::to_string(pointLights_.size()) + " (--mask all traces them all)");
+  if (punctualLights_.size() > kMaxLights) {
+    throw InputError("the OpenGL path draws at most " + std::to_string(kMaxLights) +
+                     " point, spot and directional lights; the scene has " + std::to_string(punctualLights_.size()) +
+                     " (--mask all traces them all)");
   }
   for (std::uint32_t i = 0; i < scene.geometry.primitiveCount(); ++i) bounds_.expand(scene.geometry.primitiveBounds(i));
   uploadTextures();
@@ -328,16 +329,24 @@ void RasterScene::setFrameUniforms(unsigned program, const FrameSettings& frame,
   setLightUniforms(program, frame);
   gl_.Uniform1i(at("uImage"), kImageUnit);
   gl_.Uniform1i(at("uEmissionImage"), kEmissionUnit);
-  shadowMaps_.setUniforms(program, kShadowMapUnit, pointLights_.size(), shadows_);
+  shadowMaps_.setUniforms(program, kShadowMapUnit, punctualLights_.size(), shadows_);
 }
 
 void RasterScene::setLightUniforms(unsigned program, const FrameSettings& frame) {
   const auto at = [&](const char* name) { return gl_.GetUniformLocation(program, name); };
-  std::vector<glm::vec3> positions, colors, attenuations;
-  for (const Light& l : pointLights_) {
+  std::vector<glm::vec3> positions, colors, attenuations, directions;
+  std::vector<glm::vec2> cones;
+  std::vector<int> kinds, traced;
+  for (std::size_t i = 0; i < punctualLights_.size(); ++i) {
+    const Light& l = punctualLights_[i];
     positions.push_back(l.position);
     colors.push_back(l.color);
     attenuations.push_back(l.attenuation);
+    directions.push_back(l.direction);
+    cones.emplace_back(l.cosInner, l.cosOuter);
+    kinds.push_back(static_cast<int>(l.type));
+    // No map of a directional light: its shadows are the tracer's.
+    traced.push_back(shadows_ && punctualCasts_[i] && l.type == LightType::kDirectional ? 1 : 0);
   }
   gl_.Uniform1i(at("uLightCount"), static_cast<int>(positions.size()));
   if (!positions.empty()) {
@@ -345,6 +354,10 @@ void RasterScene::setLightUniforms(unsigned program, const FrameSettings& frame)
     gl_.Uniform3fv(at("uLightPosition"), n, glm::value_ptr(positions[0]));
     gl_.Uniform3fv(at("uLightColor"), n, glm::value_ptr(colors[0]));
     gl_.Uniform3fv(at("uLightAttenuation"), n, glm::value_ptr(attenuations[0]));
+    gl_.Uniform3fv(at("uLightDirection"), n, glm::value_ptr(directions[0]));
+    gl_.Uniform2fv(at("uLightCone"), n, glm::value_ptr(cones[0]));
+    gl_.Uniform1iv(at("uLightKind"), n, kinds.data());
+    gl_.Uniform1iv(at("uShadowTraced"), n, traced.data());
   }
   // Each area light as the points its unshadowed light is the sum of.
   std::vector<glm::vec3> normals;
@@ -431,7 +444,7 @@ void RasterScene::setMaterialUniforms(unsigned program, const Material& m) {
 bool RasterScene::prepareShadows(const MaskSettings& mask) {
   if (!rasterShadows(scene_, plan_, mask)) return false;
   if (shadowMaps_.size() != mask.shadowMap) {
-    shadowMaps_.build(pointLights_, pointCasts_, bounds_, mask.shadowMap,
+    shadowMaps_.build(punctualLights_, punctualCasts_, bounds_, mask.shadowMap,
                       [this](const glm::mat4& vp, const glm::vec3& eye, float far) { drawDepth({vp, eye, far}); });
   }
   return true;

@@ -150,8 +150,10 @@ class RasterScene {
   Bounds3 bounds_;  // every primitive's, for the far plane
   RasterTarget target_;
   ShadowMaps shadowMaps_;
-  std::vector<Light> pointLights_;  // the scene's point lights, in order: the shader's lights and maps
-  std::vector<bool> pointCasts_;    // per point light: it casts shadows (the plan's lights)
+  // The scene's point, spot and directional lights, in order: the shader's
+  // lights and, for point and spot lights, their maps.
+  std::vector<Light> punctualLights_;
+  std::vector<bool> punctualCasts_;  // per light: it casts shadows (the plan's lights)
   PenumbraProof penumbra_;
 };
 

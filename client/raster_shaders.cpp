@@ -1,6 +1,10 @@
 #include "client/raster_shaders.h"
 
+#include <cstdio>
 #include <string>
+
+#include "common/render/shading.h"
+#include "common/scene/light.h"
 
 namespace glint::gl {
 
@@ -31,10 +35,27 @@ std::string ShaderVariant::defines() const {
   return d;
 }
 
+namespace {
+
+// A float as GLSL reads it back to the same value.
+std::string floatLiteral(float v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9e", static_cast<double>(v));
+  return text;
+}
+
+}  // namespace
+
 std::string fragmentPrelude(const ShaderVariant& variant) {
-  return "#version 330\n#define MAX_LIGHTS " + std::to_string(kMaxLights) + "\n#define MAX_AREA_POINTS " +
-         std::to_string(kMaxAreaPoints) + "\n#define SHADOW_RADIUS " +
-         std::to_string(kShadowRadius) + "\n" + variant.defines();
+  const auto define = [](const char* name, const std::string& value) {
+    return "#define " + std::string(name) + " " + value + "\n";
+  };
+  return "#version 330\n" + define("MAX_LIGHTS", std::to_string(kMaxLights)) +
+         define("MAX_AREA_POINTS", std::to_string(kMaxAreaPoints)) +
+         define("SHADOW_RADIUS", std::to_string(kShadowRadius)) +
+         define("LIGHT_SPOT", std::to_string(static_cast<int>(LightType::kSpot))) +
+         define("LIGHT_DIRECTIONAL", std::to_string(static_cast<int>(LightType::kDirectional))) +
+         define("HARD_SPOT_EDGE", floatLiteral(kHardSpotEdge)) + variant.defines();
 }
 
 // Shared by both fragment shaders, after the prelude: the material's and the
@@ -49,6 +70,10 @@ uniform int uLightCount;
 uniform vec3 uLightPosition[MAX_LIGHTS];
 uniform vec3 uLightColor[MAX_LIGHTS];
 uniform vec3 uLightAttenuation[MAX_LIGHTS];
+uniform int uLightKind[MAX_LIGHTS];          // LightType: point, spot or directional
+uniform vec3 uLightDirection[MAX_LIGHTS];    // unit: a spot's axis, a directional light's travel
+uniform vec2 uLightCone[MAX_LIGHTS];         // a spot's cosInner, cosOuter
+uniform bool uShadowTraced[MAX_LIGHTS];      // a pixel the light reaches is traced for its shadow
 uniform int uAreaCount;                      // area lights' points (AreaLightPoints' centres)
 uniform vec3 uAreaPosition[MAX_AREA_POINTS];
 uniform vec3 uAreaColor[MAX_AREA_POINTS];
@@ -245,6 +270,12 @@ void addPhong(inout vec3 result, vec3 lightI, vec3 c, vec3 ns, vec3 l, vec3 toVi
 #endif
 }
 
+// A spot light's share towards l (common/render/shading.h's spotFactor).
+float spotFactor(vec3 axis, vec2 cone, vec3 l) {
+  float t = clamp((-dot(axis, l) - cone.y) / max(cone.x - cone.y, HARD_SPOT_EDGE), 0.0, 1.0);
+  return t * t;
+}
+
 vec3 shade(vec3 p, vec3 ng, vec3 ns, vec2 uv) {
   vec3 c = surfaceColour(uv);
   vec3 result = c * uTerms.x;
@@ -258,11 +289,20 @@ vec3 shade(vec3 p, vec3 ng, vec3 ns, vec2 uv) {
   ns = len > 0.0 ? ns / len : ng;
   if (dot(ns, ng) < 0.0) ns = -ns;
   for (int i = 0; i < uLightCount; ++i) {
+    if (uLightKind[i] == LIGHT_DIRECTIONAL) {
+      vec3 l = -uLightDirection[i];
+      if (dot(l, ng) <= 0.0 || dot(l, ns) <= 0.0) continue;
+      if (uShadowTraced[i]) gShadowUndecided = true;
+      addPhong(result, uLightColor[i], c, ns, l, toViewer);
+      continue;
+    }
     vec3 toLight = uLightPosition[i] - p;
     float d = length(toLight);
     if (!(d > 0.0)) continue;
     vec3 l = toLight / d;
     if (dot(l, ng) <= 0.0 || dot(l, ns) <= 0.0) continue;
+    float share = uLightKind[i] == LIGHT_SPOT ? spotFactor(uLightDirection[i], uLightCone[i], l) : 1.0;
+    if (share == 0.0) continue;
 #ifdef SHADOWS
     float visible = shadowVisibility(i, p, ng);
     if (visible == 0.0) continue;
@@ -270,7 +310,8 @@ vec3 shade(vec3 p, vec3 ng, vec3 ns, vec2 uv) {
     float visible = 1.0;
 #endif
     vec3 a = uLightAttenuation[i];
-    addPhong(result, visible * uLightColor[i] / (a.x + a.y * d + a.z * d * d), c, ns, l, toViewer);
+    vec3 lightI = visible * uLightColor[i] / (a.x + a.y * d + a.z * d * d);
+    addPhong(result, uLightKind[i] == LIGHT_SPOT ? lightI * share : lightI, c, ns, l, toViewer);
   }
   // Area lights unshadowed: where they may be blocked the pixel is traced
   // (client/penumbra_proof.h).

@@ -61,7 +61,7 @@ void ShadowMaps::build(const std::vector<Light>& lights, const std::vector<bool>
   far_.assign(lights.size(), 1.0f);
   int layers = 0;
   for (std::size_t i = 0; i < lights.size(); ++i) {
-    if (!casts[i] || bounds.empty()) continue;
+    if (!casts[i] || !punctualAt(lights[i].type) || bounds.empty()) continue;
     firstLayer_[i] = layers;
     far_[i] = farPlane(bounds, lights[i].position);
     layers += 6;

@@ -12,7 +12,7 @@
 
 namespace glint::gl {
 
-// Shadow maps of a scene's point lights for the raster pass: a cube of six
+// Shadow maps of a scene's point and spot lights for the raster pass: a cube of six
 // square faces per light, all in one depth texture array (light k's faces are
 // layers 6k .. 6k+5). Face f looks from the light along kFaces[f].m: a world
 // point v (relative to the light) with m . v > 0 falls on texel
@@ -32,7 +32,8 @@ class ShadowMaps {
   // Draws every object's depth (distance from `eye` / `far`) with the given
   // view-projection into the bound framebuffer.
   using DepthPass = std::function<void(const glm::mat4& viewProjection, const glm::vec3& eye, float far)>;
-  // Draws the maps, `size` texels a face edge, of the lights `casts` flags,
+  // Draws the maps, `size` texels a face edge, of the point and spot lights
+  // `casts` flags (a spot's map is a point light's: its cone only darkens),
   // for geometry within `bounds`. The default framebuffer is bound afterwards.
   void build(const std::vector<Light>& lights, const std::vector<bool>& casts, const Bounds3& bounds, int size,
              const DepthPass& drawDepth);

@@ -99,11 +99,11 @@ nlohmann::json toJson(const EffectPlan& plan) {
 
 bool rasterShadows(const Scene& scene, const EffectPlan& plan, const MaskSettings& mask) {
   if (!plan.shadows || mask.shadowMap <= 0 || mask.rule == MaskRule::kAll) return false;
-  bool pointLight = false;  // the maps are a point light's (area lights: client/penumbra_proof.h)
+  bool punctual = false;  // area lights: client/penumbra_proof.h
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
-    pointLight = pointLight || (plan.lights[i] && scene.lights[i].type == LightType::kPoint);
+    punctual = punctual || (plan.lights[i] && scene.lights[i].type != LightType::kArea);
   }
-  if (!pointLight) return false;
+  if (!punctual) return false;
   for (std::size_t i = 0; i < scene.materials.size(); ++i) {
     if (plan.materials[i].direct && !materialMasked(scene.materials[i], mask)) return true;
   }

@@ -1,5 +1,7 @@
 #include "common/render/shading.h"
 
+#include <algorithm>
+
 #include <glm/geometric.hpp>
 
 #include "common/math/power.h"
@@ -27,6 +29,12 @@ glm::vec3 phongSpecular(const glm::vec3& lightI, float rS, float h, const glm::v
 
 glm::vec3 attenuate(const glm::vec3& color, const glm::vec3& attenuation, float d) {
   return color / (attenuation.x + attenuation.y * d + attenuation.z * d * d);
+}
+
+float spotFactor(const glm::vec3& axis, float cosInner, float cosOuter, const glm::vec3& l) {
+  const float c = -glm::dot(axis, l);
+  const float t = std::clamp((c - cosOuter) / std::max(cosInner - cosOuter, kHardSpotEdge), 0.0f, 1.0f);
+  return t * t;
 }
 
 }  // namespace glint

@@ -20,5 +20,13 @@ glm::vec3 phongSpecular(const glm::vec3& lightI, float rS, float h, const glm::v
                         const glm::vec3& l, const glm::vec3& v);
 // I_L = color / (c + l d + q d^2) for attenuation (c, l, q) at distance d.
 glm::vec3 attenuate(const glm::vec3& color, const glm::vec3& attenuation, float d);
+// A spot light's share at unit direction l from the surface towards the
+// light (KHR_lights_punctual's falloff): with c the cosine of the angle
+// between the light's axis and -l, t = (c - cosOuter) / (cosInner -
+// cosOuter) clamped to [0, 1], the share is t^2 (1 inside the inner cone, 0
+// outside the outer one; equal cones: a hard edge, the ramp kHardSpotEdge
+// wide in cosine).
+constexpr float kHardSpotEdge = 1e-4f;
+float spotFactor(const glm::vec3& axis, float cosInner, float cosOuter, const glm::vec3& l);
 
 }  // namespace glint

@@ -56,33 +56,50 @@ std::optional<Tracer::Direction> Tracer::towards(const ShadingPoint& at, const g
   const glm::vec3 toLight = position - at.s.p;
   const float distance = glm::length(toLight);
   if (!(distance > 0.0f)) return std::nullopt;
-  const glm::vec3 l = toLight / distance;
-  // A light behind the geometric surface or the shading normal adds nothing.
-  if (glm::dot(l, at.s.ng) <= 0.0f || glm::dot(l, at.s.ns) <= 0.0f) return std::nullopt;
-  return Direction{l, distance};
+  return facing(at, Direction{toLight / distance, distance});
 }
 
-void Tracer::addPhong(const ShadingPoint& at, const Surface& f, const Direction& d, const glm::vec3& color,
-                      const glm::vec3& attenuation, glm::vec3& result) const {
-  const glm::vec3 lightI = lightIntensity(color, attenuation, d.distance);
+std::optional<Tracer::Direction> Tracer::facing(const ShadingPoint& at, const Direction& d) const {
+  // A light behind the geometric surface or the shading normal adds nothing.
+  if (glm::dot(d.l, at.s.ng) <= 0.0f || glm::dot(d.l, at.s.ns) <= 0.0f) return std::nullopt;
+  return d;
+}
+
+void Tracer::addPhong(const ShadingPoint& at, const Surface& f, const Direction& d, const glm::vec3& lightI,
+                      glm::vec3& result) const {
   result += phongDiffuse(lightI, f.color, f.m.diffuse, at.s.ns, d.l);
   if (f.e.specular) result += phongSpecular(lightI, f.m.specular, f.m.shininess, at.s.ns, d.l, at.toViewer);
 }
 
-void Tracer::addPointLight(const ShadingPoint& at, const Surface& f, int light, Path& path, glm::vec3& result) const {
+void Tracer::addPunctualLight(const ShadingPoint& at, const Surface& f, int light, Path& path,
+                              glm::vec3& result) const {
   const Light& l = scene_.lights[static_cast<std::size_t>(light)];
-  const std::optional<Direction> d = towards(at, l.position);
+  const bool directional = l.type == LightType::kDirectional;
+  const std::optional<Direction> d =
+      directional ? facing(at, Direction{-l.direction, kInfinity}) : towards(at, l.position);
   if (!d) return;
-  if (plan_.shadows) {
-    ++path.stats.shadow;
+  glm::vec3 lightI = directional ? l.color : lightIntensity(l.color, l.attenuation, d->distance);
+  if (l.type == LightType::kSpot) {
+    const float share = spotFactor(l.direction, l.cosInner, l.cosOuter, d->l);
+    if (share == 0.0f) return;
+    lightI *= share;
+  }
+  if (plan_.shadows && blocked(at, l, path)) return;
+  addPhong(at, f, *d, lightI, result);
+}
+
+bool Tracer::blocked(const ShadingPoint& at, const Light& l, Path& path) const {
+  ++path.stats.shadow;
+  bool hit = false;
+  if (l.type == LightType::kDirectional) {
+    hit = bvh_.occluded(Ray(at.outside, -l.direction), kInfinity);
+  } else {
     const glm::vec3 fromOrigin = l.position - at.outside;
     const float shadowDistance = glm::length(fromOrigin);
-    if (bvh_.occluded(Ray(at.outside, fromOrigin / shadowDistance), shadowDistance)) {
-      ++path.stats.shadowBlocked;
-      return;
-    }
+    hit = bvh_.occluded(Ray(at.outside, fromOrigin / shadowDistance), shadowDistance);
   }
-  addPhong(at, f, *d, l.color, l.attenuation, result);
+  if (hit) ++path.stats.shadowBlocked;
+  return hit;
 }
 
 void Tracer::addAreaLight(const ShadingPoint& at, const Surface& f, int light, Path& path, glm::vec3& result) const {
@@ -91,7 +108,7 @@ void Tracer::addAreaLight(const ShadingPoint& at, const Surface& f, int light, P
   glm::vec3 lit{0.0f};
   for (const glm::vec3& c : a.centres) {
     const std::optional<Direction> d = a.lights(c, at.s.p) ? towards(at, c) : std::nullopt;
-    if (d) addPhong(at, f, *d, a.color, l.attenuation, lit);
+    if (d) addPhong(at, f, *d, lightIntensity(a.color, l.attenuation, d->distance), lit);
   }
   if (lit == glm::vec3(0.0f)) return;
   result += plan_.shadows ? lit * areaVisibility(at, light, path) : lit;
@@ -144,7 +161,7 @@ glm::vec3 Tracer::shade(const ShadingPoint& at, const Material& m, const Materia
     if (areas_[static_cast<std::size_t>(i)]) {
       addAreaLight(at, f, i, path, result);
     } else {
-      addPointLight(at, f, i, path, result);
+      addPunctualLight(at, f, i, path, result);
     }
   }
   return result;

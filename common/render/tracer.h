@@ -64,10 +64,16 @@ class Tracer {
     float distance;
   };
   std::optional<Direction> towards(const ShadingPoint& at, const glm::vec3& position) const;
-  // Adds the diffuse and specular light a point light of `color` gives.
-  void addPhong(const ShadingPoint& at, const Surface& f, const Direction& d, const glm::vec3& color,
-                const glm::vec3& attenuation, glm::vec3& result) const;
-  void addPointLight(const ShadingPoint& at, const Surface& f, int light, Path& path, glm::vec3& result) const;
+  // d, unless the light comes from behind the surface.
+  std::optional<Direction> facing(const ShadingPoint& at, const Direction& d) const;
+  // Adds the diffuse and specular light of intensity lightI from d.
+  void addPhong(const ShadingPoint& at, const Surface& f, const Direction& d, const glm::vec3& lightI,
+                glm::vec3& result) const;
+  // A point, spot or directional light: one shadow ray.
+  void addPunctualLight(const ShadingPoint& at, const Surface& f, int light, Path& path, glm::vec3& result) const;
+  // Whether the shadow ray from the point to the light (to infinity for a
+  // directional light) is blocked.
+  bool blocked(const ShadingPoint& at, const Light& l, Path& path) const;
   void addAreaLight(const ShadingPoint& at, const Surface& f, int light, Path& path, glm::vec3& result) const;
   // The share of an area light's unshadowed light that reaches the point.
   float areaVisibility(const ShadingPoint& at, int light, Path& path) const;

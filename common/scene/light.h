@@ -10,12 +10,15 @@
 
 namespace glint {
 
-enum class LightType { kPoint, kArea };
+enum class LightType { kPoint, kArea, kSpot, kDirectional };
 
 template <>
 struct EnumWords<LightType> {
-  static constexpr std::array<std::pair<LightType, std::string_view>, 2> kWords{
-      {{LightType::kPoint, "point"}, {LightType::kArea, "area"}}};
+  static constexpr std::array<std::pair<LightType, std::string_view>, 4> kWords{
+      {{LightType::kPoint, "point"},
+       {LightType::kArea, "area"},
+       {LightType::kSpot, "spot"},
+       {LightType::kDirectional, "directional"}}};
 };
 
 // A light of the scene. Intensity at distance d: color / (c + l d + q d^2).
@@ -23,6 +26,11 @@ struct EnumWords<LightType> {
 //  - area: a parallelogram centred at `position` with full edge vectors `u`
 //    and `v`, lighting the side u x v points to, as `samples` point lights of
 //    color / samples each (common/render/area_light.h says where).
+//  - spot: a point light whose light is scaled by spotFactor()
+//    (common/render/shading.h) of the angle off its axis `direction`: 1
+//    inside the inner cone, 0 outside the outer one.
+//  - directional: parallel light travelling along `direction`, the same
+//    `color` everywhere (no position, no attenuation).
 struct Light {
   LightType type = LightType::kPoint;
   glm::vec3 position{0.0f};
@@ -31,6 +39,13 @@ struct Light {
   glm::vec3 u{0.0f};
   glm::vec3 v{0.0f};
   int samples = 16;
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // unit: a spot's axis, a directional light's travel
+  float cosInner = 1.0f;                   // a spot's cones: cosines of their half-angles
+  float cosOuter = 0.70710678f;
 };
+
+// Whether the light is at a point the tracer sends its shadow ray to
+// (point and spot lights).
+constexpr bool punctualAt(LightType t) { return t == LightType::kPoint || t == LightType::kSpot; }
 
 }  // namespace glint

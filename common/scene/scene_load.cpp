@@ -4,6 +4,7 @@
 #include <map>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 #include <glm/vector_relational.hpp>
 
 #include "common/base/error.h"
@@ -274,13 +275,24 @@ class SceneLoader {
       const JsonReader l = r.at(i);
       Light light;
       light.type = choice<LightType>(l["type"]);
-      if (light.type == LightType::kArea) {
-        l.allowKeys({"type", "position", "u", "v", "color", "attenuation", "samples"});
-        readArea(l, light);
-      } else {
-        l.allowKeys({"type", "position", "color", "attenuation"});
+      switch (light.type) {
+        case LightType::kPoint:
+          l.allowKeys({"type", "position", "color", "attenuation"});
+          break;
+        case LightType::kArea:
+          l.allowKeys({"type", "position", "u", "v", "color", "attenuation", "samples"});
+          readArea(l, light);
+          break;
+        case LightType::kSpot:
+          l.allowKeys({"type", "position", "direction", "inner_angle", "outer_angle", "color", "attenuation"});
+          readSpot(l, light);
+          break;
+        case LightType::kDirectional:
+          l.allowKeys({"type", "direction", "color"});
+          light.direction = unitDirection(l["direction"]);
+          break;
       }
-      light.position = l["position"].vec3();
+      if (light.type != LightType::kDirectional) light.position = l["position"].vec3();
       light.color = l.vec3("color", glm::vec3(1.0f));
       if (auto a = l.find("attenuation")) {
         light.attenuation = a->vec3();
@@ -301,6 +313,23 @@ class SceneLoader {
     const float area2 = glm::dot(normal, normal);  // the squared area
     if (!(area2 > 0.0f) || !std::isfinite(area2)) l["v"].fail("must not be parallel to u (the light needs an area)");
     if (auto n = l.find("samples")) light.samples = n->integer(1, FrameLimits::kMaxLightSamples);
+  }
+
+  // A spot light's axis and cones (half-angles in degrees, glTF's defaults).
+  static void readSpot(const JsonReader& l, Light& light) {
+    light.direction = unitDirection(l["direction"]);
+    const float inner = l.number("inner_angle", 0.0f, 0.0f, 90.0f);
+    const float outer = l.number("outer_angle", 45.0f, 0.0f, 90.0f, true);
+    if (inner > outer) l["inner_angle"].fail("must not exceed outer_angle");
+    light.cosInner = std::cos(glm::radians(inner));
+    light.cosOuter = std::cos(glm::radians(outer));
+  }
+
+  static glm::vec3 unitDirection(const JsonReader& d) {
+    const glm::vec3 v = d.vec3();
+    const float length = glm::length(v);
+    if (!(length > 0.0f) || !std::isfinite(length)) d.fail("must be a direction, not zero");
+    return v / length;
   }
 
   std::uint32_t material(const JsonReader& o) {

@@ -215,6 +215,7 @@ TEST(Hybrid, RasterMatchesTheTracersDirectLight) {
   expectRasterMatchesDirectTrace("scenes/glass.json");
   expectRasterMatchesDirectTrace("scenes/bunny.json");
   expectRasterMatchesDirectTrace("scenes/hard/poster.json");  // 2 mm in front of a wall 60 units away
+  expectRasterMatchesDirectTrace("scenes/lights.json");       // a spot light's cones, a directional light
 }
 
 int channelDifference(const FrameImage& a, const FrameImage& b, std::size_t pixel) {
@@ -544,6 +545,48 @@ TEST(Hybrid, AreaLightsTracedOnlyWhereTheLightMayBeBlocked) {
   server::BackgroundServer glintd(quietLoopback(2));
   DistributedTileService remote(resolveServers({glintd.address()}), s.loaded.bundle);
   EXPECT_EQ(hybrid(prepared.scene(), remote, s.frame, mask).image.rgb, here.image.rgb);
+}
+
+// Spot and directional lights: the spot's shadows come from its (point
+// light's) shadow map, a directional light's are traced wherever it reaches
+// a surface OpenGL shades (no orthographic map); at the pixel centres the
+// frame is the full trace's within 2/255 (the maps' shadows), the traced
+// pixels are the full trace's to the byte, here and through a glintd.
+TEST(Hybrid, SpotShadowsFromItsMapDirectionalShadowsTraced) {
+  const SceneSetup s = load("scenes/lights.json");
+  const PreparedScene prepared(s.loaded.scene, BvhSettings{});
+  ThreadPool pool(2);
+  LocalTileService local(prepared, pool);
+  FrameSettings centre = s.frame;
+  centre.sampling = {SamplePattern::kRegular, 1, FilterType::kBox, 0};
+  const FrameImage full = renderFrame(local, centre, {}).image;
+  const FrameImage direct = directLight(local, centre);
+  MaskSettings mask = prepared.scene().mask;
+  const HybridResult here = hybrid(prepared.scene(), local, centre, mask);
+  EXPECT_EQ(tracedUnlikeTheTrace(here, direct, full), 0);
+  const std::vector<bool> covered = fullyCovered(prepared, centre);
+  int worst = 0, compared = 0;
+  for (std::size_t i = 0; i < here.mask.size(); ++i) {
+    if (!covered[i]) continue;
+    worst = std::max(worst, channelDifference(here.image, full, i));
+    ++compared;
+  }
+  EXPECT_LE(worst, 2);
+  EXPECT_GT(compared, 10000);
+  EXPECT_GT(here.shadowEdgePixels, here.mask.size() / 3);  // the directional light's pixels
+  server::BackgroundServer glintd(quietLoopback(2));
+  DistributedTileService remote(resolveServers({glintd.address()}), s.loaded.bundle);
+  EXPECT_EQ(hybrid(prepared.scene(), remote, centre, mask).image.rgb, here.image.rgb);
+  // Without the directional light, the spot's map decides: few pixels traced
+  // for shadows.
+  Scene spotOnly = prepared.scene();
+  spotOnly.lights.pop_back();
+  const PreparedScene spotScene(spotOnly, BvhSettings{});
+  LocalTileService spotService(spotScene, pool);
+  const HybridResult spot = hybrid(spotScene.scene(), spotService, centre, mask);
+  std::printf("lights.json: %zu pixels traced for shadows, %zu with the spot light alone\n", here.shadowEdgePixels,
+              spot.shadowEdgePixels);
+  EXPECT_LT(spot.shadowEdgePixels, here.mask.size() / 20);
 }
 
 // A rough reflector is traced where a mirror is (the mask rule's

@@ -201,7 +201,27 @@ TEST(SceneLoad, BadScenesNameThePlace) {
       {"negative aperture", [](json& j) { j["camera"]["aperture"] = -0.1; }, "camera.aperture"},
       {"zero focus", [](json& j) { j["camera"]["focus_distance"] = 0; }, "camera.focus_distance"},
       {"light samples", [](json& j) { j["sampling"]["light_samples"] = 5000; }, "sampling.light_samples"},
-      {"light type", [](json& j) { j["lights"][0]["type"] = "spot"; }, "lights[0].type: 'spot' is not one of: point"},
+      {"light type", [](json& j) { j["lights"][0]["type"] = "sun"; },
+       "lights[0].type: 'sun' is not one of: point, area, spot, directional"},
+      {"spot cones", [](json& j) {
+         j["lights"][0] = {{"type", "spot"}, {"position", {0, 3, 0}}, {"direction", {0, -1, 0}},
+                           {"inner_angle", 40}, {"outer_angle", 30}};
+       },
+       "lights[0].inner_angle: must not exceed outer_angle"},
+      {"spot outer angle", [](json& j) {
+         j["lights"][0] = {{"type", "spot"}, {"position", {0, 3, 0}}, {"direction", {0, -1, 0}}, {"outer_angle", 95}};
+       },
+       "lights[0].outer_angle"},
+      {"directional without direction", [](json& j) { j["lights"][0] = {{"type", "directional"}, {"direction", {0, 0, 0}}}; },
+       "lights[0].direction: must be a direction, not zero"},
+      {"directional with a position", [](json& j) {
+         j["lights"][0] = {{"type", "directional"}, {"direction", {0, -1, 0}}, {"position", {0, 3, 0}}};
+       },
+       "lights[0]"},
+      {"directional attenuation", [](json& j) {
+         j["lights"][0] = {{"type", "directional"}, {"direction", {0, -1, 0}}, {"attenuation", {1, 0, 1}}};
+       },
+       "lights[0]"},
       {"object type", [](json& j) { j["objects"][0]["type"] = "cube"; }, "objects[0].type: 'cube' is not one of"},
       {"regular 3", [](json& j) { j["sampling"] = {{"samples", 3}}; }, "sampling.samples: the regular pattern"},
       {"filter", [](json& j) { j["sampling"] = {{"filter", "lanczos"}}; }, "sampling.filter: 'lanczos'"},
