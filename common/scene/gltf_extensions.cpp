@@ -9,8 +9,9 @@ namespace {
 // Extensions whose meshes Assimp cannot decode: an error, not a warning.
 constexpr std::string_view kUnreadable[] = {"KHR_draco_mesh_compression", "EXT_meshopt_compression"};
 
-// Extensions Glint applies (common/scene/gltf_texture_transform.h).
-constexpr std::string_view kApplied[] = {"KHR_texture_transform"};
+// Extensions Glint applies (common/scene/gltf_texture_transform.h, and
+// gltf_lights.h where the scene's mesh asks for the file's lights).
+constexpr std::string_view kApplied[] = {"KHR_texture_transform", "KHR_lights_punctual"};
 
 template <std::size_t N>
 bool listed(const std::string& name, const std::string_view (&list)[N]) {

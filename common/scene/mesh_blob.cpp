@@ -1,7 +1,11 @@
 #include "common/scene/mesh_blob.h"
 
+#include <cmath>
 #include <cstring>
 #include <type_traits>
+
+#include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
 
 #include "common/base/error.h"
 
@@ -105,6 +109,38 @@ Material readMaterial(Reader& r, std::size_t textures) {
   return m;
 }
 
+void writeLight(Writer& w, const Light& l) {
+  w.put(static_cast<std::uint8_t>(l.type));
+  for (const glm::vec3& v : {l.position, l.direction, l.color, l.attenuation}) w.put(v);
+  w.put(l.cosInner);
+  w.put(l.cosOuter);
+}
+
+// A light as the glTF reader makes them: point, spot or directional, finite,
+// a unit direction, cones in order and an attenuation that is not zero.
+Light readLight(Reader& r) {
+  Light l;
+  const auto type = r.get<std::uint8_t>();
+  l.type = static_cast<LightType>(type);
+  if (type > static_cast<std::uint8_t>(LightType::kDirectional) || l.type == LightType::kArea) {
+    r.fail("has a light of an unknown type");
+  }
+  for (glm::vec3* v : {&l.position, &l.direction, &l.color, &l.attenuation}) *v = r.get<glm::vec3>();
+  l.cosInner = r.get<float>();
+  l.cosOuter = r.get<float>();
+  bool finite = std::isfinite(l.cosInner) && std::isfinite(l.cosOuter);
+  for (const glm::vec3& v : {l.position, l.color, l.attenuation}) {
+    for (int k = 0; k < 3; ++k) finite = finite && std::isfinite(v[k]);
+  }
+  const float length = glm::length(l.direction);
+  if (!finite || !(std::abs(length - 1.0f) < 1e-3f)) r.fail("has a light that is not finite or not aimed");
+  if (!(l.cosOuter >= 0.0f && l.cosOuter <= l.cosInner && l.cosInner <= 1.0f)) r.fail("has a spot's cones out of order");
+  if (glm::any(glm::lessThan(l.attenuation, glm::vec3(0.0f))) || l.attenuation == glm::vec3(0.0f)) {
+    r.fail("has a light's attenuation below zero or zero");
+  }
+  return l;
+}
+
 Texture readTexture(Reader& r, const std::string& place, SceneBudget& budget) {
   const auto width = r.get<std::uint32_t>(), height = r.get<std::uint32_t>();
   const auto filter = r.get<std::uint8_t>();
@@ -187,6 +223,8 @@ std::string encodeMeshBlob(const MeshModel& model) {
     w.put(model.camera->up);
     w.put(model.camera->fovY);
   }
+  w.put(static_cast<std::uint32_t>(model.lights.size()));
+  for (const Light& l : model.lights) writeLight(w, l);
   return w.take();
 }
 
@@ -215,6 +253,9 @@ MeshModel decodeMeshBlob(std::string_view bytes, const std::string& place, Scene
     camera.fovY = r.get<float>();
     model.camera = camera;
   }
+  const auto lights = r.get<std::uint32_t>();
+  if (lights > r.remaining()) r.fail("announces more lights than it holds");
+  for (std::uint32_t i = 0; i < lights; ++i) model.lights.push_back(readLight(r));
   if (r.remaining() != 0) r.fail("has bytes after its last mesh");
   return model;
 }

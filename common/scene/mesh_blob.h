@@ -22,6 +22,8 @@ namespace glint {
 //                        u8 has colours, f32 positions[3v], normals[3v], uvs[2v],
 //                        colors[3v], u32 indices, u32[indices]
 //   u8 has camera, then f32 eye[3] look_at[3] up[3] fov_y
+//   u32 lights,    each: u8 LightType (point, spot, directional), f32 position[3]
+//                        direction[3] color[3] attenuation[3] cos_inner cos_outer
 std::string encodeMeshBlob(const MeshModel& model);
 
 // Reads a blob, checking every count against the bytes that are there before

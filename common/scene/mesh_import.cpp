@@ -6,6 +6,7 @@
 #include "common/scene/assimp_import.h"
 #include "common/base/error.h"
 #include "common/scene/gltf_camera.h"
+#include "common/scene/gltf_lights.h"
 #include "common/scene/gltf_extensions.h"
 #include "common/scene/mesh_blob.h"
 #include "common/scene/obj_load.h"
@@ -34,7 +35,10 @@ MeshModel importMeshFile(FileSource& files, const std::string& path, const std::
       model.warnings.push_back("'" + path + "' uses glTF extensions Glint does not apply (" + extensions +
                                "): rendered without them");
     }
-    if (gltf) model.camera = gltfCamera(bytes, place + ": '" + path + "'");
+    if (gltf) {
+      model.camera = gltfCamera(bytes, place + ": '" + path + "'");
+      model.lights = gltfLights(bytes, place + ": '" + path + "'");
+    }
     files.keepImported(path, encodeMeshBlob(model));  // always with its materials, whoever asks next
   }
   if (!withMaterials) {

@@ -6,6 +6,7 @@
 
 #include "common/scene/camera.h"
 #include "common/geometry/geometry.h"
+#include "common/scene/light.h"
 #include "common/scene/material.h"
 #include "common/scene/texture.h"
 
@@ -21,6 +22,7 @@ struct MeshModel {
   std::vector<Texture> textures;
   std::vector<std::string> warnings;  // files the mesh file names that are missing
   std::optional<CameraSpec> camera;   // a glTF file's first perspective camera
+  std::vector<Light> lights;          // a glTF file's KHR_lights_punctual lights
 };
 
 }  // namespace glint

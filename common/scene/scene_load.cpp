@@ -424,7 +424,7 @@ class SceneLoader {
 
   void readMesh(const JsonReader& o) {
     o.allowKeys({"type", "file", "positions", "indices", "normals", "uvs", "material", "materials", "raytrace",
-                 "smooth", "transform"});
+                 "smooth", "transform", "lights"});
     if (o.has("file") == o.has("positions")) o.fail("a mesh needs either file or positions (not both)");
     if (o.has("material") && o.has("materials")) {
       o["materials"].fail("renames the file's materials one by one; \"material\" already gives them all one");
@@ -470,11 +470,23 @@ class SceneLoader {
     const bool own = !o.has("material");
     MeshModel obj = importMeshFile(files_, normalisePath(f.string()), f.path(), budget_, own, &images_);
     for (std::string& w : obj.warnings) warn(std::move(w));
+    if (auto l = o.find("lights"); l && l->boolean()) addFileLights(o, *l, obj.lights);
     const std::vector<std::uint32_t> mapped = own ? ownMaterials(o, obj) : std::vector<std::uint32_t>{};
     const std::uint32_t named = own ? 0 : material(o);
     for (MeshInput& mesh : obj.meshes) {
       mesh.material = meshMaterial(o, own ? mapped[mesh.material] : named);
       addMesh(o, std::move(mesh));
+    }
+  }
+
+  // A glTF file's lights, placed by the mesh's transform as its triangles.
+  void addFileLights(const JsonReader& o, const JsonReader& flag, const std::vector<Light>& lights) {
+    if (lights.empty()) flag.fail("the file has no KHR_lights_punctual lights (only glTF files carry lights)");
+    const glm::mat4 m = transform(o).matrix();
+    for (Light l : lights) {
+      l.position = glm::vec3(m * glm::vec4(l.position, 1.0f));
+      l.direction = glm::normalize(glm::vec3(m * glm::vec4(l.direction, 0.0f)));
+      scene_.lights.push_back(l);
     }
   }
 

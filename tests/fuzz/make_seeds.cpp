@@ -187,7 +187,15 @@ void objAndImageSeeds() {
   cube.add("cube.mtl", fuzz::kCubeMtl);
   cube.add("tex.bmp", fuzz::tinyBmp());
   SceneBudget budget;
-  write("mesh_blob", "textured-cube", encodeMeshBlob(loadObj(cube, "m.obj", "seed", budget, true)));
+  MeshModel lit = loadObj(cube, "m.obj", "seed", budget, true);
+  write("mesh_blob", "textured-cube", encodeMeshBlob(lit));
+  Light spot;
+  spot.type = LightType::kSpot;
+  spot.cosInner = 0.9f;
+  Light sun;
+  sun.type = LightType::kDirectional;
+  lit.lights = {Light{}, spot, sun};
+  write("mesh_blob", "cube-with-lights", encodeMeshBlob(lit));
   FrameImage image{4, 3, Bytes(36)};
   for (std::size_t i = 0; i < image.rgb.size(); ++i) image.rgb[i] = static_cast<std::uint8_t>(i * 7);
   const fs::path png = fs::temp_directory_path() / "glint-seed.png";

@@ -267,6 +267,95 @@ TEST(MeshImport, ImportedMaterialsGetAmbientAndAHighlightFromRoughness) {
   EXPECT_NEAR(m.color.r, 0.6038274f, 1e-6);
 }
 
+// KHR_lights_punctual: a scene's mesh with "lights": true takes the file's
+// point, spot and directional lights, placed by their nodes (a parent's
+// matrix too) and the mesh's transform; a server gets the same lights from
+// the blob. Without the flag the scene keeps its own lights only.
+TEST(MeshImport, GltfLightsComeWithTheMeshWhenAsked) {
+  const fs::path box = kModels / "glTF2/BoxTextured-glTF";
+  if (!fs::exists(box)) GTEST_SKIP() << "assimp-testmodels is not installed";
+  const fs::path dir = fs::temp_directory_path() / "glint_gltf_lights";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  fs::copy(box, dir / "box", fs::copy_options::recursive);
+  nlohmann::json gltf = nlohmann::json::parse(std::ifstream(dir / "box/BoxTextured.gltf"));
+  gltf["extensionsUsed"] = {"KHR_lights_punctual"};
+  gltf["extensions"]["KHR_lights_punctual"]["lights"] = {
+      {{"type", "point"}, {"color", {1.0, 0.5, 0.25}}, {"intensity", 4.0}},
+      {{"type", "spot"}, {"spot", {{"innerConeAngle", 0.2}, {"outerConeAngle", 0.5}}}},
+      {{"type", "directional"}, {"intensity", 2.0}}};
+  // Node 0 (the box's parent) turns +Y to -Z; a point light child 2 above it
+  // in its frame; a spot at (0, 3, 0) looking down; a sun along -X.
+  gltf["nodes"][0]["children"].push_back(2);
+  gltf["nodes"].push_back({{"translation", {0, 2, 0}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+  gltf["nodes"].push_back({{"translation", {0, 3, 0}},
+                           {"rotation", {-0.70710678, 0, 0, 0.70710678}},
+                           {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
+  gltf["nodes"].push_back({{"rotation", {0, 0.70710678, 0, 0.70710678}},
+                           {"extensions", {{"KHR_lights_punctual", {{"light", 2}}}}}});
+  gltf["scenes"][0]["nodes"] = {0, 3, 4};
+  std::ofstream(dir / "box/BoxTextured.gltf") << gltf.dump();
+  nlohmann::json scene = nlohmann::json::parse(R"({"glint": 1, "image": {"width": 8, "height": 6},
+    "camera": {"eye": [2, 2, 3], "look_at": [0, 0, 0]}, "lights": [{"type": "point", "position": [0, 5, 5]}],
+    "objects": [{"type": "mesh", "file": "box/BoxTextured.gltf", "lights": true,
+                 "transform": {"translate": [10, 0, 0]}}]})");
+  std::ofstream(dir / "scene.json") << scene.dump();
+  const proto::LoadedBundle loaded = proto::loadSceneBundle(dir / "scene.json");
+  const std::vector<Light>& lights = loaded.scene.lights;
+  ASSERT_EQ(lights.size(), 4u);
+  EXPECT_EQ(lights[1].type, LightType::kPoint);
+  EXPECT_NEAR(glm::length(lights[1].position - glm::vec3(10, 0, -2)), 0.0f, 1e-5f);  // +Y turned to -Z
+  EXPECT_EQ(lights[1].color, glm::vec3(4.0f, 2.0f, 1.0f));
+  EXPECT_EQ(lights[1].attenuation, glm::vec3(0, 0, 1));
+  EXPECT_EQ(lights[2].type, LightType::kSpot);
+  EXPECT_NEAR(glm::length(lights[2].position - glm::vec3(10, 3, 0)), 0.0f, 1e-5f);
+  EXPECT_NEAR(glm::length(lights[2].direction - glm::vec3(0, -1, 0)), 0.0f, 1e-5f);
+  EXPECT_FLOAT_EQ(lights[2].cosInner, std::cos(0.2f));
+  EXPECT_FLOAT_EQ(lights[2].cosOuter, std::cos(0.5f));
+  EXPECT_EQ(lights[3].type, LightType::kDirectional);
+  EXPECT_NEAR(glm::length(lights[3].direction - glm::vec3(-1, 0, 0)), 0.0f, 1e-5f);
+  EXPECT_EQ(lights[3].color, glm::vec3(2.0f));
+  SceneBudget budget;
+  const Scene there = proto::loadBundle(loaded.bundle, budget);
+  ASSERT_EQ(there.lights.size(), lights.size());
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    EXPECT_EQ(there.lights[i].type, lights[i].type);
+    EXPECT_EQ(there.lights[i].position, lights[i].position);
+    EXPECT_EQ(there.lights[i].direction, lights[i].direction);
+    EXPECT_EQ(there.lights[i].color, lights[i].color);
+    EXPECT_EQ(there.lights[i].cosOuter, lights[i].cosOuter);
+  }
+  scene["objects"][0].erase("lights");
+  std::ofstream(dir / "scene.json") << scene.dump();
+  EXPECT_EQ(proto::loadSceneBundle(dir / "scene.json").scene.lights.size(), 1u);
+  fs::remove_all(dir);
+}
+
+// A light the file names wrongly is an error that says where.
+TEST(MeshImport, BadGltfLightsAreNamed) {
+  const fs::path box = kModels / "glTF2/BoxTextured-glTF";
+  if (!fs::exists(box)) GTEST_SKIP() << "assimp-testmodels is not installed";
+  const fs::path dir = fs::temp_directory_path() / "glint_gltf_bad_lights";
+  fs::remove_all(dir);
+  fs::copy(box, dir, fs::copy_options::recursive);
+  nlohmann::json gltf = nlohmann::json::parse(std::ifstream(dir / "BoxTextured.gltf"));
+  gltf["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "area"}}};
+  gltf["nodes"][1]["extensions"]["KHR_lights_punctual"]["light"] = 0;
+  std::ofstream(dir / "BoxTextured.gltf") << gltf.dump();
+  try {
+    import(dir / "BoxTextured.gltf");
+    ADD_FAILURE() << "an unknown light type was taken";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("node 1's KHR_lights_punctual light: its type is not point, spot or directional"),
+              std::string::npos)
+        << e.what();
+  }
+  gltf["nodes"][1]["extensions"]["KHR_lights_punctual"]["light"] = 5;
+  std::ofstream(dir / "BoxTextured.gltf") << gltf.dump();
+  EXPECT_THROW(import(dir / "BoxTextured.gltf"), InputError);
+  fs::remove_all(dir);
+}
+
 // glTF's metallic-roughness: metallic x (1 - roughness) reflects, blurred
 // by the roughness; the blob carries both to a server.
 TEST(MeshImport, MetallicRoughnessGivesARoughReflection) {
