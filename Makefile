@@ -69,14 +69,16 @@ accuracy-deps: deps
 	$(call install_missing,$(ACCURACY_DEPS))
 
 # The default accuracy sweep on the thesis's scenes 1 and 2, the mask rules
-# and the perceptual threshold on three more: out/accuracy/, and
+# and the perceptual threshold on three more, an area light's samples on
+# soft-shadows.json: out/accuracy/, and
 # docs/accuracy.md with its plots in docs/images/.
 RULE_SWEEP = --vary mask_rule=auto,perceptual --vary perceptual_threshold=0.1,0.2,0.3,0.5,0.8
 accuracy: accuracy-deps build
 	$(BUILD)/bin/glint accuracy scenes/room.json -o out/accuracy/room
 	$(BUILD)/bin/glint accuracy scenes/room-gl-floor.json -o out/accuracy/room-gl-floor
 	for s in glass bunny room-bright; do $(BUILD)/bin/glint accuracy scenes/$$s.json -o out/accuracy/$$s $(RULE_SWEEP) || exit 1; done
-	tests/bench/accuracy_doc.sh out/accuracy docs room room-gl-floor glass bunny room-bright
+	$(BUILD)/bin/glint accuracy scenes/soft-shadows.json -o out/accuracy/soft-shadows --vary light_samples=1,4,16,64
+	tests/bench/accuracy_doc.sh out/accuracy docs room room-gl-floor glass bunny room-bright soft-shadows
 
 fuzz-deps: deps
 	$(call install_missing,$(FUZZ_DEPS))

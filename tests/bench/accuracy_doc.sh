@@ -33,6 +33,8 @@ picture() {
   echo "series is the same hybrid frame with the surfaces OpenGL draws shadowed from maps of that size (0: none,"
   echo "the thesis's raster), the pixels the maps cannot decide traced. The mask_rule series sets auto against"
   echo "perceptual, and perceptual_threshold sweeps the perceptual rule's threshold ([hybrid.md](hybrid.md))."
+  echo "On soft-shadows.json, light_samples sets the points each area light takes per shadow query (the"
+  echo "reference takes 64 at each of its samples)."
   for scene in "$@"; do
     dir="$out/$scene"
     echo
@@ -42,12 +44,13 @@ picture() {
     sed -e '1,2d' -e "s|(accuracy.png)|(images/accuracy-$scene.png)|" "$dir/report.md"
     echo
     echo "FLIP maps (black none, purple, orange, pale yellow the most) of the two mask rules, and of one sample a"
-    echo "pixel and OpenGL alone where the sweep has them:"
+    echo "pixel, OpenGL alone and one point of each area light where the sweep has them:"
     echo
     picture "$scene" mask_rule-auto-flip "auto"
     picture "$scene" mask_rule-perceptual-flip "perceptual"
     picture "$scene" samples-1-flip "1 sample"
     picture "$scene" mask_threshold-1-flip "OpenGL only"
+    picture "$scene" light_samples-1-flip "1 light sample"
     echo
   done
 } > "$doc"
