@@ -230,6 +230,22 @@ std::optional<ShadowSpot> spotOf(const Geometry& g, const Bvh& bvh, std::uint32_
   return spot;
 }
 
+// All of primitive `prim` as a spot: a directional light's (no proof is
+// attempted for parallel light).
+std::optional<ShadowSpot> wholeSpot(const Geometry& g, std::uint32_t prim) {
+  if (!g.isSphere(prim)) {
+    const Triangle& t = g.triangles()[prim];
+    const glm::vec3 v0 = g.positions()[t.v[0]];
+    const glm::vec3 normal = glm::cross(g.positions()[t.v[1]] - v0, g.positions()[t.v[2]] - v0);
+    return triangleSpot(g, prim, v0 + normal, {}, 0.0f, true);
+  }
+  ShadowSpot spot;
+  spot.prim = prim;
+  spot.corners = g.spheres()[prim - g.triangles().size()].bounds().corners();
+  spot.cornerCount = 8;
+  return spot;
+}
+
 }  // namespace
 
 LightProof LightProof::prove(const Scene& scene, const std::vector<bool>& casts) {
@@ -247,7 +263,8 @@ LightProof LightProof::prove(const Scene& scene, const std::vector<bool>& casts)
       for (std::size_t light = 0; light < scene.lights.size(); ++light) {
         if (!casts[light]) continue;
         for (std::uint32_t prim = count * r / runs; prim < count * (r + 1) / runs; ++prim) {
-          if (auto spot = spotOf(g, bvh, prim, scene.lights[light].position)) {
+          const Light& l = scene.lights[light];
+          if (auto spot = l.type == LightType::kDirectional ? wholeSpot(g, prim) : spotOf(g, bvh, prim, l.position)) {
             spot->light = static_cast<int>(light);
             found[r].push_back(*spot);
           }

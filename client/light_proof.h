@@ -37,7 +37,8 @@ struct ShadowSpot {
 // square pyramid from the light around the sphere, up to the plane through
 // its centre (common/geometry/region_query.h). What does enter a triangle's
 // tetrahedron, projected from the light onto the triangle's plane, bounds
-// its spot. The answer is conservative throughout.
+// its spot. The answer is conservative throughout. A directional light's
+// spots are its primitives whole.
 struct LightProof {
   // One per casting light and primitive it is not proved to reach, ordered
   // by light, then primitive.

@@ -103,7 +103,7 @@ RasterScene::RasterScene(const Api& api, const Scene& scene)
     if (scene.lights[i].type == LightType::kArea) continue;
     punctualLights_.push_back(scene.lights[i]);
     punctualCasts_.push_back(plan_.lights[i]);
-    casts[i] = plan_.lights[i] && punctualAt(scene.lights[i].type);
+    casts[i] = plan_.lights[i];
   }
   if (punctualLights_.size() > kMaxLights) {
     throw InputError("the OpenGL path draws at most " + std::to_string(kMaxLights) +
@@ -309,6 +309,10 @@ ShaderVariant RasterScene::variantOf(const Batch& batch, const FrameSettings& fr
   v.specular = v.lit && m.specular > 0.0f;
   v.shadows = v.lit && shadows_ && !batch.spots.empty();
   v.srgb = frame.output.encoding == Encoding::kSrgb;
+  for (const Light& l : punctualLights_) {
+    v.spotLights = v.spotLights || (v.lit && l.type == LightType::kSpot);
+    v.directionalLights = v.directionalLights || (v.lit && l.type == LightType::kDirectional);
+  }
   return v;
 }
 
@@ -318,6 +322,7 @@ void RasterScene::setViewUniforms(unsigned program, const Projection& projection
                        glm::value_ptr(projection.viewProjection));
   gl_.Uniform1f(gl_.GetUniformLocation(program, "uFar"), projection.far);
   gl_.Uniform3fv(gl_.GetUniformLocation(program, "uEye"), 1, glm::value_ptr(projection.eye));
+  gl_.Uniform3fv(gl_.GetUniformLocation(program, "uDepthAxis"), 1, glm::value_ptr(projection.depthAxis));
 }
 
 void RasterScene::setFrameUniforms(unsigned program, const FrameSettings& frame, const Projection& projection,
@@ -336,17 +341,14 @@ void RasterScene::setLightUniforms(unsigned program, const FrameSettings& frame)
   const auto at = [&](const char* name) { return gl_.GetUniformLocation(program, name); };
   std::vector<glm::vec3> positions, colors, attenuations, directions;
   std::vector<glm::vec2> cones;
-  std::vector<int> kinds, traced;
-  for (std::size_t i = 0; i < punctualLights_.size(); ++i) {
-    const Light& l = punctualLights_[i];
+  std::vector<int> kinds;
+  for (const Light& l : punctualLights_) {
     positions.push_back(l.position);
     colors.push_back(l.color);
     attenuations.push_back(l.attenuation);
     directions.push_back(l.direction);
     cones.emplace_back(l.cosInner, l.cosOuter);
     kinds.push_back(static_cast<int>(l.type));
-    // No map of a directional light: its shadows are the tracer's.
-    traced.push_back(shadows_ && punctualCasts_[i] && l.type == LightType::kDirectional ? 1 : 0);
   }
   gl_.Uniform1i(at("uLightCount"), static_cast<int>(positions.size()));
   if (!positions.empty()) {
@@ -357,7 +359,6 @@ void RasterScene::setLightUniforms(unsigned program, const FrameSettings& frame)
     gl_.Uniform3fv(at("uLightDirection"), n, glm::value_ptr(directions[0]));
     gl_.Uniform2fv(at("uLightCone"), n, glm::value_ptr(cones[0]));
     gl_.Uniform1iv(at("uLightKind"), n, kinds.data());
-    gl_.Uniform1iv(at("uShadowTraced"), n, traced.data());
   }
   // Each area light as the points its unshadowed light is the sum of.
   std::vector<glm::vec3> normals;
@@ -445,7 +446,9 @@ bool RasterScene::prepareShadows(const MaskSettings& mask) {
   if (!rasterShadows(scene_, plan_, mask)) return false;
   if (shadowMaps_.size() != mask.shadowMap) {
     shadowMaps_.build(punctualLights_, punctualCasts_, bounds_, mask.shadowMap,
-                      [this](const glm::mat4& vp, const glm::vec3& eye, float far) { drawDepth({vp, eye, far}); });
+                      [this](const glm::mat4& vp, const glm::vec3& eye, float far, const glm::vec3& axis) {
+                        drawDepth({vp, eye, far, axis});
+                      });
   }
   return true;
 }

@@ -94,6 +94,7 @@ class RasterScene {
     glm::mat4 viewProjection;
     glm::vec3 eye;
     float far;
+    glm::vec3 depthAxis{0.0f};  // a directional light's map: depth along it (ShadowMaps::DepthPass)
   };
   Projection projection(const FrameSettings& frame) const;
   unsigned program(const ShaderVariant& variant);

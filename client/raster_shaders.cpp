@@ -11,7 +11,8 @@ namespace glint::gl {
 int ShaderVariant::key() const {
   return (sphere ? 1 : 0) | (traced ? 2 : 0) | static_cast<int>(texture) << 2 | (lit ? 16 : 0) |
          (specular ? 32 : 0) | (shadows ? 64 : 0) | (srgb ? 128 : 0) | (depthMap ? 256 : 0) | (emits ? 512 : 0) |
-         static_cast<int>(emission) << 10 | (vertexColors ? 4096 : 0);
+         static_cast<int>(emission) << 10 | (vertexColors ? 4096 : 0) | (spotLights ? 8192 : 0) |
+         (directionalLights ? 16384 : 0);
 }
 
 std::string ShaderVariant::defines() const {
@@ -32,6 +33,8 @@ std::string ShaderVariant::defines() const {
   define(shadows, "SHADOWS");
   define(srgb, "SRGB");
   define(depthMap, "DEPTH_MAP");
+  define(spotLights, "SPOT_LIGHTS");
+  define(directionalLights, "DIRECTIONAL_LIGHTS");
   return d;
 }
 
@@ -73,7 +76,6 @@ uniform vec3 uLightAttenuation[MAX_LIGHTS];
 uniform int uLightKind[MAX_LIGHTS];          // LightType: point, spot or directional
 uniform vec3 uLightDirection[MAX_LIGHTS];    // unit: a spot's axis, a directional light's travel
 uniform vec2 uLightCone[MAX_LIGHTS];         // a spot's cosInner, cosOuter
-uniform bool uShadowTraced[MAX_LIGHTS];      // a pixel the light reaches is traced for its shadow
 uniform int uAreaCount;                      // area lights' points (AreaLightPoints' centres)
 uniform vec3 uAreaPosition[MAX_AREA_POINTS];
 uniform vec3 uAreaColor[MAX_AREA_POINTS];
@@ -93,6 +95,11 @@ uniform sampler2DArray uShadowMaps;          // depth: distance from the light /
 uniform int uShadowSize;                     // texels a face edge
 uniform int uShadowLayer[MAX_LIGHTS];        // the light's first face, -1: no map
 uniform float uShadowFar[MAX_LIGHTS];
+uniform vec3 uShadowAxisS[MAX_LIGHTS];       // a directional light's layer: its axes,
+uniform vec3 uShadowAxisT[MAX_LIGHTS];
+uniform vec3 uShadowOrigin[MAX_LIGHTS];      // the centre of its near plane
+uniform float uShadowHalfWidth[MAX_LIGHTS];  // and half its width
+uniform vec3 uDepthAxis;                     // a depth map's: non-zero for a directional light's
 uniform vec3 uShadowFaceS[6];
 uniform vec3 uShadowFaceT[6];
 uniform vec3 uShadowFaceM[6];
@@ -256,6 +263,44 @@ float shadowVisibility(int light, vec3 p, vec3 ng) {
   if (open != 0 && open != count) gShadowUndecided = true;
   return count == 0 ? 1.0 : float(open) / float(count);
 }
+
+#ifdef DIRECTIONAL_LIGHTS
+// shadowVisibility for a directional light's orthographic layer: each of the
+// SHADOW_RADIUS texels around p's votes with the line along the light
+// through its centre, which meets p's tangent plane at a distance from the
+// near plane; a texel holding a nearer surface sees an occluder.
+float parallelVisibility(int light, vec3 p, vec3 ng) {
+  if (uShadowLayer[light] < 0) return 1.0;
+  vec3 m = uLightDirection[light], s = uShadowAxisS[light], t = uShadowAxisT[light];
+  vec3 o = uShadowOrigin[light];
+  float halfWidth = uShadowHalfWidth[light];
+  float cosine = -dot(m, ng);
+  if (cosine < 0.01) {
+    gShadowUndecided = true;
+    return 1.0;
+  }
+  vec2 c = vec2(dot(p - o, s), dot(p - o, t)) / halfWidth;
+  ivec2 own = clamp(ivec2(floor((c * 0.5 + 0.5) * float(uShadowSize))), ivec2(0), ivec2(uShadowSize - 1));
+  float tolerance = uShadowFar[light] * 1e-4 * (1.0 + 1.0 / cosine);
+  int open = 0, count = 0;
+  for (int dy = -SHADOW_RADIUS; dy <= SHADOW_RADIUS; ++dy) {
+    for (int dx = -SHADOW_RADIUS; dx <= SHADOW_RADIUS; ++dx) {
+      ivec2 xy = clamp(own + ivec2(dx, dy), ivec2(0), ivec2(uShadowSize - 1));
+      vec2 centre = ((vec2(xy) + 0.5) / float(uShadowSize) * 2.0 - 1.0) * halfWidth;
+      vec3 base = o + centre.x * s + centre.y * t;
+      float expected = dot(p - base, ng) / -cosine;
+      float stored = texelFetch(uShadowMaps, ivec3(xy, uShadowLayer[light]), 0).r * uShadowFar[light];
+      ++count;
+      if (stored >= expected - tolerance) ++open;
+    }
+  }
+  if (any(lessThan(own, ivec2(SHADOW_RADIUS))) || any(greaterThanEqual(own, ivec2(uShadowSize - SHADOW_RADIUS)))) {
+    gShadowUndecided = true;
+  }
+  if (open != 0 && open != count) gShadowUndecided = true;
+  return float(open) / float(count);
+}
+#endif
 #endif
 
 // Adds the diffuse and specular light of a point light of intensity lightI
@@ -289,20 +334,29 @@ vec3 shade(vec3 p, vec3 ng, vec3 ns, vec2 uv) {
   ns = len > 0.0 ? ns / len : ng;
   if (dot(ns, ng) < 0.0) ns = -ns;
   for (int i = 0; i < uLightCount; ++i) {
+#ifdef DIRECTIONAL_LIGHTS
     if (uLightKind[i] == LIGHT_DIRECTIONAL) {
       vec3 l = -uLightDirection[i];
       if (dot(l, ng) <= 0.0 || dot(l, ns) <= 0.0) continue;
-      if (uShadowTraced[i]) gShadowUndecided = true;
-      addPhong(result, uLightColor[i], c, ns, l, toViewer);
+#ifdef SHADOWS
+      float visible = parallelVisibility(i, p, ng);
+      if (visible == 0.0) continue;
+#else
+      float visible = 1.0;
+#endif
+      addPhong(result, visible * uLightColor[i], c, ns, l, toViewer);
       continue;
     }
+#endif
     vec3 toLight = uLightPosition[i] - p;
     float d = length(toLight);
     if (!(d > 0.0)) continue;
     vec3 l = toLight / d;
     if (dot(l, ng) <= 0.0 || dot(l, ns) <= 0.0) continue;
+#ifdef SPOT_LIGHTS
     float share = uLightKind[i] == LIGHT_SPOT ? spotFactor(uLightDirection[i], uLightCone[i], l) : 1.0;
     if (share == 0.0) continue;
+#endif
 #ifdef SHADOWS
     float visible = shadowVisibility(i, p, ng);
     if (visible == 0.0) continue;
@@ -311,7 +365,10 @@ vec3 shade(vec3 p, vec3 ng, vec3 ns, vec2 uv) {
 #endif
     vec3 a = uLightAttenuation[i];
     vec3 lightI = visible * uLightColor[i] / (a.x + a.y * d + a.z * d * d);
-    addPhong(result, uLightKind[i] == LIGHT_SPOT ? lightI * share : lightI, c, ns, l, toViewer);
+#ifdef SPOT_LIGHTS
+    if (uLightKind[i] == LIGHT_SPOT) lightI *= share;
+#endif
+    addPhong(result, lightI, c, ns, l, toViewer);
   }
   // Area lights unshadowed: where they may be blocked the pixel is traced
   // (client/penumbra_proof.h).
@@ -363,7 +420,7 @@ flat in vec3 vFaceNormal;
 flat in int vObject;
 void main() {
 #ifdef DEPTH_MAP
-  gl_FragDepth = length(vPosition - uEye) / uFar;
+  gl_FragDepth = (uDepthAxis != vec3(0.0) ? dot(vPosition - uEye, uDepthAxis) : length(vPosition - uEye)) / uFar;
 #endif
 #ifdef TRACED
   fragColor = vec4(0.0, 0.0, 0.0, 1.0);
@@ -402,8 +459,17 @@ in vec3 vPosition;
 flat in vec4 vSphere;
 flat in int vObject;
 void main() {
+  // The ray through the fragment: from the eye, or in a directional light's
+  // map along its axis from its near plane.
+#ifdef DEPTH_MAP
+  bool parallel = uDepthAxis != vec3(0.0);
+  vec3 d = parallel ? uDepthAxis : normalize(vPosition - uEye);
+  vec3 origin = parallel ? vPosition - dot(vPosition - uEye, uDepthAxis) * uDepthAxis : uEye;
+#else
   vec3 d = normalize(vPosition - uEye);
-  vec3 f = uEye - vSphere.xyz;
+  vec3 origin = uEye;
+#endif
+  vec3 f = origin - vSphere.xyz;
   float b = -dot(f, d);
   vec3 l = f + b * d;
   float r2 = vSphere.w * vSphere.w;
@@ -415,11 +481,11 @@ void main() {
   float t0 = min(c / q, q), t1 = max(c / q, q);
   float t = t0 > 0.0 ? t0 : t1;
   if (!(t > 0.0)) discard;
-  vec3 p = uEye + t * d;
+  vec3 p = origin + t * d;
   vec3 n = normalize(p - vSphere.xyz);
   p = vSphere.xyz + vSphere.w * n;
 #ifdef DEPTH_MAP
-  gl_FragDepth = length(p - uEye) / uFar;
+  gl_FragDepth = (parallel ? dot(p - uEye, uDepthAxis) : length(p - uEye)) / uFar;
 #else
   vec4 clip = uViewProjection * vec4(p, 1.0);
   gl_FragDepth = clip.z / clip.w;

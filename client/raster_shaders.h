@@ -28,6 +28,8 @@ struct ShaderVariant {
   bool specular = false;
   bool shadows = false;   // the shadow maps are read
   bool srgb = false;      // the 8-bit encoding (else linear)
+  bool spotLights = false;         // the scene has spot lights: their cones are applied
+  bool directionalLights = false;  // it has directional lights
   // Drawn into a shadow map: writes the distance from the eye / far, which
   // the maps hold. The frame's own depth is the projection's (reversed: 1 at
   // the near plane, falling as 1 / distance), so that OpenGL tests it before

@@ -1,6 +1,7 @@
 #include "client/shadow_maps.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/geometric.hpp>
@@ -36,6 +37,26 @@ glm::mat4 faceViewProjection(const Face& face, const glm::vec3& light, float far
   return glm::perspective(glm::radians(90.0f), 1.0f, far * 1e-6f, far) * view;
 }
 
+// A directional light's layer: clip x = s . (p - c) / R, y = t . (p - c) / R,
+// z = m . (p - c) / R, w = 1 (the depth is written by the shaders; z only
+// clips, and depth clamping is on).
+glm::mat4 parallelViewProjection(const glm::vec3& s, const glm::vec3& t, const glm::vec3& m, const glm::vec3& c,
+                                 float r) {
+  glm::mat4 out(1.0f);
+  const glm::vec3 rows[3] = {s, t, m};
+  for (int row = 0; row < 3; ++row) {
+    for (int col = 0; col < 3; ++col) out[col][row] = rows[row][col] / r;
+    out[3][row] = -glm::dot(rows[row], c) / r;
+  }
+  return out;
+}
+
+// Two unit axes completing unit m.
+void axesAround(const glm::vec3& m, glm::vec3& s, glm::vec3& t) {
+  s = glm::normalize(glm::cross(m, std::abs(m.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0)));
+  t = glm::cross(s, m);
+}
+
 // Just beyond the scene's farthest corner as seen from the light.
 float farPlane(const Bounds3& bounds, const glm::vec3& light) {
   float far = 1.0f;
@@ -59,12 +80,26 @@ void ShadowMaps::build(const std::vector<Light>& lights, const std::vector<bool>
   release();
   firstLayer_.assign(lights.size(), -1);
   far_.assign(lights.size(), 1.0f);
+  axisS_.assign(lights.size(), glm::vec3(0.0f));
+  axisT_.assign(lights.size(), glm::vec3(0.0f));
+  origin_.assign(lights.size(), glm::vec3(0.0f));
+  halfWidth_.assign(lights.size(), 1.0f);
+  const glm::vec3 centre = bounds.empty() ? glm::vec3(0.0f) : bounds.centre();
+  const float radius = bounds.empty() ? 1.0f : std::max(glm::length(bounds.max - bounds.min) * 0.505f, 1e-6f);
   int layers = 0;
   for (std::size_t i = 0; i < lights.size(); ++i) {
-    if (!casts[i] || !punctualAt(lights[i].type) || bounds.empty()) continue;
+    if (!casts[i] || lights[i].type == LightType::kArea || bounds.empty()) continue;
     firstLayer_[i] = layers;
-    far_[i] = farPlane(bounds, lights[i].position);
-    layers += 6;
+    if (lights[i].type == LightType::kDirectional) {
+      axesAround(lights[i].direction, axisS_[i], axisT_[i]);
+      halfWidth_[i] = radius;
+      origin_[i] = centre - radius * lights[i].direction;
+      far_[i] = 2.0f * radius;
+      layers += 1;
+    } else {
+      far_[i] = farPlane(bounds, lights[i].position);
+      layers += 6;
+    }
   }
   size_ = size;
   if (layers == 0) return;
@@ -84,19 +119,31 @@ void ShadowMaps::build(const std::vector<Light>& lights, const std::vector<bool>
   gl_.Disable(GL_STENCIL_TEST);
   for (std::size_t i = 0; i < lights.size(); ++i) {
     if (firstLayer_[i] < 0) continue;
+    if (lights[i].type == LightType::kDirectional) {
+      bindLayer(firstLayer_[i]);
+      drawDepth(parallelViewProjection(axisS_[i], axisT_[i], lights[i].direction, centre, radius), origin_[i],
+                far_[i], lights[i].direction);
+      continue;
+    }
     for (int f = 0; f < 6; ++f) {
-      gl_.FramebufferTextureLayer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, texture_, 0, firstLayer_[i] + f);
-      if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-        gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
-        release();
-        throw InputError("OpenGL: cannot draw into a " + std::to_string(size) + " x " + std::to_string(size) +
-                         " shadow map; try a smaller --shadow-map");
-      }
-      gl_.Clear(GL_DEPTH_BUFFER_BIT);
-      drawDepth(faceViewProjection(kFaces[f], lights[i].position, far_[i]), lights[i].position, far_[i]);
+      bindLayer(firstLayer_[i] + f);
+      drawDepth(faceViewProjection(kFaces[f], lights[i].position, far_[i]), lights[i].position, far_[i],
+                glm::vec3(0.0f));
     }
   }
   gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void ShadowMaps::bindLayer(int layer) {
+  gl_.FramebufferTextureLayer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, texture_, 0, layer);
+  if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    const int size = size_;
+    release();
+    throw InputError("OpenGL: cannot draw into a " + std::to_string(size) + " x " + std::to_string(size) +
+                     " shadow map; try a smaller --shadow-map");
+  }
+  gl_.Clear(GL_DEPTH_BUFFER_BIT);
 }
 
 void ShadowMaps::setUniforms(unsigned program, int unit, std::size_t lights, bool enabled) const {
@@ -104,7 +151,14 @@ void ShadowMaps::setUniforms(unsigned program, int unit, std::size_t lights, boo
   const bool maps = enabled && texture_ && firstLayer_.size() == lights;
   const std::vector<int> layers = maps ? firstLayer_ : std::vector<int>(lights, -1);
   if (!layers.empty()) gl_.Uniform1iv(at("uShadowLayer"), static_cast<GLsizei>(layers.size()), layers.data());
-  if (maps) gl_.Uniform1fv(at("uShadowFar"), static_cast<GLsizei>(far_.size()), far_.data());
+  if (maps) {
+    const auto n = static_cast<GLsizei>(far_.size());
+    gl_.Uniform1fv(at("uShadowFar"), n, far_.data());
+    gl_.Uniform3fv(at("uShadowAxisS"), n, glm::value_ptr(axisS_[0]));
+    gl_.Uniform3fv(at("uShadowAxisT"), n, glm::value_ptr(axisT_[0]));
+    gl_.Uniform3fv(at("uShadowOrigin"), n, glm::value_ptr(origin_[0]));
+    gl_.Uniform1fv(at("uShadowHalfWidth"), n, halfWidth_.data());
+  }
   gl_.Uniform1i(at("uShadowSize"), size_);
   glm::vec3 s[6], t[6], m[6];
   for (int f = 0; f < 6; ++f) {

@@ -44,8 +44,4 @@ struct Light {
   float cosOuter = 0.70710678f;
 };
 
-// Whether the light is at a point the tracer sends its shadow ray to
-// (point and spot lights).
-constexpr bool punctualAt(LightType t) { return t == LightType::kPoint || t == LightType::kSpot; }
-
 }  // namespace glint
