@@ -262,8 +262,8 @@ LightProof LightProof::prove(const Scene& scene, const std::vector<bool>& casts)
     threads.emplace_back([&, r] {
       for (std::size_t light = 0; light < scene.lights.size(); ++light) {
         if (!casts[light]) continue;
+        const Light& l = scene.lights[light];
         for (std::uint32_t prim = count * r / runs; prim < count * (r + 1) / runs; ++prim) {
-          const Light& l = scene.lights[light];
           if (auto spot = l.type == LightType::kDirectional ? wholeSpot(g, prim) : spotOf(g, bvh, prim, l.position)) {
             spot->light = static_cast<int>(light);
             found[r].push_back(*spot);

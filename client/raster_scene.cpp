@@ -103,6 +103,8 @@ RasterScene::RasterScene(const Api& api, const Scene& scene)
     if (scene.lights[i].type == LightType::kArea) continue;
     punctualLights_.push_back(scene.lights[i]);
     punctualCasts_.push_back(plan_.lights[i]);
+    spotLights_ = spotLights_ || scene.lights[i].type == LightType::kSpot;
+    directionalLights_ = directionalLights_ || scene.lights[i].type == LightType::kDirectional;
     casts[i] = plan_.lights[i];
   }
   if (punctualLights_.size() > kMaxLights) {
@@ -309,10 +311,8 @@ ShaderVariant RasterScene::variantOf(const Batch& batch, const FrameSettings& fr
   v.specular = v.lit && m.specular > 0.0f;
   v.shadows = v.lit && shadows_ && !batch.spots.empty();
   v.srgb = frame.output.encoding == Encoding::kSrgb;
-  for (const Light& l : punctualLights_) {
-    v.spotLights = v.spotLights || (v.lit && l.type == LightType::kSpot);
-    v.directionalLights = v.directionalLights || (v.lit && l.type == LightType::kDirectional);
-  }
+  v.spotLights = v.lit && spotLights_;
+  v.directionalLights = v.lit && directionalLights_;
   return v;
 }
 

@@ -155,6 +155,8 @@ class RasterScene {
   // lights and, for point and spot lights, their maps.
   std::vector<Light> punctualLights_;
   std::vector<bool> punctualCasts_;  // per light: it casts shadows (the plan's lights)
+  bool spotLights_ = false;          // the scene has spot lights (ShaderVariant::spotLights)
+  bool directionalLights_ = false;   // and directional ones
   PenumbraProof penumbra_;
 };
 

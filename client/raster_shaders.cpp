@@ -95,10 +95,10 @@ uniform sampler2DArray uShadowMaps;          // depth: distance from the light /
 uniform int uShadowSize;                     // texels a face edge
 uniform int uShadowLayer[MAX_LIGHTS];        // the light's first face, -1: no map
 uniform float uShadowFar[MAX_LIGHTS];
-uniform vec3 uShadowAxisS[MAX_LIGHTS];       // a directional light's layer: its axes,
+uniform vec3 uShadowAxisS[MAX_LIGHTS];       // a directional light's layer: its axes
 uniform vec3 uShadowAxisT[MAX_LIGHTS];
-uniform vec3 uShadowOrigin[MAX_LIGHTS];      // the centre of its near plane
-uniform float uShadowHalfWidth[MAX_LIGHTS];  // and half its width
+uniform vec3 uShadowCentre;                  // the sphere the directional layers span
+uniform float uShadowRadius;
 uniform vec3 uDepthAxis;                     // a depth map's: non-zero for a directional light's
 uniform vec3 uShadowFaceS[6];
 uniform vec3 uShadowFaceT[6];
@@ -233,6 +233,17 @@ void shadowVote(int light, ivec3 texel, vec3 u, float plane, vec3 ng, inout int 
   if (stored >= expected - tolerance) ++open;
 }
 
+// The votes' verdict: the fraction open; undecided (gShadowUndecided) when
+// they are mixed or p's texel `own` lies within SHADOW_RADIUS of the layer's
+// edge.
+float shadowVerdict(ivec2 own, int open, int count) {
+  if (any(lessThan(own, ivec2(SHADOW_RADIUS))) || any(greaterThanEqual(own, ivec2(uShadowSize - SHADOW_RADIUS)))) {
+    gShadowUndecided = true;
+  }
+  if (open != 0 && open != count) gShadowUndecided = true;
+  return count == 0 ? 1.0 : float(open) / float(count);
+}
+
 // Whether the light reaches p (ng faces the light): 1 lit, 0 shadowed, by
 // the map's texels within SHADOW_RADIUS of p's (3 x 3). Each texel's centre
 // direction meets p's tangent plane at a distance from the light; a texel
@@ -256,12 +267,7 @@ float shadowVisibility(int light, vec3 p, vec3 ng) {
       shadowVote(light, ivec3(xy, own.z), centre + d.x * s + d.y * t, plane, ng, open, count);
     }
   }
-  if (any(lessThan(own.xy, ivec2(SHADOW_RADIUS))) ||
-      any(greaterThanEqual(own.xy, ivec2(uShadowSize - SHADOW_RADIUS)))) {
-    gShadowUndecided = true;
-  }
-  if (open != 0 && open != count) gShadowUndecided = true;
-  return count == 0 ? 1.0 : float(open) / float(count);
+  return shadowVerdict(own.xy, open, count);
 }
 
 #ifdef DIRECTIONAL_LIGHTS
@@ -272,8 +278,8 @@ float shadowVisibility(int light, vec3 p, vec3 ng) {
 float parallelVisibility(int light, vec3 p, vec3 ng) {
   if (uShadowLayer[light] < 0) return 1.0;
   vec3 m = uLightDirection[light], s = uShadowAxisS[light], t = uShadowAxisT[light];
-  vec3 o = uShadowOrigin[light];
-  float halfWidth = uShadowHalfWidth[light];
+  vec3 o = uShadowCentre - uShadowRadius * m;  // the centre of the layer's near plane
+  float halfWidth = uShadowRadius;
   float cosine = -dot(m, ng);
   if (cosine < 0.01) {
     gShadowUndecided = true;
@@ -294,11 +300,7 @@ float parallelVisibility(int light, vec3 p, vec3 ng) {
       if (stored >= expected - tolerance) ++open;
     }
   }
-  if (any(lessThan(own, ivec2(SHADOW_RADIUS))) || any(greaterThanEqual(own, ivec2(uShadowSize - SHADOW_RADIUS)))) {
-    gShadowUndecided = true;
-  }
-  if (open != 0 && open != count) gShadowUndecided = true;
-  return float(open) / float(count);
+  return shadowVerdict(own, open, count);
 }
 #endif
 #endif
@@ -315,11 +317,13 @@ void addPhong(inout vec3 result, vec3 lightI, vec3 c, vec3 ns, vec3 l, vec3 toVi
 #endif
 }
 
+#ifdef SPOT_LIGHTS
 // A spot light's share towards l (common/render/shading.h's spotFactor).
 float spotFactor(vec3 axis, vec2 cone, vec3 l) {
   float t = clamp((-dot(axis, l) - cone.y) / max(cone.x - cone.y, HARD_SPOT_EDGE), 0.0, 1.0);
   return t * t;
 }
+#endif
 
 vec3 shade(vec3 p, vec3 ng, vec3 ns, vec2 uv) {
   vec3 c = surfaceColour(uv);

@@ -1,13 +1,13 @@
 #include "client/shadow_maps.h"
 
 #include <algorithm>
-#include <cmath>
 
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/geometric.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "client/raster_shaders.h"
+#include "common/math/basis.h"
 #include "common/base/error.h"
 
 namespace glint::gl {
@@ -51,12 +51,6 @@ glm::mat4 parallelViewProjection(const glm::vec3& s, const glm::vec3& t, const g
   return out;
 }
 
-// Two unit axes completing unit m.
-void axesAround(const glm::vec3& m, glm::vec3& s, glm::vec3& t) {
-  s = glm::normalize(glm::cross(m, std::abs(m.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0)));
-  t = glm::cross(s, m);
-}
-
 // Just beyond the scene's farthest corner as seen from the light.
 float farPlane(const Bounds3& bounds, const glm::vec3& light) {
   float far = 1.0f;
@@ -82,19 +76,15 @@ void ShadowMaps::build(const std::vector<Light>& lights, const std::vector<bool>
   far_.assign(lights.size(), 1.0f);
   axisS_.assign(lights.size(), glm::vec3(0.0f));
   axisT_.assign(lights.size(), glm::vec3(0.0f));
-  origin_.assign(lights.size(), glm::vec3(0.0f));
-  halfWidth_.assign(lights.size(), 1.0f);
-  const glm::vec3 centre = bounds.empty() ? glm::vec3(0.0f) : bounds.centre();
-  const float radius = bounds.empty() ? 1.0f : std::max(glm::length(bounds.max - bounds.min) * 0.505f, 1e-6f);
+  centre_ = bounds.empty() ? glm::vec3(0.0f) : bounds.centre();
+  radius_ = bounds.empty() ? 1.0f : std::max(glm::length(bounds.max - bounds.min) * 0.505f, 1e-6f);
   int layers = 0;
   for (std::size_t i = 0; i < lights.size(); ++i) {
     if (!casts[i] || lights[i].type == LightType::kArea || bounds.empty()) continue;
     firstLayer_[i] = layers;
     if (lights[i].type == LightType::kDirectional) {
-      axesAround(lights[i].direction, axisS_[i], axisT_[i]);
-      halfWidth_[i] = radius;
-      origin_[i] = centre - radius * lights[i].direction;
-      far_[i] = 2.0f * radius;
+      orthonormalBasis(lights[i].direction, axisS_[i], axisT_[i]);
+      far_[i] = 2.0f * radius_;
       layers += 1;
     } else {
       far_[i] = farPlane(bounds, lights[i].position);
@@ -121,8 +111,8 @@ void ShadowMaps::build(const std::vector<Light>& lights, const std::vector<bool>
     if (firstLayer_[i] < 0) continue;
     if (lights[i].type == LightType::kDirectional) {
       bindLayer(firstLayer_[i]);
-      drawDepth(parallelViewProjection(axisS_[i], axisT_[i], lights[i].direction, centre, radius), origin_[i],
-                far_[i], lights[i].direction);
+      const glm::vec3& m = lights[i].direction;
+      drawDepth(parallelViewProjection(axisS_[i], axisT_[i], m, centre_, radius_), centre_ - radius_ * m, far_[i], m);
       continue;
     }
     for (int f = 0; f < 6; ++f) {
@@ -156,8 +146,8 @@ void ShadowMaps::setUniforms(unsigned program, int unit, std::size_t lights, boo
     gl_.Uniform1fv(at("uShadowFar"), n, far_.data());
     gl_.Uniform3fv(at("uShadowAxisS"), n, glm::value_ptr(axisS_[0]));
     gl_.Uniform3fv(at("uShadowAxisT"), n, glm::value_ptr(axisT_[0]));
-    gl_.Uniform3fv(at("uShadowOrigin"), n, glm::value_ptr(origin_[0]));
-    gl_.Uniform1fv(at("uShadowHalfWidth"), n, halfWidth_.data());
+    gl_.Uniform3fv(at("uShadowCentre"), 1, glm::value_ptr(centre_));
+    gl_.Uniform1f(at("uShadowRadius"), radius_);
   }
   gl_.Uniform1i(at("uShadowSize"), size_);
   glm::vec3 s[6], t[6], m[6];

@@ -64,10 +64,9 @@ class ShadowMaps {
   int size_ = 0;
   std::vector<int> firstLayer_;  // per light, -1: no map
   std::vector<float> far_;       // per light
-  // Per directional light: its layer's axes (unit) and half-width R, and the
-  // centre of its near plane, c - R m.
-  std::vector<glm::vec3> axisS_, axisT_, origin_;
-  std::vector<float> halfWidth_;
+  std::vector<glm::vec3> axisS_, axisT_;  // per directional light: its layer's axes (unit)
+  glm::vec3 centre_{0.0f};                // the sphere the directional layers span: c and R
+  float radius_ = 1.0f;
 };
 
 }  // namespace glint::gl

@@ -4,22 +4,13 @@
 
 #include <glm/geometric.hpp>
 
+#include "common/math/basis.h"
 #include "common/render/optics.h"
 
 namespace glint {
 namespace {
 
 constexpr float kTwoPi = 6.283185307179586f;
-
-// Two unit tangents completing unit n to a right-handed basis (Duff et al.,
-// "Building an Orthonormal Basis, Revisited", JCGT 2017).
-void tangents(const glm::vec3& n, glm::vec3& t, glm::vec3& b) {
-  const float sign = std::copysign(1.0f, n.z);
-  const float a = -1.0f / (sign + n.z);
-  const float c = n.x * n.y * a;
-  t = {1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x};
-  b = {c, sign + n.y * n.y * a, -n.y};
-}
 
 }  // namespace
 
@@ -30,7 +21,7 @@ glm::vec3 ggxMicrofacetNormal(const glm::vec3& n, float alpha, const glm::vec2& 
   const float sinTheta = std::sqrt(std::max(0.0f, 1.0f - cos2));
   const float phi = kTwoPi * u.y;
   glm::vec3 t, b;
-  tangents(n, t, b);
+  orthonormalBasis(n, t, b);
   return glm::normalize(sinTheta * std::cos(phi) * t + sinTheta * std::sin(phi) * b + cosTheta * n);
 }
 

@@ -8,6 +8,7 @@
 #include <glm/vector_relational.hpp>
 
 #include "common/base/error.h"
+#include "common/math/finite.h"
 
 namespace glint {
 namespace {
@@ -128,10 +129,8 @@ Light readLight(Reader& r) {
   for (glm::vec3* v : {&l.position, &l.direction, &l.color, &l.attenuation}) *v = r.get<glm::vec3>();
   l.cosInner = r.get<float>();
   l.cosOuter = r.get<float>();
-  bool finite = std::isfinite(l.cosInner) && std::isfinite(l.cosOuter);
-  for (const glm::vec3& v : {l.position, l.color, l.attenuation}) {
-    for (int k = 0; k < 3; ++k) finite = finite && std::isfinite(v[k]);
-  }
+  const bool finite = std::isfinite(l.cosInner) && std::isfinite(l.cosOuter) && allFinite(l.position) &&
+                      allFinite(l.color) && allFinite(l.attenuation);
   const float length = glm::length(l.direction);
   if (!finite || !(std::abs(length - 1.0f) < 1e-3f)) r.fail("has a light that is not finite or not aimed");
   if (!(l.cosOuter >= 0.0f && l.cosOuter <= l.cosInner && l.cosInner <= 1.0f)) r.fail("has a spot's cones out of order");
