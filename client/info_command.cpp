@@ -112,6 +112,10 @@ void printContents(const Scene& scene) {
               count(checkers, "checker", "checkers").c_str());
   std::printf("  lights     %s\n", count(scene.lights.size(), "light", "lights").c_str());
   for (const Light& l : scene.lights) std::printf("             %s\n", describeLight(l).c_str());
+  if (const Environment* e = scene.environment.get()) {
+    std::printf("  sky        %dx%d environment image (escaping rays; the background %s)\n", e->width, e->height,
+                backgroundMasked(scene, scene.mask) ? "traced" : "drawn flat by OpenGL");
+  }
 }
 
 // The effect plan: what the tracer simulates, what it leaves out.

@@ -568,7 +568,7 @@ double RasterScene::draw(const FrameSettings& frame, const MaskSettings& mask) {
   const Encoder encoder(frame.output);
   const std::uint8_t background[3] = {encoder.byte(scene_.background.r), encoder.byte(scene_.background.g),
                                       encoder.byte(scene_.background.b)};
-  target_.clear(background);
+  target_.clear(background, backgroundMasked(scene_, mask) ? kMaskedPixel : kRasterPixel);
   gl_.Enable(GL_DEPTH_TEST);
   gl_.DepthFunc(GL_GREATER);
   gl_.ClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);

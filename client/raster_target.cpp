@@ -44,12 +44,12 @@ void RasterTarget::bind(int width, int height) {
   height_ = height;
 }
 
-void RasterTarget::clear(const std::uint8_t background[3]) {
+void RasterTarget::clear(const std::uint8_t background[3], std::uint32_t backgroundSurface) {
   const GLfloat colour[4] = {background[0] / 255.0f, background[1] / 255.0f, background[2] / 255.0f, 1.0f};
-  const GLuint none[4] = {0, 0, 0, 0};
+  const GLuint surface[4] = {backgroundSurface, 0, 0, 0};
   const GLfloat far = 0.0f;
   gl_.ClearBufferfv(GL_COLOR, 0, colour);
-  gl_.ClearBufferuiv(GL_COLOR, 1, none);
+  gl_.ClearBufferuiv(GL_COLOR, 1, surface);
   gl_.ClearBufferfv(GL_DEPTH, 0, &far);
 }
 

@@ -25,9 +25,10 @@ class RasterTarget {
   // Binds a target of this size (made anew when the size changes) with both
   // colour attachments drawn; throws InputError when GL cannot make it.
   void bind(int width, int height);
-  // Clears colour to `background` (exact 8-bit values), surface to 0 and
+  // Clears colour to `background` (exact 8-bit values), surface to
+  // `backgroundSurface` (object 0 and its mark: client/pixel_mark.h) and
   // depth to 0 (infinitely far).
-  void clear(const std::uint8_t background[3]);
+  void clear(const std::uint8_t background[3], std::uint32_t backgroundSurface);
   void readColour(const TileRect& window, std::vector<std::uint8_t>& rgb) const;
   void readSurface(std::vector<std::uint32_t>& surface) const;
   void readDepth(std::vector<float>& depth) const;

@@ -75,6 +75,7 @@ EffectPlan EffectPlan::derive(const Scene& scene, const FrameSettings& frame) {
   plan.shadows = anyLight && anyDirect && !selfShadowFree(scene.geometry);
   plan.softShadows = plan.shadows && anyArea;
   plan.depthOfField = frame.camera.aperture > 0.0f;
+  plan.environment = scene.environment != nullptr;
   plan.vertexColors = !scene.geometry.colors().empty();
   plan.antialiasing =
       frame.sampling.samples > 1 || frame.sampling.pattern != SamplePattern::kRegular;
@@ -85,7 +86,8 @@ std::vector<NamedEffect> namedEffects(const EffectPlan& plan) {
   return {{"shadows", plan.shadows},   {"reflection", plan.reflection}, {"refraction", plan.refraction},
           {"textures", plan.textures}, {"emission", plan.emission},     {"vertex_colors", plan.vertexColors},
           {"attenuation", plan.attenuation}, {"antialiasing", plan.antialiasing}, {"soft_shadows", plan.softShadows},
-          {"depth_of_field", plan.depthOfField}, {"glossy_reflection", plan.glossyReflection}};
+          {"depth_of_field", plan.depthOfField}, {"glossy_reflection", plan.glossyReflection},
+          {"environment", plan.environment}};
 }
 
 nlohmann::json toJson(const EffectPlan& plan) {

@@ -35,6 +35,7 @@ struct EffectPlan {
   bool softShadows = false;   // shadow rays to points over an area light
   bool depthOfField = false;  // camera rays from points over a thin lens
   bool glossyReflection = false;  // reflected rays drawn from a rough material's lobe
+  bool environment = false;       // escaping rays see the environment image, not the background
   std::vector<MaterialEffects> materials;
   std::vector<bool> lights;   // false: the light adds nothing (black) and is skipped
 
@@ -44,7 +45,7 @@ struct EffectPlan {
 
 // The plan's effects by name, in one order: shadows, reflection,
 // refraction, textures, emission, vertex_colors, attenuation, antialiasing,
-// soft_shadows, depth_of_field, glossy_reflection.
+// soft_shadows, depth_of_field, glossy_reflection, environment.
 struct NamedEffect {
   const char* name;
   bool needed;

@@ -17,4 +17,8 @@ bool materialMasked(const Material& m, const MaskSettings& mask) {
   return m.reflectivity > mask.minReflectivity || m.transparency > mask.minTransparency;
 }
 
+bool backgroundMasked(const Scene& scene, const MaskSettings& mask) {
+  return scene.environment != nullptr && (mask.rule == MaskRule::kAuto || mask.rule == MaskRule::kPerceptual);
+}
+
 }  // namespace glint

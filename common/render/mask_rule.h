@@ -12,4 +12,9 @@ namespace glint {
 // ignore the materials.
 bool materialMasked(const Material& material, const MaskSettings& mask);
 
+// Whether the ray tracer fills the pixels that show no object: under auto
+// and perceptual, where the scene has an environment image (OpenGL clears
+// them to the flat background); all traces every pixel, none none.
+bool backgroundMasked(const Scene& scene, const MaskSettings& mask);
+
 }  // namespace glint

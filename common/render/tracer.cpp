@@ -169,7 +169,7 @@ glm::vec3 Tracer::shade(const ShadingPoint& at, const Material& m, const Materia
 
 glm::vec3 Tracer::trace(const Ray& ray, int depth, float weight, bool inside, Path& path) const {
   const std::optional<Hit> hit = bvh_.intersect(ray, kInfinity);
-  if (!hit) return scene_.background;
+  if (!hit) return plan_.environment ? scene_.environment->radiance(ray.d) : scene_.background;
   const std::uint32_t material = scene_.geometry.materialOf(hit->prim);
   const Material& m = scene_.materials[material];
   const MaterialEffects& e = plan_.materials[material];

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -107,52 +108,91 @@ Image decode8Bit(const stbi_uc* data, int size, const std::string& place) {
   return {w, h, std::vector<std::uint8_t>(rgb, rgb + static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3)};
 }
 
-// Radiance HDR's linear floats as 8-bit texels (byte / 255, as every
-// texture reads): values above 1 are clamped, since textures are 8-bit.
-Image decodeHdr(const stbi_uc* data, int size, const std::string& place) {
+// Radiance HDR's linear floats as the file holds them.
+FloatPixels hdrFloats(const stbi_uc* data, int size, const std::string& place) {
   int w = 0, h = 0, channels = 0;
   const StbPixels pixels(stbi_loadf_from_memory(data, size, &w, &h, &channels, 3), stbi_image_free);
   if (!pixels) throw InputError(place + ": cannot decode image (" + stbi_failure_reason() + ")");
   const auto* linear = static_cast<const float*>(pixels.get());
-  Image image{w, h, std::vector<std::uint8_t>(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3)};
-  std::transform(linear, linear + image.rgb.size(), image.rgb.begin(), linearTexelByte);
+  return {w, h, std::vector<float>(linear, linear + static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3)};
+}
+
+// The same as 8-bit texels (byte / 255, as every texture reads): values
+// above 1 are clamped, since textures are 8-bit.
+Image decodeHdr(const stbi_uc* data, int size, const std::string& place) {
+  const FloatPixels linear = hdrFloats(data, size, place);
+  Image image{linear.width, linear.height, std::vector<std::uint8_t>(linear.rgb.size())};
+  std::transform(linear.rgb.begin(), linear.rgb.end(), image.rgb.begin(), linearTexelByte);
   return image;
+}
+
+// Checks the size a header gives against the texture limit and charges it
+// to the budget (bytesPerTexel each), before anything is decoded.
+std::function<void(int, int)> admitter(SceneBudget& budget, const std::string& place, std::size_t bytesPerTexel) {
+  return [&budget, &place, bytesPerTexel](int w, int h) {
+    const std::size_t maxPixels = budget.limits().maxTexturePixels;
+    if (w <= 0 || h <= 0 || static_cast<std::size_t>(w) * static_cast<std::size_t>(h) > maxPixels) {
+      throw InputError(place + ": image of " + std::to_string(w) + "x" + std::to_string(h) +
+                       " pixels is over the limit of " + std::to_string(maxPixels) + " pixels");
+    }
+    budget.chargeImage(w, h, place, bytesPerTexel);
+  };
+}
+
+void checkDecodable(std::string_view bytes, const std::string& place) {
+  if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
+    throw InputError(place + ": image file is too large");
+  }
+}
+
+// The size stb_image reads in a header, admitted.
+void admitStb(std::string_view bytes, const std::function<void(int, int)>& admit, int& w, int& h,
+              const std::string& place) {
+  int channels = 0;
+  if (!stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), static_cast<int>(bytes.size()), &w, &h,
+                             &channels)) {
+    throw InputError(place + ": not a readable " + kFormats + " image (" + stbi_failure_reason() + ")");
+  }
+  admit(w, h);
 }
 
 }  // namespace
 
 Image decodeImage(std::string_view bytes, const std::string& place, SceneBudget& budget) {
-  const std::size_t maxPixels = budget.limits().maxTexturePixels;
-  if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
-    throw InputError(place + ": image file is too large");
-  }
+  checkDecodable(bytes, place);
   // Only the formats read here reach a decoder (stb_image would try others:
   // GIF, PSD, PIC, PNM); JPEG goes to libjpeg-turbo (jpeg_decode.h) and
   // OpenEXR to OpenEXR's core library (exr_decode.h).
   const std::optional<ImageFormat> format = imageFormat(bytes);
   if (!format) throw InputError(place + ": not a " + kFormats + " image");
-  // The size a header gives, checked and charged before anything is decoded.
-  const auto admit = [&](int w, int h) {
-    if (w <= 0 || h <= 0 || static_cast<std::size_t>(w) * static_cast<std::size_t>(h) > maxPixels) {
-      throw InputError(place + ": image of " + std::to_string(w) + "x" + std::to_string(h) +
-                       " pixels is over the limit of " + std::to_string(maxPixels) + " pixels");
-    }
-    budget.chargeImage(w, h, place);
-  };
+  const auto admit = admitter(budget, place, SceneBudget::kBytesPerTexel);
   if (*format == ImageFormat::kJpeg) return decodeJpeg(bytes, place, admit);
   if (*format == ImageFormat::kExr) return decodeExr(bytes, place, admit);
-  const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
-  const int size = static_cast<int>(bytes.size());
-  int w = 0, h = 0, channels = 0;
-  if (!stbi_info_from_memory(data, size, &w, &h, &channels)) {
-    throw InputError(place + ": not a readable " + kFormats + " image (" + stbi_failure_reason() + ")");
-  }
-  admit(w, h);
+  int w = 0, h = 0;
+  admitStb(bytes, admit, w, h, place);
   if (*format == ImageFormat::kPng) checkPngChunks(bytes, place);
   if (*format == ImageFormat::kBmp) checkBmpRows(bytes, w, h, place);
+  const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
+  const int size = static_cast<int>(bytes.size());
   Image image = *format == ImageFormat::kHdr ? decodeHdr(data, size, place) : decode8Bit(data, size, place);
   if (image.width != w || image.height != h) throw InputError(place + ": the image's size changed while decoding");
   return image;
+}
+
+FloatPixels decodeLinearImage(std::string_view bytes, const std::string& place, SceneBudget& budget) {
+  checkDecodable(bytes, place);
+  const std::optional<ImageFormat> format = imageFormat(bytes);
+  if (format != ImageFormat::kHdr && format != ImageFormat::kExr) {
+    throw InputError(place + ": not a Radiance HDR or OpenEXR image (an environment's values are linear light; "
+                             "convert an 8-bit image to one of these)");
+  }
+  const auto admit = admitter(budget, place, SceneBudget::kBytesPerFloatTexel);
+  if (*format == ImageFormat::kExr) return decodeExrLinear(bytes, place, admit);
+  int w = 0, h = 0;
+  admitStb(bytes, admit, w, h, place);
+  FloatPixels pixels = hdrFloats(reinterpret_cast<const stbi_uc*>(bytes.data()), static_cast<int>(bytes.size()), place);
+  if (pixels.width != w || pixels.height != h) throw InputError(place + ": the image's size changed while decoding");
+  return pixels;
 }
 
 }  // namespace glint

@@ -3,6 +3,7 @@
 #include <string>
 #include <string_view>
 
+#include "common/scene/exr_decode.h"
 #include "common/scene/scene_budget.h"
 #include "common/scene/texture.h"
 
@@ -15,5 +16,11 @@ namespace glint {
 // corrupt, or over a limit are rejected with an InputError that starts with
 // `place`.
 Image decodeImage(std::string_view bytes, const std::string& place, SceneBudget& budget);
+
+// Decodes a Radiance HDR or OpenEXR image into its linear RGB floats as the
+// file holds them (an environment's light: nothing clamped), under the same
+// checks, its floats charged to the budget. Any other format is an
+// InputError starting with `place`.
+FloatPixels decodeLinearImage(std::string_view bytes, const std::string& place, SceneBudget& budget);
 
 }  // namespace glint

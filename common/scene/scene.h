@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -9,6 +10,7 @@
 #include "common/scene/camera.h"
 #include "common/base/enum_words.h"
 #include "common/geometry/geometry.h"
+#include "common/scene/environment.h"
 #include "common/scene/light.h"
 #include "common/scene/material.h"
 #include "common/scene/texture.h"
@@ -107,6 +109,8 @@ struct Scene {
   FrameSettings frame;  // the first frame's view and accuracy settings
   MaskSettings mask;
   glm::vec3 background{0.0f};
+  // What escaping rays see instead of the background; none: the background.
+  std::shared_ptr<const Environment> environment;
   std::vector<Texture> textures;
   std::vector<Material> materials;
   std::vector<Light> lights;

@@ -66,8 +66,8 @@ void SceneBudget::charge(std::size_t bytes, const std::string& place) {
   used_ = total;
 }
 
-void SceneBudget::chargeImage(int width, int height, const std::string& place) {
-  charge(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * kBytesPerTexel, place);
+void SceneBudget::chargeImage(int width, int height, const std::string& place, std::size_t bytesPerTexel) {
+  charge(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * bytesPerTexel, place);
 }
 
 void SceneBudget::chargeMesh(std::size_t vertices, std::size_t triangles, const std::string& place) {

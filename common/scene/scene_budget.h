@@ -43,7 +43,8 @@ class SceneBudget {
   static const std::size_t kBytesPerTriangle;
   static const std::size_t kBytesPerSphere;
   static const std::size_t kBvhBytesPerPrimitive;
-  static constexpr std::size_t kBytesPerTexel = 3;
+  static constexpr std::size_t kBytesPerTexel = 3;        // a texture's 8-bit RGB
+  static constexpr std::size_t kBytesPerFloatTexel = 12;  // an environment's float RGB
   // A parsed JSON document's bytes per value and per object member
   // (nlohmann::json: 31 bytes per element of a long array, 175 per object of
   // one member, measured with getrusage).
@@ -66,7 +67,7 @@ class SceneBudget {
   std::size_t used() const { return used_; }
 
   void charge(std::size_t bytes, const std::string& place);
-  void chargeImage(int width, int height, const std::string& place);
+  void chargeImage(int width, int height, const std::string& place, std::size_t bytesPerTexel = kBytesPerTexel);
   void chargeMesh(std::size_t vertices, std::size_t triangles, const std::string& place);
   void chargeSphere(const std::string& place);
   // What parsing a document of this shape takes, held until refund() (the

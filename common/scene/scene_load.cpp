@@ -10,6 +10,7 @@
 #include "common/base/error.h"
 #include "common/scene/frame_limits.h"
 #include "common/base/json_reader.h"
+#include "common/scene/image_decode.h"
 #include "common/scene/mesh_import.h"
 #include "common/scene/smooth_normals.h"
 #include "common/scene/transform.h"
@@ -49,7 +50,7 @@ class SceneLoader {
 
   Scene load(const nlohmann::json& doc) {
     const JsonReader root(doc, "");
-    root.allowKeys({"glint", "image", "camera", "sampling", "tracing", "mask", "background",
+    root.allowKeys({"glint", "image", "camera", "sampling", "tracing", "mask", "background", "environment",
                     "textures", "materials", "lights", "objects"});
     root["glint"].integer(1, 1);  // the format's version: only 1 exists
     readImage(root["image"]);
@@ -59,6 +60,7 @@ class SceneLoader {
     checkFrame();
     if (auto m = root.find("mask")) readMask(*m);
     scene_.background = root.vec3("background", glm::vec3(0.0f));
+    if (auto e = root.find("environment")) readEnvironment(*e);
     if (auto t = root.find("textures")) readTextures(*t);
     if (auto m = root.find("materials")) readMaterials(*m);
     if (auto l = root.find("lights")) readLights(*l);
@@ -97,6 +99,17 @@ class SceneLoader {
     c.aperture = r.number("aperture", 0.0f, 0.0f, kMax);
     const float toTarget = glm::length(c.lookAt - c.eye);
     c.focusDistance = r.number("focus_distance", toTarget > 0.0f ? toTarget : 1.0f, 0.0f, kMax, true);
+  }
+
+  // An equirectangular HDR or EXR image, its values times 2^exposure.
+  void readEnvironment(const JsonReader& r) {
+    r.allowKeys({"file", "exposure"});
+    const JsonReader file = r["file"];
+    const std::string path = normalisePath(file.string());
+    FloatPixels pixels = decodeLinearImage(files_.read(path, file.path()), file.path(), budget_);
+    const float exposure = r.number("exposure", 0.0f, -FrameLimits::kMaxExposure, FrameLimits::kMaxExposure);
+    scene_.environment =
+        std::make_shared<const Environment>(pixels.width, pixels.height, std::move(pixels.rgb), std::exp2(exposure));
   }
 
   // "fit": true: the camera moved along its direction to frame every object.

@@ -1,0 +1,57 @@
+#include "common/scene/environment.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+
+#include "common/math/finite.h"
+
+namespace glint {
+
+Environment::Environment(int w, int h, std::vector<float> linear, float scale)
+    : width(w), height(h), rgb(std::move(linear)) {
+  if (w <= 0 || h <= 0 || rgb.size() != static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3) {
+    throw std::invalid_argument("Environment: width * height * 3 values");
+  }
+  for (float& v : rgb) {
+    const float scaled = v * scale;
+    v = std::isfinite(scaled) && scaled > 0.0f ? std::min(scaled, kMaxRadiance) : 0.0f;
+  }
+}
+
+glm::vec3 Environment::texel(int x, int y) const {
+  const std::size_t i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 3;
+  return {rgb[i], rgb[i + 1], rgb[i + 2]};
+}
+
+glm::vec2 equirectangularUv(const glm::vec3& d) {
+  constexpr float kPi = std::numbers::pi_v<float>;
+  const float u = 0.5f + std::atan2(d.x, -d.z) / (2.0f * kPi);
+  const float v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi;
+  return {std::clamp(u, 0.0f, 1.0f), std::clamp(v, 0.0f, 1.0f)};
+}
+
+glm::vec3 Environment::radiance(const glm::vec3& direction) const {
+  const float length = glm::length(direction);
+  if (!allFinite(direction) || !(length > 0.0f) || !std::isfinite(length)) return glm::vec3(0.0f);
+  const glm::vec2 uv = equirectangularUv(direction / length);
+  // Texel centres at (i + 1/2) / size: x wraps around, y stops at the poles.
+  const float x = uv.x * static_cast<float>(width) - 0.5f;
+  const float y = std::clamp(uv.y * static_cast<float>(height) - 0.5f, 0.0f, static_cast<float>(height - 1));
+  const float x0 = std::floor(x);
+  const float y0 = std::floor(y);
+  const float fx = x - x0;
+  const float fy = y - y0;
+  const int ix0 = (static_cast<int>(x0) % width + width) % width;
+  const int ix1 = (ix0 + 1) % width;
+  const int iy0 = static_cast<int>(y0);
+  const int iy1 = std::min(iy0 + 1, height - 1);
+  const glm::vec3 top = texel(ix0, iy0) * (1.0f - fx) + texel(ix1, iy0) * fx;
+  const glm::vec3 bottom = texel(ix0, iy1) * (1.0f - fx) + texel(ix1, iy1) * fx;
+  return top * (1.0f - fy) + bottom * fy;
+}
+
+}  // namespace glint

@@ -1,0 +1,41 @@
+#pragma once
+
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace glint {
+
+// An environment image: the light that rays escaping the scene see, from
+// every direction, in place of the flat background. Equirectangular, row 0
+// at the top: a direction d (y up) is at
+//   u = 1/2 + atan2(d.x, -d.z) / 2 pi,  v = acos(d.y / |d|) / pi,
+// so the image's centre column lies along -z, u grows toward +x, the top
+// row is straight up and the bottom row straight down. Texels are read
+// bilinearly between their centres, wrapping around in u and clamped at
+// the poles in v.
+struct Environment {
+  // The brightest radiance a texel keeps: sums of a few weighted lookups
+  // stay finite in float.
+  static constexpr float kMaxRadiance = 1e30f;
+
+  int width = 0;
+  int height = 0;
+  std::vector<float> rgb;  // width * height * 3, linear; scaled by 2^exposure
+
+  // The image's linear values times `scale`, each value that is negative or
+  // not finite as 0 and none above kMaxRadiance.
+  Environment(int width, int height, std::vector<float> linear, float scale);
+
+  // The radiance seen along `direction` (any length but 0); black for a
+  // direction that is 0 or not finite.
+  glm::vec3 radiance(const glm::vec3& direction) const;
+
+  glm::vec3 texel(int x, int y) const;
+};
+
+// Where a unit direction lies on the image, u and v in [0, 1].
+glm::vec2 equirectangularUv(const glm::vec3& unitDirection);
+
+}  // namespace glint
