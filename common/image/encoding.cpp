@@ -9,7 +9,7 @@
 namespace glint {
 
 Encoder::Encoder(const OutputSettings& output)
-    : scale_(std::exp2(output.exposure)), srgb_(output.encoding == Encoding::kSrgb) {}
+    : scale_(twoToThe(output.exposure)), srgb_(output.encoding == Encoding::kSrgb) {}
 
 std::uint8_t Encoder::byte(float linear) const {
   const float v = std::clamp(linear * scale_, 0.0f, 1.0f);

@@ -276,7 +276,7 @@ float aces(float c) {
 
 LinearImage exposedAndToneMapped(const LinearImage& image, float exposure) {
   LinearImage out = image;
-  const float scale = std::exp2(exposure);
+  const float scale = twoToThe(exposure);
   for (float& v : out.rgb) v = std::clamp(aces(v * scale), 0.0f, 1.0f);
   return out;
 }

@@ -162,4 +162,6 @@ float exponential(float x) {
   return exp2ToFloat(x * kLog2e, tables());
 }
 
+float twoToThe(float x) { return static_cast<float>(std::exp2(static_cast<double>(x))); }
+
 }  // namespace glint

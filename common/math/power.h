@@ -28,4 +28,8 @@ float exponential(float x);
 // the cube root relative before the rounding to float; elsewhere as std::cbrt.
 float cubeRoot(float x);
 
+// 2^x for floats (an exposure's scale) from glibc's double exp2, which it
+// does not pick at run time; its exp2f it does, as powf.
+float twoToThe(float x);
+
 }  // namespace glint

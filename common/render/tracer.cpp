@@ -9,7 +9,11 @@
 
 namespace glint {
 Tracer::Tracer(const Scene& scene, const Bvh& bvh, const FrameSettings& frame, const EffectPlan& plan)
-    : scene_(scene), bvh_(bvh), tracing_(frame.tracing), plan_(plan) {
+    : scene_(scene),
+      bvh_(bvh),
+      tracing_(frame.tracing),
+      plan_(plan),
+      environment_(plan.environment ? scene.environment.get() : nullptr) {
   for (const Light& l : scene.lights) {
     areas_.push_back(l.type == LightType::kArea
                          ? std::optional<AreaLightPoints>(std::in_place, l,
@@ -169,7 +173,7 @@ glm::vec3 Tracer::shade(const ShadingPoint& at, const Material& m, const Materia
 
 glm::vec3 Tracer::trace(const Ray& ray, int depth, float weight, bool inside, Path& path) const {
   const std::optional<Hit> hit = bvh_.intersect(ray, kInfinity);
-  if (!hit) return plan_.environment ? scene_.environment->radiance(ray.d) : scene_.background;
+  if (!hit) return environment_ ? environment_->radiance(ray.d) : scene_.background;
   const std::uint32_t material = scene_.geometry.materialOf(hit->prim);
   const Material& m = scene_.materials[material];
   const MaterialEffects& e = plan_.materials[material];

@@ -93,6 +93,7 @@ class Tracer {
   const Bvh& bvh_;
   TracingSettings tracing_;
   const EffectPlan& plan_;
+  const Environment* environment_;  // what escaping rays see; none: the background
   std::vector<std::optional<AreaLightPoints>> areas_;  // per light: an area light's points
   std::vector<int> lightDimensions_;  // per light: its first dimension in a depth's block
   int lightDimensionsPerDepth_ = 0;

@@ -16,10 +16,7 @@ Environment::Environment(int w, int h, std::vector<float> linear, float scale)
   if (w <= 0 || h <= 0 || rgb.size() != static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3) {
     throw std::invalid_argument("Environment: width * height * 3 values");
   }
-  for (float& v : rgb) {
-    const float scaled = v * scale;
-    v = std::isfinite(scaled) && scaled > 0.0f ? std::min(scaled, kMaxRadiance) : 0.0f;
-  }
+  for (float& v : rgb) v = std::isfinite(v) && v > 0.0f ? std::min(v * scale, kMaxRadiance) : 0.0f;
 }
 
 glm::vec3 Environment::texel(int x, int y) const {
@@ -35,9 +32,11 @@ glm::vec2 equirectangularUv(const glm::vec3& d) {
 }
 
 glm::vec3 Environment::radiance(const glm::vec3& direction) const {
-  const float length = glm::length(direction);
-  if (!allFinite(direction) || !(length > 0.0f) || !std::isfinite(length)) return glm::vec3(0.0f);
-  const glm::vec2 uv = equirectangularUv(direction / length);
+  // Scaled to a largest component of 1 before it is normalised: the
+  // length of a tiny or huge direction neither underflows nor overflows.
+  const float largest = std::max({std::abs(direction.x), std::abs(direction.y), std::abs(direction.z)});
+  if (!allFinite(direction) || !(largest > 0.0f)) return glm::vec3(0.0f);
+  const glm::vec2 uv = equirectangularUv(glm::normalize(direction / largest));
   // Texel centres at (i + 1/2) / size: x wraps around, y stops at the poles.
   const float x = uv.x * static_cast<float>(width) - 0.5f;
   const float y = std::clamp(uv.y * static_cast<float>(height) - 0.5f, 0.0f, static_cast<float>(height - 1));

@@ -10,6 +10,7 @@
 #include "common/base/error.h"
 #include "common/scene/frame_limits.h"
 #include "common/base/json_reader.h"
+#include "common/math/power.h"
 #include "common/scene/image_decode.h"
 #include "common/scene/mesh_import.h"
 #include "common/scene/smooth_normals.h"
@@ -109,7 +110,7 @@ class SceneLoader {
     FloatPixels pixels = decodeLinearImage(files_.read(path, file.path()), file.path(), budget_);
     const float exposure = r.number("exposure", 0.0f, -FrameLimits::kMaxExposure, FrameLimits::kMaxExposure);
     scene_.environment =
-        std::make_shared<const Environment>(pixels.width, pixels.height, std::move(pixels.rgb), std::exp2(exposure));
+        std::make_shared<const Environment>(pixels.width, pixels.height, std::move(pixels.rgb), twoToThe(exposure));
   }
 
   // "fit": true: the camera moved along its direction to frame every object.

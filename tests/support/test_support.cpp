@@ -40,6 +40,7 @@ EffectPlan everyEffect(const Scene& scene) {
   EffectPlan plan;
   plan.shadows = plan.reflection = plan.refraction = true;
   plan.textures = plan.emission = plan.vertexColors = plan.attenuation = plan.antialiasing = true;
+  plan.environment = true;
   plan.materials.assign(scene.materials.size(), MaterialEffects{.direct = true,
                                                                 .specular = true,
                                                                 .textured = true,
