@@ -619,6 +619,45 @@ TEST(Hybrid, RoughReflectorsAreTracedAsTheFullTrace) {
   std::remove(path.c_str());
 }
 
+// An environment image: OpenGL clears the background flat, so every pixel
+// that shows no object is traced (and the raster's edges against one), byte
+// for byte the full trace, here and through glintd (the scene's bundle
+// carries the image); under none the flat background stays.
+TEST(Hybrid, TheEnvironmentBehindEverythingIsTraced) {
+  const SceneSetup s = load("scenes/environment.json");
+  const PreparedScene prepared(s.loaded.scene, BvhSettings{});
+  ASSERT_TRUE(EffectPlan::derive(prepared.scene(), s.frame).environment);
+  ThreadPool pool(2);
+  LocalTileService local(prepared, pool);
+  const FrameImage full = renderFrame(local, s.frame, {}).image;
+  const FrameImage direct = directLight(local, s.frame);
+  const MaskSettings mask = prepared.scene().mask;
+  const HybridResult here = hybrid(prepared.scene(), local, s.frame, mask);
+  EXPECT_EQ(tracedUnlikeTheTrace(here, direct, full), 0);
+  std::size_t sky = 0, raster = 0;
+  for (std::size_t i = 0; i < here.mask.size(); ++i) {
+    if (here.surface[i] >> kPixelMarkBits != 0) {
+      raster += here.mask[i] == kRasterPixel ? 1 : 0;
+      continue;
+    }
+    ++sky;
+    EXPECT_EQ(here.mask[i], kMaskedPixel) << "pixel " << i;
+  }
+  EXPECT_GT(sky, 5000u);
+  EXPECT_GT(raster, 3000u);  // the floor stays OpenGL's
+  server::BackgroundServer glintd(quietLoopback(2));
+  DistributedTileService remote(resolveServers({glintd.address()}), s.loaded.bundle);
+  EXPECT_EQ(hybrid(prepared.scene(), remote, s.frame, mask).image.rgb, here.image.rgb);
+  const HybridResult flat = hybrid(prepared.scene(), local, s.frame, rule(MaskRule::kNone));
+  const Encoder encoder(s.frame.output);
+  const glm::vec3 background = prepared.scene().background;
+  for (std::size_t i = 0; i < flat.mask.size(); ++i) {
+    if (flat.surface[i] >> kPixelMarkBits != 0) continue;
+    ASSERT_EQ(flat.image.rgb[3 * i], encoder.byte(background.r)) << "pixel " << i;
+    ASSERT_EQ(flat.image.rgb[3 * i + 2], encoder.byte(background.b)) << "pixel " << i;
+  }
+}
+
 // A thin lens: OpenGL cannot blur, so every pixel whose point's circle of
 // confusion exceeds half a pixel is traced with the frame's settings (and
 // those a blur may reach), byte for byte the full trace's; a pinhole frame

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "common/base/error.h"
+#include "common/scene/scene_load.h"
 
 namespace glint {
 namespace {
@@ -46,6 +47,27 @@ TEST(OutputFile, ExrReadsBackAsTheImageInHalfFloat) {
   }
   EXPECT_FALSE(fs::exists(path.string() + ".partial"));
   fs::remove(path);
+}
+
+// What glint writes as EXR a scene takes as its environment: each texel the
+// half-rounded value times 2^exposure, a negative one as 0.
+TEST(OutputFile, AnExrIsAnEnvironmentImage) {
+  const fs::path dir = fs::temp_directory_path() / "glint_output_environment";
+  fs::create_directories(dir);
+  const LinearImage image = someImage(6, 3);
+  writeExr(dir / "sky.exr", image);
+  std::ofstream(dir / "scene.json") << R"({"glint": 1, "image": {"width": 8, "height": 8},
+    "camera": {"eye": [0, 0, 0], "look_at": [0, 0, -1]}, "environment": {"file": "sky.exr", "exposure": -1},
+    "objects": []})";
+  const Scene scene = loadSceneFile(dir / "scene.json");
+  ASSERT_NE(scene.environment, nullptr);
+  ASSERT_EQ(scene.environment->width, 6);
+  ASSERT_EQ(scene.environment->height, 3);
+  for (std::size_t i = 0; i < image.rgb.size(); ++i) {
+    const float half = float(Imath::half(image.rgb[i]));
+    EXPECT_EQ(scene.environment->rgb[i], half > 0.0f ? half * 0.5f : 0.0f) << i;
+  }
+  fs::remove_all(dir);
 }
 
 TEST(OutputFile, PfmHoldsTheFloatsBottomUp) {
