@@ -59,6 +59,7 @@ TEST(Docs, SceneFormatExampleRenders) {
   fs::create_directories(dir / "models");
   fs::create_directories(dir / "textures");
   fs::copy_file(test::sourcePath("scenes/models/bunny.obj"), dir / "models/bunny.obj");
+  fs::copy_file(test::sourcePath("scenes/sky.hdr"), dir / "sky.hdr");
   std::ofstream(dir / "textures/photo.png", std::ios::binary) << test::flatPng(4, 4);
   std::ofstream(dir / "scene.json") << doc.substr(start + 8, end - start - 8);
   Scene scene = loadSceneFile(dir / "scene.json");
