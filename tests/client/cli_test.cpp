@@ -363,6 +363,19 @@ TEST_F(Cli, InfoDescribesTheSceneAndWhatTheHybridFrameTraces) {
   EXPECT_EQ(small.output.find("hybrid"), std::string::npos) << small.output;
 }
 
+// An environment image is named with its size and what the hybrid frame
+// does with the pixels that show it.
+TEST_F(Cli, InfoNamesTheEnvironmentImage) {
+  const Result info = glint("info " + scene("environment.json") + " --size 64x36 --no-raster");
+  ASSERT_EQ(info.status, 0) << info.output;
+  EXPECT_NE(info.output.find("sky        256x128 environment image (escaping rays; the background traced)"),
+            std::string::npos)
+      << info.output;
+  EXPECT_NE(info.output.find(" environment; left out:"), std::string::npos) << info.output;
+  const Result flat = glint("info " + scene("environment.json") + " --mask none --no-raster");
+  EXPECT_NE(flat.output.find("(escaping rays; the background drawn flat by OpenGL)"), std::string::npos) << flat.output;
+}
+
 // --fit frames every object as the scene's "fit": true does: the same image.
 TEST_F(Cli, FitFromTheCommandLineOrTheScene) {
   std::string text = kTwoObjects;
