@@ -94,6 +94,19 @@ int tracedUnlikeTheTrace(const HybridResult& here, const FrameImage& direct, con
   return differing;
 }
 
+// A frame's hybrid under the scene's own mask, with the full trace, and the
+// channels of its traced pixels unlike the full trace of their kind.
+struct AgainstTheTrace {
+  HybridResult here;
+  FrameImage full;
+  int tracedUnlike;
+};
+AgainstTheTrace hybridAgainstTheTrace(const Scene& scene, TileService& local, const FrameSettings& frame) {
+  AgainstTheTrace a{hybrid(scene, local, frame, scene.mask), renderFrame(local, frame, {}).image, 0};
+  a.tracedUnlike = tracedUnlikeTheTrace(a.here, directLight(local, frame), a.full);
+  return a;
+}
+
 // A pixel is "fully covered" when rays through its centre and four points
 // `margin` pixels off it diagonally (0.45: near its corners) hit the same
 // primitive with the same texture colour (`sameColour`): no silhouette or
@@ -559,11 +572,9 @@ TEST(Hybrid, SpotAndDirectionalShadowsFromTheirMaps) {
   LocalTileService local(prepared, pool);
   FrameSettings centre = s.frame;
   centre.sampling = {SamplePattern::kRegular, 1, FilterType::kBox, 0};
-  const FrameImage full = renderFrame(local, centre, {}).image;
-  const FrameImage direct = directLight(local, centre);
   const MaskSettings mask = prepared.scene().mask;
-  const HybridResult here = hybrid(prepared.scene(), local, centre, mask);
-  EXPECT_EQ(tracedUnlikeTheTrace(here, direct, full), 0);
+  const auto [here, full, tracedUnlike] = hybridAgainstTheTrace(prepared.scene(), local, centre);
+  EXPECT_EQ(tracedUnlike, 0);
   const std::vector<bool> covered = fullyCovered(prepared, centre);
   int worst = 0, compared = 0;
   for (std::size_t i = 0; i < here.mask.size(); ++i) {
@@ -602,11 +613,9 @@ TEST(Hybrid, RoughReflectorsAreTracedAsTheFullTrace) {
   ASSERT_TRUE(EffectPlan::derive(prepared.scene(), s.frame).glossyReflection);
   ThreadPool pool(2);
   LocalTileService local(prepared, pool);
-  const FrameImage full = renderFrame(local, s.frame, {}).image;
-  const FrameImage direct = directLight(local, s.frame);
   const MaskSettings mask = prepared.scene().mask;
-  const HybridResult here = hybrid(prepared.scene(), local, s.frame, mask);
-  EXPECT_EQ(tracedUnlikeTheTrace(here, direct, full), 0);
+  const auto [here, full, tracedUnlike] = hybridAgainstTheTrace(prepared.scene(), local, s.frame);
+  EXPECT_EQ(tracedUnlike, 0);
   EXPECT_GT(here.maskedPixels, 5000u);
   EXPECT_EQ(hybrid(prepared.scene(), local, s.frame, mask, 7).image.rgb, here.image.rgb);
   server::BackgroundServer glintd(quietLoopback(2));
@@ -629,11 +638,9 @@ TEST(Hybrid, TheEnvironmentBehindEverythingIsTraced) {
   ASSERT_TRUE(EffectPlan::derive(prepared.scene(), s.frame).environment);
   ThreadPool pool(2);
   LocalTileService local(prepared, pool);
-  const FrameImage full = renderFrame(local, s.frame, {}).image;
-  const FrameImage direct = directLight(local, s.frame);
   const MaskSettings mask = prepared.scene().mask;
-  const HybridResult here = hybrid(prepared.scene(), local, s.frame, mask);
-  EXPECT_EQ(tracedUnlikeTheTrace(here, direct, full), 0);
+  const auto [here, full, tracedUnlike] = hybridAgainstTheTrace(prepared.scene(), local, s.frame);
+  EXPECT_EQ(tracedUnlike, 0);
   std::size_t sky = 0, raster = 0;
   for (std::size_t i = 0; i < here.mask.size(); ++i) {
     if (here.surface[i] >> kPixelMarkBits != 0) {
@@ -669,13 +676,10 @@ TEST(Hybrid, OutOfFocusPixelsAreTraced) {
   const PreparedScene prepared(s.loaded.scene, BvhSettings{});
   ThreadPool pool(2);
   LocalTileService local(prepared, pool);
-  const FrameImage full = renderFrame(local, s.frame, {}).image;
-  const FrameImage direct = directLight(local, s.frame);
   const MaskSettings mask = prepared.scene().mask;
-  const HybridResult here = hybrid(prepared.scene(), local, s.frame, mask);
+  const auto [here, full, differing] = hybridAgainstTheTrace(prepared.scene(), local, s.frame);
   const Camera camera(s.frame.camera, s.frame.width, s.frame.height);
   const glm::vec3 forward = glm::normalize(s.frame.camera.lookAt - s.frame.camera.eye);
-  const int differing = tracedUnlikeTheTrace(here, direct, full);
   int blurredLeft = 0, blurred = 0;
   for (std::size_t i = 0; i < here.mask.size(); ++i) {
     const int x = static_cast<int>(i % 160), y = static_cast<int>(i / 160);

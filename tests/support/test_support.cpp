@@ -12,6 +12,8 @@
 
 #include "common/base/file_source.h"
 #include "common/image/image_write.h"
+#include "common/render/linear_frame.h"
+#include "common/render/prepared_scene.h"
 #include "common/render/renderer.h"
 #include "common/scene/scene_load.h"
 #include "common/base/thread_pool.h"
@@ -34,6 +36,20 @@ FrameResult render(const Scene& scene, const EffectPlan& plan, int threads, int 
   FrameOptions options;
   options.tileSize = tileSize;
   return renderFrame(renderer, pool, options);
+}
+
+LinearImage renderLinearFrame(const Scene& scene, RayStats& stats, int threads, int tileSize) {
+  const PreparedScene prepared(scene, BvhSettings{});
+  const Renderer renderer(prepared, scene.frame);
+  ThreadPool pool(threads);
+  FrameOptions options;
+  options.tileSize = tileSize;
+  return renderLinear(renderer, pool, stats, LinearRange::kUnbounded, options);
+}
+
+LinearImage renderLinearFrame(const Scene& scene, int threads, int tileSize) {
+  RayStats stats;
+  return renderLinearFrame(scene, stats, threads, tileSize);
 }
 
 EffectPlan everyEffect(const Scene& scene) {

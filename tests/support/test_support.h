@@ -5,6 +5,8 @@
 
 #include "common/render/effects.h"
 #include "common/render/frame.h"
+#include "common/image/linear_image.h"
+#include "common/render/ray_stats.h"
 #include "common/geometry/geometry.h"
 #include "common/scene/scene.h"
 
@@ -24,6 +26,11 @@ EffectPlan directLightOnly(const Scene& scene, const FrameSettings& frame);
 // Renders a whole frame through the tile interface.
 FrameResult render(const Scene& scene, int threads = 1, int tileSize = 32);
 FrameResult render(const Scene& scene, const EffectPlan& plan, int threads = 1, int tileSize = 32);
+
+// Renders a whole frame's linear colour (before 8-bit rounding, not
+// clamped), its rays counted into `stats`.
+LinearImage renderLinearFrame(const Scene& scene, RayStats& stats, int threads = 2, int tileSize = 16);
+LinearImage renderLinearFrame(const Scene& scene, int threads = 2, int tileSize = 16);
 
 // Path of a file in the source tree (scenes/room.json).
 std::string sourcePath(const std::string& relative);

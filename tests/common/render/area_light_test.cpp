@@ -72,21 +72,12 @@ double visibleShare(const glm::dvec3& p) {
   return open / total;
 }
 
-LinearImage renderScene(const Scene& scene, RayStats& stats, int threads = 2, int tileSize = 16) {
-  const PreparedScene prepared(scene, BvhSettings{});
-  const Renderer renderer(prepared, scene.frame);
-  ThreadPool pool(threads);
-  FrameOptions options;
-  options.tileSize = tileSize;
-  return renderLinear(renderer, pool, stats, LinearRange::kUnbounded, options);
-}
-
 TEST(AreaLight, SoftShadowFollowsTheShareOfTheLightSeen) {
   const Scene shadowed = test::sceneFromJson(floorScene(true, 400).dump());
   const Scene open = test::sceneFromJson(floorScene(false, 400).dump());
   RayStats stats;
-  const LinearImage withSphere = renderScene(shadowed, stats);
-  const LinearImage without = renderScene(open, stats);
+  const LinearImage withSphere = test::renderLinearFrame(shadowed, stats);
+  const LinearImage without = test::renderLinearFrame(open, stats);
   const Camera camera(shadowed.frame.camera, shadowed.frame.width, shadowed.frame.height);
   int penumbra = 0, umbra = 0, lit = 0, litExact = 0;
   double errorSum = 0.0, worst = 0.0;
@@ -132,9 +123,9 @@ TEST(AreaLight, SoftShadowFollowsTheShareOfTheLightSeen) {
 TEST(AreaLight, FrameLightSamplesSetThePointsPerShadowQuery) {
   Scene scene = test::sceneFromJson(floorScene(true, 16).dump());
   RayStats own, four;
-  renderScene(scene, own);
+  test::renderLinearFrame(scene, own);
   scene.frame.sampling.lightSamples = 4;
-  renderScene(scene, four);
+  test::renderLinearFrame(scene, four);
   EXPECT_GT(four.shadow, 0u);
   EXPECT_EQ(own.primary, four.primary);
   EXPECT_NEAR(static_cast<double>(own.shadow) / static_cast<double>(four.shadow), 4.0, 0.05);
@@ -159,7 +150,7 @@ TEST(AreaLight, PointLightsTakeNoSampleOfTheLight) {
   j["lights"][0] = {{"type", "point"}, {"position", {kLight.x, kLight.y, kLight.z}}};
   const Scene scene = test::sceneFromJson(j.dump());
   RayStats stats;
-  renderScene(scene, stats);
+  test::renderLinearFrame(scene, stats);
   EXPECT_LE(stats.shadow, stats.primary);
 }
 

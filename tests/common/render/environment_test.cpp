@@ -167,20 +167,10 @@ Scene loadWithSky(const json& j, const std::string& file = skyHdr()) {
   return loadScene(j.dump(), files);
 }
 
-LinearImage renderLinearScene(const Scene& scene, int threads = 2, int tileSize = 16) {
-  const PreparedScene prepared(scene, BvhSettings{});
-  const Renderer renderer(prepared, scene.frame);
-  ThreadPool pool(threads);
-  FrameOptions options;
-  options.tileSize = tileSize;
-  RayStats stats;
-  return renderLinear(renderer, pool, stats, LinearRange::kUnbounded, options);
-}
-
 TEST(Environment, EscapingRaysSeeItBehindEverythingAndInTheMirror) {
   const Scene scene = loadWithSky(mirrorScene(0.0f));
   ASSERT_TRUE(EffectPlan::derive(scene).environment);
-  const LinearImage image = renderLinearScene(scene);
+  const LinearImage image = test::renderLinearFrame(scene);
   const Camera camera(scene.frame.camera, scene.frame.width, scene.frame.height);
   int sky = 0, mirrored = 0;
   for (int y = 0; y < image.height; ++y) {
@@ -201,7 +191,7 @@ TEST(Environment, EscapingRaysSeeItBehindEverythingAndInTheMirror) {
   // Every effect on renders what the plan asks for.
   EXPECT_EQ(test::render(scene, test::everyEffect(scene), 2).image.rgb, test::render(scene, 2).image.rgb);
   // Exposure 1 doubles every value, exactly.
-  const LinearImage brighter = renderLinearScene(loadWithSky(mirrorScene(1.0f)));
+  const LinearImage brighter = test::renderLinearFrame(loadWithSky(mirrorScene(1.0f)));
   for (std::size_t i = 0; i < image.rgb.size(); ++i) ASSERT_EQ(brighter.rgb[i], 2.0f * image.rgb[i]) << i;
 }
 
@@ -219,7 +209,7 @@ TEST(Environment, ASceneWithoutOneSeesItsBackground) {
   j.erase("environment");
   const Scene scene = loadWithSky(j);
   EXPECT_FALSE(EffectPlan::derive(scene).environment);
-  const LinearImage image = renderLinearScene(scene);
+  const LinearImage image = test::renderLinearFrame(scene);
   for (std::size_t i = 0; i < image.rgb.size(); i += 3) {
     ASSERT_EQ(glm::vec3(image.rgb[i], image.rgb[i + 1], image.rgb[i + 2]), glm::vec3(1, 0, 1)) << i / 3;
   }

@@ -52,16 +52,6 @@ json spotLight() {
 
 json sunLight() { return {{"type", "directional"}, {"direction", {kSunTravel.x, kSunTravel.y, kSunTravel.z}}}; }
 
-LinearImage renderScene(const Scene& scene, int threads = 2, int tileSize = 16) {
-  const PreparedScene prepared(scene, BvhSettings{});
-  const Renderer renderer(prepared, scene.frame);
-  ThreadPool pool(threads);
-  FrameOptions options;
-  options.tileSize = tileSize;
-  RayStats stats;
-  return renderLinear(renderer, pool, stats, LinearRange::kUnbounded, options);
-}
-
 bool rayHitsSphere(const glm::dvec3& p, const glm::dvec3& d) {
   const glm::dvec3 m = p - kSphere;
   const double b = glm::dot(m, d), c = glm::dot(m, m) - kRadius * kRadius;
@@ -92,7 +82,7 @@ void expectFloor(const Scene& scene, const LinearImage& image, Expected expected
 
 TEST(SpotLight, FloorFollowsTheConesFalloff) {
   const Scene scene = test::sceneFromJson(floorScene(spotLight(), false).dump());
-  const LinearImage image = renderScene(scene);
+  const LinearImage image = test::renderLinearFrame(scene);
   const double cosInner = std::cos(kInnerDegrees * M_PI / 180.0), cosOuter = std::cos(kOuterDegrees * M_PI / 180.0);
   int compared = 0, inner = 0, dark = 0;
   double worst = 0.0;
@@ -114,7 +104,7 @@ TEST(SpotLight, FloorFollowsTheConesFalloff) {
 
 TEST(DirectionalLight, FloorIsLambertsCosineAndTheSphereShadowsAlongTheLight) {
   const Scene scene = test::sceneFromJson(floorScene(sunLight(), true).dump());
-  const LinearImage image = renderScene(scene);
+  const LinearImage image = test::renderLinearFrame(scene);
   const double cosine = -kSunTravel.y;
   int compared = 0, shadowed = 0;
   double worst = 0.0;
