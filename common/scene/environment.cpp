@@ -11,8 +11,8 @@
 
 namespace glint {
 
-Environment::Environment(int w, int h, std::vector<float> linear, float scale)
-    : width(w), height(h), rgb(std::move(linear)) {
+Environment::Environment(int w, int h, std::vector<float> linear, float scale, float rotation)
+    : width(w), height(h), rgb(std::move(linear)), turn_(sineCosine(rotation)) {
   if (w <= 0 || h <= 0 || rgb.size() != static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3) {
     throw std::invalid_argument("Environment: width * height * 3 values");
   }
@@ -36,7 +36,10 @@ glm::vec3 Environment::radiance(const glm::vec3& direction) const {
   // length of a tiny or huge direction neither underflows nor overflows.
   const float largest = std::max({std::abs(direction.x), std::abs(direction.y), std::abs(direction.z)});
   if (!allFinite(direction) || !(largest > 0.0f)) return glm::vec3(0.0f);
-  const glm::vec2 uv = equirectangularUv(glm::normalize(direction / largest));
+  const glm::vec3 d = direction / largest;
+  // Turned back by the rotation: where the direction lies on the image.
+  const glm::vec3 onImage{d.x * turn_.cos - d.z * turn_.sin, d.y, d.x * turn_.sin + d.z * turn_.cos};
+  const glm::vec2 uv = equirectangularUv(glm::normalize(onImage));
   // Texel centres at (i + 1/2) / size: x wraps around, y stops at the poles.
   const float x = uv.x * static_cast<float>(width) - 0.5f;
   const float y = std::clamp(uv.y * static_cast<float>(height) - 0.5f, 0.0f, static_cast<float>(height - 1));

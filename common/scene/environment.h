@@ -5,6 +5,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "common/math/circular.h"
+
 namespace glint {
 
 // An environment image: the light that rays escaping the scene see, from
@@ -14,7 +16,8 @@ namespace glint {
 // so the image's centre column lies along -z, u grows toward +x, the top
 // row is straight up and the bottom row straight down. Texels are read
 // bilinearly between their centres, wrapping around in u and clamped at
-// the poles in v.
+// the poles in v. A rotation turns the image about +y (right-handed: by 90
+// degrees, what lay along +z lies along +x).
 struct Environment {
   // The brightest radiance a texel keeps: sums of a few weighted lookups
   // stay finite in float.
@@ -25,14 +28,18 @@ struct Environment {
   std::vector<float> rgb;  // width * height * 3, linear; scaled by 2^exposure
 
   // The image's linear values times `scale`, each value that is negative or
-  // not finite as 0 and none above kMaxRadiance.
-  Environment(int width, int height, std::vector<float> linear, float scale);
+  // not finite as 0 and none above kMaxRadiance, turned by `rotation`
+  // radians about +y.
+  Environment(int width, int height, std::vector<float> linear, float scale, float rotation = 0.0f);
 
   // The radiance seen along `direction` (any length but 0); black for a
   // direction that is 0 or not finite.
   glm::vec3 radiance(const glm::vec3& direction) const;
 
   glm::vec3 texel(int x, int y) const;
+
+ private:
+  SineCosine turn_;
 };
 
 // Where a unit direction lies on the image, u and v in [0, 1].

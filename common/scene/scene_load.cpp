@@ -102,15 +102,17 @@ class SceneLoader {
     c.focusDistance = r.number("focus_distance", toTarget > 0.0f ? toTarget : 1.0f, 0.0f, kMax, true);
   }
 
-  // An equirectangular HDR or EXR image, its values times 2^exposure.
+  // An equirectangular HDR or EXR image, its values times 2^exposure,
+  // turned about +y by rotation degrees.
   void readEnvironment(const JsonReader& r) {
-    r.allowKeys({"file", "exposure"});
+    r.allowKeys({"file", "exposure", "rotation"});
     const JsonReader file = r["file"];
     const std::string path = normalisePath(file.string());
     FloatPixels pixels = decodeLinearImage(files_.read(path, file.path()), file.path(), budget_);
     const float exposure = r.number("exposure", 0.0f, -FrameLimits::kMaxExposure, FrameLimits::kMaxExposure);
-    scene_.environment =
-        std::make_shared<const Environment>(pixels.width, pixels.height, std::move(pixels.rgb), twoToThe(exposure));
+    const float rotation = r.number("rotation", 0.0f, -360.0f, 360.0f);
+    scene_.environment = std::make_shared<const Environment>(pixels.width, pixels.height, std::move(pixels.rgb),
+                                                             twoToThe(exposure), glm::radians(rotation));
   }
 
   // "fit": true: the camera moved along its direction to frame every object.

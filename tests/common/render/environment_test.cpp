@@ -72,14 +72,14 @@ glm::dvec3 expectedRadiance(const glm::dvec3& d, double scale = 1.0) {
   return r;
 }
 
-Environment skyEnvironment(float scale = 1.0f) {
+Environment skyEnvironment(float scale = 1.0f, float rotation = 0.0f) {
   std::vector<float> rgb;
   for (int y = 0; y < kHeight; ++y) {
     for (int x = 0; x < kWidth; ++x) {
       for (int c = 0; c < 3; ++c) rgb.push_back(static_cast<float>(texelValue(x, y, c)));
     }
   }
-  return Environment(kWidth, kHeight, rgb, scale);
+  return Environment(kWidth, kHeight, rgb, scale, rotation);
 }
 
 void expectNear(const glm::vec3& got, const glm::dvec3& want, double tolerance, const std::string& where) {
@@ -167,6 +167,36 @@ Scene loadWithSky(const json& j, const std::string& file = skyHdr()) {
   return loadScene(j.dump(), files);
 }
 
+// Turned by theta about +y, the image shows along d what it showed along d
+// turned back by theta.
+TEST(Environment, ARotationTurnsTheImageAboutY) {
+  constexpr double kDegrees = 75.0;
+  const double theta = kDegrees * kPi / 180.0;
+  const Environment turned = skyEnvironment(1.0f, static_cast<float>(theta));
+  int compared = 0;
+  for (double v = 0.03; v < 1.0; v += 0.07) {
+    for (double u = 0.0; u < 1.0; u += 0.03) {
+      const glm::dvec3 d = direction(u, v);
+      const glm::dvec3 back(d.x * std::cos(theta) - d.z * std::sin(theta), d.y,
+                            d.x * std::sin(theta) + d.z * std::cos(theta));
+      expectNear(turned.radiance(glm::vec3(d)), expectedRadiance(back), 2e-4,
+                 "u " + std::to_string(u) + ", v " + std::to_string(v));
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 400);
+  // By 90 degrees what lay along +z lies along +x.
+  expectNear(skyEnvironment(1.0f, static_cast<float>(kPi / 2)).radiance({1, 0, 0}), expectedRadiance({0, 0, 1}), 1e-5,
+             "+x after a quarter turn");
+  // The scene's "rotation" in degrees is this turn.
+  json j = mirrorScene(0.0f);
+  j["environment"]["rotation"] = kDegrees;
+  const Scene scene = loadWithSky(j);
+  for (const glm::vec3 d : {glm::vec3(1, 0.2f, 0), glm::vec3(-0.3f, -0.5f, 0.8f), glm::vec3(0.1f, 0.9f, -0.2f)}) {
+    EXPECT_EQ(scene.environment->radiance(d), turned.radiance(d));
+  }
+}
+
 TEST(Environment, EscapingRaysSeeItBehindEverythingAndInTheMirror) {
   const Scene scene = loadWithSky(mirrorScene(0.0f));
   ASSERT_TRUE(EffectPlan::derive(scene).environment);
@@ -233,8 +263,11 @@ TEST(Environment, BadEnvironmentsAreNamedErrors) {
   EXPECT_NE(vast.find("environment.file: image of 30000x30000 pixels is over the limit"), std::string::npos) << vast;
   EXPECT_NE(refusal(mirrorScene(40.0f), skyHdr()).find("environment.exposure"), std::string::npos);
   json extra = mirrorScene(0.0f);
-  extra["environment"]["rotation"] = 90;
-  EXPECT_NE(refusal(extra, skyHdr()).find("rotation"), std::string::npos);
+  extra["environment"]["tilt"] = 90;
+  EXPECT_NE(refusal(extra, skyHdr()).find("tilt"), std::string::npos);
+  json spun = mirrorScene(0.0f);
+  spun["environment"]["rotation"] = 400;
+  EXPECT_NE(refusal(spun, skyHdr()).find("environment.rotation"), std::string::npos) << refusal(spun, skyHdr());
   json noFile = mirrorScene(0.0f);
   noFile["environment"].erase("file");
   EXPECT_NE(refusal(noFile, skyHdr()).find("environment.file"), std::string::npos) << refusal(noFile, skyHdr());
