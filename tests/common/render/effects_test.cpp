@@ -94,6 +94,24 @@ TEST(Effects, SoftShadowsOnlyWhereAnAreaLightCanBeBlocked) {
   }
 }
 
+// Only the scene with an environment image looks one up.
+TEST(Effects, EnvironmentOnlyWhereTheSceneHasOne) {
+  for (const char* name : {"scenes/room.json", "scenes/glass.json", "scenes/bunny.json", "scenes/glossy.json",
+                           "scenes/lights.json", "scenes/soft-shadows.json"}) {
+    EXPECT_FALSE(EffectPlan::derive(loadSceneFile(test::sourcePath(name))).environment) << name;
+  }
+  const Scene sky = loadSceneFile(test::sourcePath("scenes/environment.json"));
+  EXPECT_TRUE(EffectPlan::derive(sky).environment);
+  // A camera that sees only the sky and no light or material: that is all it simulates.
+  Scene bare = sky;
+  bare.frame.sampling = {};
+  bare.materials.clear();
+  bare.lights.clear();
+  bare.geometry = Geometry{};
+  const EffectPlan plan = EffectPlan::derive(bare);
+  for (const NamedEffect& e : namedEffects(plan)) EXPECT_EQ(e.needed, std::string(e.name) == "environment") << e.name;
+}
+
 // The raster pass draws shadow maps only where a shadow can fall on a
 // surface OpenGL draws: something casts one, a lit material is left to
 // OpenGL by the mask, and the maps are not turned off.
