@@ -10,6 +10,17 @@
 #include "common/math/finite.h"
 
 namespace glint {
+namespace {
+
+// Where a unit direction lies on the image, u and v in [0, 1].
+glm::vec2 equirectangularUv(const glm::vec3& d) {
+  constexpr float kPi = std::numbers::pi_v<float>;
+  const float u = 0.5f + std::atan2(d.x, -d.z) / (2.0f * kPi);
+  const float v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi;
+  return {std::clamp(u, 0.0f, 1.0f), std::clamp(v, 0.0f, 1.0f)};
+}
+
+}  // namespace
 
 Environment::Environment(int w, int h, std::vector<float> linear, float scale, float rotation)
     : width(w), height(h), rgb(std::move(linear)), turn_(sineCosine(rotation)) {
@@ -24,13 +35,6 @@ glm::vec3 Environment::texel(int x, int y) const {
   return {rgb[i], rgb[i + 1], rgb[i + 2]};
 }
 
-glm::vec2 equirectangularUv(const glm::vec3& d) {
-  constexpr float kPi = std::numbers::pi_v<float>;
-  const float u = 0.5f + std::atan2(d.x, -d.z) / (2.0f * kPi);
-  const float v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi;
-  return {std::clamp(u, 0.0f, 1.0f), std::clamp(v, 0.0f, 1.0f)};
-}
-
 glm::vec3 Environment::radiance(const glm::vec3& direction) const {
   // Scaled to a largest component of 1 before it is normalised: the
   // length of a tiny or huge direction neither underflows nor overflows.
@@ -39,7 +43,10 @@ glm::vec3 Environment::radiance(const glm::vec3& direction) const {
   const glm::vec3 d = direction / largest;
   // Turned back by the rotation: where the direction lies on the image.
   const glm::vec3 onImage{d.x * turn_.cos - d.z * turn_.sin, d.y, d.x * turn_.sin + d.z * turn_.cos};
-  const glm::vec2 uv = equirectangularUv(glm::normalize(onImage));
+  return bilinear(equirectangularUv(glm::normalize(onImage)));
+}
+
+glm::vec3 Environment::bilinear(const glm::vec2& uv) const {
   // Texel centres at (i + 1/2) / size: x wraps around, y stops at the poles.
   const float x = uv.x * static_cast<float>(width) - 0.5f;
   const float y = std::clamp(uv.y * static_cast<float>(height) - 0.5f, 0.0f, static_cast<float>(height - 1));

@@ -39,10 +39,9 @@ struct Environment {
   glm::vec3 texel(int x, int y) const;
 
  private:
+  glm::vec3 bilinear(const glm::vec2& uv) const;
+
   SineCosine turn_;
 };
-
-// Where a unit direction lies on the image, u and v in [0, 1].
-glm::vec2 equirectangularUv(const glm::vec3& unitDirection);
 
 }  // namespace glint
