@@ -106,11 +106,11 @@ class SceneLoader {
   // turned about +y by rotation degrees.
   void readEnvironment(const JsonReader& r) {
     r.allowKeys({"file", "exposure", "rotation"});
+    const float exposure = r.number("exposure", 0.0f, -FrameLimits::kMaxExposure, FrameLimits::kMaxExposure);
+    const float rotation = r.number("rotation", 0.0f, -360.0f, 360.0f);
     const JsonReader file = r["file"];
     const std::string path = normalisePath(file.string());
     FloatPixels pixels = decodeLinearImage(files_.read(path, file.path()), file.path(), budget_);
-    const float exposure = r.number("exposure", 0.0f, -FrameLimits::kMaxExposure, FrameLimits::kMaxExposure);
-    const float rotation = r.number("rotation", 0.0f, -360.0f, 360.0f);
     scene_.environment = std::make_shared<const Environment>(pixels.width, pixels.height, std::move(pixels.rgb),
                                                              twoToThe(exposure), glm::radians(rotation));
   }
