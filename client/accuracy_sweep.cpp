@@ -116,9 +116,8 @@ std::vector<Series> defaultSweep(const Scene& scene) {
           {AccuracyKey::kShadowMap, {"0", "256", "1024", "4096"}},
           {AccuracyKey::kMaskRule, {"auto", "perceptual"}},
           {AccuracyKey::kPerceptualThreshold, {"0.1", "0.2", "0.3", "0.5", "0.8"}}};
-  const bool area = std::any_of(scene.lights.begin(), scene.lights.end(),
-                                [](const Light& l) { return l.type == LightType::kArea; });
-  if (area) sweep.push_back({AccuracyKey::kLightSamples, {"1", "4", "16", "64", "256"}});
+  const bool soft = std::any_of(scene.lights.begin(), scene.lights.end(), softLight);
+  if (soft) sweep.push_back({AccuracyKey::kLightSamples, {"1", "4", "16", "64", "256"}});
   return sweep;
 }
 

@@ -20,6 +20,12 @@
 namespace glint {
 namespace {
 
+std::string scalar(float v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
 std::string vec(const glm::vec3& v) {
   char text[96];
   std::snprintf(text, sizeof text, "(%g, %g, %g)", v.x, v.y, v.z);
@@ -80,6 +86,9 @@ std::string describeLight(const Light& l) {
              formatDegrees(l.cosInner) + " and " + formatDegrees(l.cosOuter) + ", " + light + falloff;
     case LightType::kArea:
       return kind + " at " + vec(l.position) + ", edges " + vec(l.u) + " " + vec(l.v) + ", " +
+             std::to_string(l.samples) + " samples, " + light + falloff;
+    case LightType::kSphere:
+      return kind + " at " + vec(l.position) + ", radius " + scalar(l.radius) + ", " +
              std::to_string(l.samples) + " samples, " + light + falloff;
     case LightType::kPoint:
       break;

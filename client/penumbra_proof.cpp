@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "common/geometry/region_query.h"
+#include "common/math/basis.h"
 
 namespace glint::gl {
 namespace {
@@ -101,34 +102,68 @@ PenumbraProof::PenumbraProof(const Scene& scene, const EffectPlan& plan) : geome
   if (!plan.softShadows) return;
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
-    if (l.type != LightType::kArea || !plan.lights[i]) continue;
+    if (!softLight(l) || !plan.lights[i]) continue;
+    if (l.type == LightType::kSphere) {
+      lights_.push_back({{}, l.position, glm::vec3(0.0f), l.radius});
+      continue;
+    }
     const glm::vec3 c = l.position - 0.5f * l.u - 0.5f * l.v;
     lights_.push_back({{c, c + l.u, c + l.u + l.v, c + l.v}, l.position, glm::normalize(glm::cross(l.u, l.v))});
   }
   if (!lights_.empty()) bvh_ = Bvh::build(scene.geometry, BvhSettings{});
 }
 
+std::optional<PenumbraProof::Base> PenumbraProof::baseFrom(const SoftLight& light, const glm::vec3& apex,
+                                                           float distance) {
+  if (light.radius == 0.0f) {
+    // Nearly in the light's plane, the pyramid's sides are not planes.
+    if (!(glm::dot(apex - light.centre, light.normal) > kLift * distance)) return std::nullopt;
+    return Base{light.corners, light.normal};
+  }
+  // The ball, grown by the lift, is in the cone from the apex of half-angle
+  // asin(r / d): it meets the plane through the centre in a circle of radius
+  // r / cos, inside the square of that half-side.
+  const float radius = light.radius * (1.0f + kLift);
+  const glm::vec3 toApex = apex - light.centre;
+  const float d = glm::length(toApex);
+  const float ratio = radius / d;
+  const float halfSide = radius / std::sqrt(1.0f - ratio * ratio);
+  if (!(ratio < 1.0f) || !std::isfinite(halfSide)) return std::nullopt;
+  const glm::vec3 axis = toApex / d;
+  glm::vec3 t, b;
+  orthonormalBasis(axis, t, b);
+  t *= halfSide;
+  b *= halfSide;
+  const glm::vec3& c = light.centre;
+  return Base{{c - t - b, c + t - b, c + t + b, c - t + b}, axis};
+}
+
+bool PenumbraProof::clear(const glm::vec3& apex, const Base& base, const glm::vec3& centre) const {
+  ConvexRegion pyramid;
+  const glm::vec3 inside = 0.5f * (apex + centre);
+  pyramid.planes.push_back(planeThrough(centre, base.normal, inside));
+  for (int k = 0; k < 4; ++k) {
+    const glm::vec3& a = base.corners[k];
+    const glm::vec3& b = base.corners[(k + 1) % 4];
+    pyramid.planes.push_back(planeThrough(apex, glm::cross(a - apex, b - apex), inside));
+  }
+  pyramid.corners = {apex, base.corners[0], base.corners[1], base.corners[2], base.corners[3]};
+  finishRegion(pyramid);
+  for (std::uint32_t prim : primitivesInRegion(bvh_, geometry_, pyramid, UINT32_MAX)) {
+    if (blocks(prim, pyramid)) return false;
+  }
+  return true;
+}
+
 bool PenumbraProof::seesWhole(const glm::vec3& p, const glm::vec3& eye) const {
-  for (const Parallelogram& light : lights_) {
-    if (glm::dot(p - light.centre, light.normal) <= 0.0f) continue;  // behind it: no light, nothing to prove
+  for (const SoftLight& light : lights_) {
+    // Behind an area light: no light, nothing to prove.
+    if (light.radius == 0.0f && glm::dot(p - light.centre, light.normal) <= 0.0f) continue;
     const glm::vec3 toLight = light.centre - p;
     const float distance = glm::length(toLight);
     const glm::vec3 apex = p + (kLift * (distance + glm::length(p - eye)) / distance) * toLight;
-    // Nearly in the light's plane, the pyramid's sides are not planes.
-    if (!(glm::dot(apex - light.centre, light.normal) > kLift * distance)) return false;
-    ConvexRegion pyramid;
-    const glm::vec3 inside = 0.5f * (apex + light.centre);
-    pyramid.planes.push_back(planeThrough(light.centre, light.normal, inside));
-    for (int k = 0; k < 4; ++k) {
-      const glm::vec3& a = light.corners[k];
-      const glm::vec3& b = light.corners[(k + 1) % 4];
-      pyramid.planes.push_back(planeThrough(apex, glm::cross(a - apex, b - apex), inside));
-    }
-    pyramid.corners = {apex, light.corners[0], light.corners[1], light.corners[2], light.corners[3]};
-    finishRegion(pyramid);
-    for (std::uint32_t prim : primitivesInRegion(bvh_, geometry_, pyramid, UINT32_MAX)) {
-      if (blocks(prim, pyramid)) return false;
-    }
+    const std::optional<Base> base = baseFrom(light, apex, distance);
+    if (!base || !clear(apex, *base, light.centre)) return false;
   }
   return true;
 }

@@ -1,7 +1,8 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
-#include <functional>
+#include <optional>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -13,36 +14,52 @@
 
 namespace glint::gl {
 
-// Which pixels of a raster frame see every area light whole, proved from the
-// scene's geometry: the raster shades an area light's unshadowed light
-// (common/render/area_light.h), which is the tracer's value wherever nothing
-// stands between the point and any point of the light. For a pixel's point p
-// (from its depth), lifted off its surface towards the light by 1/1000 of
-// its distances to the eye and the light, nothing may enter the pyramid from
-// p to the light's parallelogram (common/geometry/region_query.h, then each
-// primitive it finds by separating axes); a pixel
-// not proved so is traced, the penumbra and the umbra alike. A point behind
-// a light's plane gets nothing from it and needs no proof.
+// Which pixels of a raster frame see every soft light whole, proved from the
+// scene's geometry: the raster shades an area or sphere light's unshadowed
+// light (common/render/area_light.h, common/render/sphere_light.h), which is
+// the tracer's value wherever nothing stands between the point and any point
+// its shadow rays may go to. For a pixel's point p (from its depth), lifted
+// off its surface towards the light by 1/1000 of its distances to the eye
+// and the light, nothing may enter the pyramid from p to the light's base
+// (common/geometry/region_query.h, then each primitive it finds by
+// separating axes): an area light's parallelogram, or for a sphere light the
+// square through its centre, square to the axis from p, that the ball's cone
+// from p passes through (the ball's near side, where the rays end, lies
+// within). A pixel not proved so is traced, the penumbra and the umbra
+// alike. A point behind an area light's plane gets nothing from it and needs
+// no proof; one within a sphere light's ball is traced.
 class PenumbraProof {
  public:
-  // For the area lights the plan lets cast shadows (none: active() false).
+  // For the soft lights the plan lets cast shadows (none: active() false).
   PenumbraProof(const Scene& scene, const EffectPlan& plan);
   bool active() const { return !lights_.empty(); }
 
-  // Whether every area light reaches the whole of p's view of it.
+  // Whether every soft light reaches the whole of p's view of it.
   bool seesWhole(const glm::vec3& p, const glm::vec3& eye) const;
 
  private:
   // Whether a primitive the region query found may enter the pyramid (an
   // exact separating-axis test; the query's answer is conservative).
   bool blocks(std::uint32_t prim, const ConvexRegion& pyramid) const;
-  struct Parallelogram {
-    glm::vec3 corners[4];
+  struct SoftLight {
+    std::array<glm::vec3, 4> corners;  // an area light's parallelogram
     glm::vec3 centre;
-    glm::vec3 normal;  // unit, towards the lit side
+    glm::vec3 normal;     // an area light's: unit, towards the lit side
+    float radius = 0.0f;  // a sphere light's (0: an area light)
   };
+  // A pyramid's base: four corners in order around it, and the unit normal
+  // of their plane towards the apex.
+  struct Base {
+    std::array<glm::vec3, 4> corners;
+    glm::vec3 normal;
+  };
+  // The base from the apex (none: no proof from there).
+  static std::optional<Base> baseFrom(const SoftLight& light, const glm::vec3& apex, float distance);
+  // Whether nothing enters the pyramid from the apex to the base through
+  // `centre`.
+  bool clear(const glm::vec3& apex, const Base& base, const glm::vec3& centre) const;
   const Geometry& geometry_;
-  std::vector<Parallelogram> lights_;
+  std::vector<SoftLight> lights_;
   Bvh bvh_;
 };
 

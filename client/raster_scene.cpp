@@ -100,7 +100,7 @@ RasterScene::RasterScene(const Api& api, const Scene& scene)
       penumbra_(scene, plan_) {
   std::vector<bool> casts(scene.lights.size(), false);  // the lights with shadow maps
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
-    if (scene.lights[i].type == LightType::kArea) continue;
+    if (softLight(scene.lights[i])) continue;
     punctualLights_.push_back(scene.lights[i]);
     punctualCasts_.push_back(plan_.lights[i]);
     spotLights_ = spotLights_ || scene.lights[i].type == LightType::kSpot;
@@ -360,14 +360,22 @@ void RasterScene::setLightUniforms(unsigned program, const FrameSettings& frame)
     gl_.Uniform2fv(at("uLightCone"), n, glm::value_ptr(cones[0]));
     gl_.Uniform1iv(at("uLightKind"), n, kinds.data());
   }
-  // Each area light as the points its unshadowed light is the sum of.
+  // Each area light as the points its unshadowed light is the sum of; a
+  // sphere light as its centre, lighting every side (no normal).
   std::vector<glm::vec3> normals;
   positions.clear();
   colors.clear();
   attenuations.clear();
   for (std::size_t i = 0; i < scene_.lights.size(); ++i) {
     const Light& l = scene_.lights[i];
-    if (l.type != LightType::kArea || !plan_.lights[i]) continue;
+    if (!softLight(l) || !plan_.lights[i]) continue;
+    if (l.type == LightType::kSphere) {
+      positions.push_back(l.position);
+      colors.push_back(l.color);
+      attenuations.push_back(l.attenuation);
+      normals.emplace_back(0.0f);
+      continue;
+    }
     const AreaLightPoints points(l, areaLightSamples(l, frame.sampling.lightSamples));
     for (const glm::vec3& c : points.centres) {
       positions.push_back(c);
@@ -378,7 +386,7 @@ void RasterScene::setLightUniforms(unsigned program, const FrameSettings& frame)
   }
   if (positions.size() > kMaxAreaPoints) {
     throw InputError("the OpenGL path draws at most " + std::to_string(kMaxAreaPoints) +
-                     " points of area lights; the scene's take " + std::to_string(positions.size()) +
+                     " points of area lights and centres of sphere lights; the scene's take " + std::to_string(positions.size()) +
                      " (fewer light samples, or --mask all traces them all)");
   }
   gl_.Uniform1i(at("uAreaCount"), static_cast<int>(positions.size()));

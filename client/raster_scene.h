@@ -44,7 +44,7 @@ class RasterScene {
   double draw(const FrameSettings& frame, const MaskSettings& mask);
   const RasterTarget& target() const { return target_; }
 
-  // Where the area lights are seen whole (their unshadowed light, which the
+  // Where the area and sphere lights are seen whole (their unshadowed light, which the
   // raster draws, is the tracer's).
   const PenumbraProof& penumbra() const { return penumbra_; }
   // Whether the object a surface value names (object << kPixelMarkBits) is
@@ -104,7 +104,8 @@ class RasterScene {
   void setFrameUniforms(unsigned program, const FrameSettings& frame, const Projection& projection,
                         const MaskSettings& mask);
   void setMaterialUniforms(unsigned program, const Material& material);
-  // The point lights', and the area lights' points (frame's light samples).
+  // The point lights', the area lights' points (frame's light samples) and
+  // the sphere lights' centres.
   void setLightUniforms(unsigned program, const FrameSettings& frame);
   // A texture's uv transform (identity for none) into a mat3x2 uniform.
   void setUvTransform(int location, const std::optional<UvTransform>& transform);

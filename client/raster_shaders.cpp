@@ -76,11 +76,11 @@ uniform vec3 uLightAttenuation[MAX_LIGHTS];
 uniform int uLightKind[MAX_LIGHTS];          // LightType: point, spot or directional
 uniform vec3 uLightDirection[MAX_LIGHTS];    // unit: a spot's axis, a directional light's travel
 uniform vec2 uLightCone[MAX_LIGHTS];         // a spot's cosInner, cosOuter
-uniform int uAreaCount;                      // area lights' points (AreaLightPoints' centres)
+uniform int uAreaCount;                      // area lights' points (AreaLightPoints' centres), sphere lights' centres
 uniform vec3 uAreaPosition[MAX_AREA_POINTS];
 uniform vec3 uAreaColor[MAX_AREA_POINTS];
 uniform vec3 uAreaAttenuation[MAX_AREA_POINTS];
-uniform vec3 uAreaNormal[MAX_AREA_POINTS];  // towards the light's lit side
+uniform vec3 uAreaNormal[MAX_AREA_POINTS];  // towards the light's lit side; zero: every side
 uniform vec3 uColor;                         // the material's colour (times its texture)
 uniform vec4 uTerms;                         // ambient, diffuse, specular, shininess
 uniform vec3 uCheckerColor0;
@@ -374,10 +374,10 @@ vec3 shade(vec3 p, vec3 ng, vec3 ns, vec2 uv) {
 #endif
     addPhong(result, lightI, c, ns, l, toViewer);
   }
-  // Area lights unshadowed: where they may be blocked the pixel is traced
-  // (client/penumbra_proof.h).
+  // Area and sphere lights unshadowed: where they may be blocked the pixel
+  // is traced (client/penumbra_proof.h).
   for (int i = 0; i < uAreaCount; ++i) {
-    if (dot(p - uAreaPosition[i], uAreaNormal[i]) <= 0.0) continue;
+    if (uAreaNormal[i] != vec3(0.0) && dot(p - uAreaPosition[i], uAreaNormal[i]) <= 0.0) continue;
     vec3 toLight = uAreaPosition[i] - p;
     float d = length(toLight);
     if (!(d > 0.0)) continue;

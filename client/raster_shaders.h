@@ -53,7 +53,8 @@ extern const char* const kSphereFragmentShader;
 
 // The length of the shaders' light arrays (defined only here; MAX_LIGHTS).
 constexpr int kMaxLights = 16;
-// The length of their arrays of area lights' points (MAX_AREA_POINTS).
+// The length of their arrays of area lights' points and sphere lights'
+// centres (MAX_AREA_POINTS).
 constexpr std::size_t kMaxAreaPoints = 64;
 // Texels on each side of a point's own that its shadow test reads (1: 3 x 3;
 // the shaders' SHADOW_RADIUS).

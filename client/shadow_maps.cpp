@@ -80,7 +80,7 @@ void ShadowMaps::build(const std::vector<Light>& lights, const std::vector<bool>
   radius_ = bounds.empty() ? 1.0f : std::max(glm::length(bounds.max - bounds.min) * 0.505f, 1e-6f);
   int layers = 0;
   for (std::size_t i = 0; i < lights.size(); ++i) {
-    if (!casts[i] || lights[i].type == LightType::kArea || bounds.empty()) continue;
+    if (!casts[i] || softLight(lights[i]) || bounds.empty()) continue;
     firstLayer_[i] = layers;
     if (lights[i].type == LightType::kDirectional) {
       orthonormalBasis(lights[i].direction, axisS_[i], axisT_[i]);

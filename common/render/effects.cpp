@@ -62,18 +62,18 @@ EffectPlan EffectPlan::derive(const Scene& scene, const FrameSettings& frame) {
     plan.materials.push_back(e);
   }
   bool anyLight = false;
-  bool anyArea = false;
+  bool anySoft = false;
   for (const Light& l : scene.lights) {
     const bool active = hasPositive(l.color);
     plan.lights.push_back(active);
     anyLight = anyLight || active;
-    anyArea = anyArea || (active && l.type == LightType::kArea);
+    anySoft = anySoft || (active && softLight(l));
     if (active && (l.attenuation.y != 0.0f || l.attenuation.z != 0.0f)) plan.attenuation = true;
   }
   bool anyDirect = false;
   for (const MaterialEffects& e : plan.materials) anyDirect = anyDirect || e.direct;
   plan.shadows = anyLight && anyDirect && !selfShadowFree(scene.geometry);
-  plan.softShadows = plan.shadows && anyArea;
+  plan.softShadows = plan.shadows && anySoft;
   plan.depthOfField = frame.camera.aperture > 0.0f;
   plan.environment = scene.environment != nullptr;
   plan.vertexColors = !scene.geometry.colors().empty();
@@ -101,9 +101,9 @@ nlohmann::json toJson(const EffectPlan& plan) {
 
 bool rasterShadows(const Scene& scene, const EffectPlan& plan, const MaskSettings& mask) {
   if (!plan.shadows || mask.shadowMap <= 0 || mask.rule == MaskRule::kAll) return false;
-  bool punctual = false;  // area lights: client/penumbra_proof.h
+  bool punctual = false;  // soft lights: client/penumbra_proof.h
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
-    punctual = punctual || (plan.lights[i] && scene.lights[i].type != LightType::kArea);
+    punctual = punctual || (plan.lights[i] && !softLight(scene.lights[i]));
   }
   if (!punctual) return false;
   for (std::size_t i = 0; i < scene.materials.size(); ++i) {

@@ -32,7 +32,7 @@ struct EffectPlan {
   bool vertexColors = false;  // a mesh's per-vertex colours
   bool attenuation = false;   // distance fall-off of some light (other than a constant)
   bool antialiasing = false;  // samples off the pixel centre: several, or jittered
-  bool softShadows = false;   // shadow rays to points over an area light
+  bool softShadows = false;   // shadow rays to points over an area or sphere light
   bool depthOfField = false;  // camera rays from points over a thin lens
   bool glossyReflection = false;  // reflected rays drawn from a rough material's lobe
   bool environment = false;       // escaping rays see the environment image, not the background

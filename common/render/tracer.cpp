@@ -6,6 +6,7 @@
 #include "common/render/glossy_lobe.h"
 #include "common/render/optics.h"
 #include "common/render/shading.h"
+#include "common/render/sphere_light.h"
 
 namespace glint {
 Tracer::Tracer(const Scene& scene, const Bvh& bvh, const FrameSettings& frame, const EffectPlan& plan)
@@ -15,12 +16,15 @@ Tracer::Tracer(const Scene& scene, const Bvh& bvh, const FrameSettings& frame, c
       plan_(plan),
       environment_(plan.environment ? scene.environment.get() : nullptr) {
   for (const Light& l : scene.lights) {
-    areas_.push_back(l.type == LightType::kArea
-                         ? std::optional<AreaLightPoints>(std::in_place, l,
-                                                          areaLightSamples(l, frame.sampling.lightSamples))
-                         : std::nullopt);
+    const int count = areaLightSamples(l, frame.sampling.lightSamples);
+    areas_.push_back(l.type == LightType::kArea ? std::optional<AreaLightPoints>(std::in_place, l, count)
+                                                : std::nullopt);
+    sphereStrata_.emplace_back();
+    for (int k = 0; l.type == LightType::kSphere && k < count; ++k) {
+      sphereStrata_.back().push_back(jitteredStratum(count, k));
+    }
     lightDimensions_.push_back(lightDimensionsPerDepth_);
-    if (areas_.back()) lightDimensionsPerDepth_ += 2 * static_cast<int>(areas_.back()->strata.size());
+    if (softLight(l)) lightDimensionsPerDepth_ += 2 * count;
   }
 }
 
@@ -115,37 +119,70 @@ void Tracer::addAreaLight(const ShadingPoint& at, const Surface& f, int light, P
     if (d) addPhong(at, f, *d, lightIntensity(a.color, l.attenuation, d->distance), lit);
   }
   if (lit == glm::vec3(0.0f)) return;
-  result += plan_.shadows ? lit * areaVisibility(at, light, path) : lit;
+  if (!plan_.shadows) {
+    result += lit;
+    return;
+  }
+  const auto target = [&](int k, const glm::vec2& u) -> std::optional<Direction> {
+    const glm::vec3 q = a.jittered(k, u);
+    const glm::vec3 fromOrigin = q - at.outside;
+    const float distance = glm::length(fromOrigin);
+    if (!(distance > 0.0f) || !a.lights(q, at.s.p)) return std::nullopt;
+    return Direction{fromOrigin / distance, distance};
+  };
+  const auto weight = [&](float cosine, float distance) {
+    return attenuate(glm::vec3(cosine), l.attenuation, distance).x;
+  };
+  result += lit * visibleShare(at, light, static_cast<int>(a.strata.size()), path, target, weight);
 }
 
-float Tracer::areaVisibility(const ShadingPoint& at, int light, Path& path) const {
-  const AreaLightPoints& a = *areas_[static_cast<std::size_t>(light)];
-  const glm::vec3& attenuation = scene_.lights[static_cast<std::size_t>(light)].attenuation;
-  const int count = static_cast<int>(a.strata.size());
+void Tracer::addSphereLight(const ShadingPoint& at, const Surface& f, int light, Path& path,
+                            glm::vec3& result) const {
+  const Light& l = scene_.lights[static_cast<std::size_t>(light)];
+  const std::optional<Direction> d = towards(at, l.position);
+  if (!d) return;
+  glm::vec3 lit{0.0f};
+  addPhong(at, f, *d, lightIntensity(l.color, l.attenuation, d->distance), lit);
+  if (lit == glm::vec3(0.0f)) return;
+  // A point in the ball sees no cone: the centre's light stands.
+  const std::optional<SphereLightView> view = SphereLightView::from(l.position, l.radius, at.outside);
+  if (!plan_.shadows || !view) {
+    result += lit;
+    return;
+  }
+  const std::vector<Stratum>& strata = sphereStrata_[static_cast<std::size_t>(light)];
+  const auto target = [&](int k, const glm::vec2& u) -> std::optional<Direction> {
+    const SphereLightView::Sample s = view->sample(strata[static_cast<std::size_t>(k)], u);
+    if (!(s.distance > 0.0f)) return std::nullopt;
+    return Direction{s.direction, s.distance};
+  };
+  const auto weight = [](float cosine, float) { return cosine; };
+  result += lit * visibleShare(at, light, static_cast<int>(strata.size()), path, target, weight);
+}
+
+template <typename Target, typename Weight>
+float Tracer::visibleShare(const ShadingPoint& at, int light, int count, Path& path, const Target& target,
+                           const Weight& weight) const {
   const int first = lightDimension(at.depth, light);
   float open = 0.0f;
   float total = 0.0f;
   for (int k = 0; k < count; ++k) {
-    const glm::vec3 q =
-        a.jittered(k, {path.key.uniform(first + 2 * k), path.key.uniform(first + 2 * k + 1)});
-    const glm::vec3 fromOrigin = q - at.outside;
-    const float distance = glm::length(fromOrigin);
-    if (!(distance > 0.0f) || !a.lights(q, at.s.p)) continue;
-    const glm::vec3 l = fromOrigin / distance;
-    const float cosine = glm::dot(l, at.s.ns);
-    if (glm::dot(l, at.s.ng) <= 0.0f || cosine <= 0.0f) continue;
-    // What the point gives a diffuse surface, the weight of its verdict.
-    const float weight = attenuate(glm::vec3(cosine), attenuation, distance).x;
-    total += weight;
+    const std::optional<Direction> d =
+        target(k, glm::vec2(path.key.uniform(first + 2 * k), path.key.uniform(first + 2 * k + 1)));
+    if (!d) continue;
+    const float cosine = glm::dot(d->l, at.s.ns);
+    if (glm::dot(d->l, at.s.ng) <= 0.0f || cosine <= 0.0f) continue;
+    const float w = weight(cosine, d->distance);
+    total += w;
     ++path.stats.shadow;
-    if (bvh_.occluded(Ray(at.outside, l), distance)) {
+    if (bvh_.occluded(Ray(at.outside, d->l), d->distance)) {
       ++path.stats.shadowBlocked;
     } else {
-      open += weight;
+      open += w;
     }
   }
-  // No jittered point faces the surface (a light at grazing incidence): the
-  // centres' light stands, as the raster shades it.
+  // No point faces the surface (a light at grazing incidence): the
+  // unshadowed light stands, as the raster shades it.
   return total > 0.0f ? open / total : 1.0f;
 }
 
@@ -164,6 +201,8 @@ glm::vec3 Tracer::shade(const ShadingPoint& at, const Material& m, const Materia
     if (!plan_.lights[static_cast<std::size_t>(i)]) continue;
     if (areas_[static_cast<std::size_t>(i)]) {
       addAreaLight(at, f, i, path, result);
+    } else if (scene_.lights[static_cast<std::size_t>(i)].type == LightType::kSphere) {
+      addSphereLight(at, f, i, path, result);
     } else {
       addPunctualLight(at, f, i, path, result);
     }

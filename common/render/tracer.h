@@ -15,9 +15,10 @@ namespace glint {
 
 // Whitted back ray tracing (the thesis's RT unit): at each hit, shadow rays
 // to the lights and the Phong model, then a reflected and a refracted ray
-// weighted by the material. An area light's shadow rays go to points drawn
-// from the camera sample's key (common/render/area_light.h), as does a rough
-// material's reflected ray (common/render/glossy_lobe.h). Recursion stops at max_depth (primary ray =
+// weighted by the material. An area or sphere light's shadow rays go to
+// points drawn from the camera sample's key (common/render/area_light.h,
+// common/render/sphere_light.h), as does a rough material's reflected ray
+// (common/render/glossy_lobe.h). Recursion stops at max_depth (primary ray =
 // depth 1) or when a ray's path weight would fall below min_weight. Only the
 // paths the effect plan allows are run.
 //
@@ -75,10 +76,16 @@ class Tracer {
   // directional light) is blocked.
   bool blocked(const ShadingPoint& at, const Light& l, Path& path) const;
   void addAreaLight(const ShadingPoint& at, const Surface& f, int light, Path& path, glm::vec3& result) const;
-  // The share of an area light's unshadowed light that reaches the point.
-  float areaVisibility(const ShadingPoint& at, int light, Path& path) const;
+  void addSphereLight(const ShadingPoint& at, const Surface& f, int light, Path& path, glm::vec3& result) const;
+  // The share of a soft light's unshadowed light that reaches the point: one
+  // shadow ray for each of `count` strata, to target(k, u) (none: the
+  // stratum's point gives nothing), its verdict weighted by weight(cosine,
+  // distance), what the point gives a diffuse surface.
+  template <typename Target, typename Weight>
+  float visibleShare(const ShadingPoint& at, int light, int count, Path& path, const Target& target,
+                     const Weight& weight) const;
   // The sample key's dimensions (SampleKey): from kFirstLightDimension, for
-  // each depth, each area light's two per stratum; after max_depth such
+  // each depth, each soft light's two per stratum; after max_depth such
   // blocks, two per depth for a glossy reflection's lobe.
   int lightDimension(int depth, int light) const;
   int lobeDimension(int depth) const;
@@ -95,6 +102,7 @@ class Tracer {
   const EffectPlan& plan_;
   const Environment* environment_;  // what escaping rays see; none: the background
   std::vector<std::optional<AreaLightPoints>> areas_;  // per light: an area light's points
+  std::vector<std::vector<Stratum>> sphereStrata_;     // per light: a sphere light's strata
   std::vector<int> lightDimensions_;  // per light: its first dimension in a depth's block
   int lightDimensionsPerDepth_ = 0;
 };

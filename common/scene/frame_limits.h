@@ -15,7 +15,7 @@ struct FrameLimits {
   static constexpr int kMaxEdge = 65536;                        // image width or height
   static constexpr std::size_t kMaxPixels = std::size_t{1} << 28;  // the rendered image
   static constexpr int kMaxSamples = 4096;                      // per pixel
-  static constexpr int kMaxLightSamples = 4096;                 // points on an area light per shadow query
+  static constexpr int kMaxLightSamples = 4096;                 // shadow rays to a soft light per query
   static constexpr int kMaxDepth = 64;                          // primary ray = 1
   static constexpr std::uint32_t kMaxSeed = 0x7fffffff;
   static constexpr float kMaxExposure = 32.0f;                  // |EV|

@@ -10,15 +10,16 @@
 
 namespace glint {
 
-enum class LightType { kPoint, kArea, kSpot, kDirectional };
+enum class LightType { kPoint, kArea, kSpot, kDirectional, kSphere };
 
 template <>
 struct EnumWords<LightType> {
-  static constexpr std::array<std::pair<LightType, std::string_view>, 4> kWords{
+  static constexpr std::array<std::pair<LightType, std::string_view>, 5> kWords{
       {{LightType::kPoint, "point"},
        {LightType::kArea, "area"},
        {LightType::kSpot, "spot"},
-       {LightType::kDirectional, "directional"}}};
+       {LightType::kDirectional, "directional"},
+       {LightType::kSphere, "sphere"}}};
 };
 
 // A light of the scene. Intensity at distance d: color / (c + l d + q d^2).
@@ -31,6 +32,12 @@ struct EnumWords<LightType> {
 //    inside the inner cone, 0 outside the outer one.
 //  - directional: parallel light travelling along `direction`, the same
 //    `color` everywhere (no position, no attenuation).
+//  - sphere: a ball of `radius` around `position`, lighting every side: a
+//    point light at its centre, unshadowed, times the share of the ball a
+//    point sees, measured with `samples` shadow rays
+//    (common/render/sphere_light.h says where they go).
+// Area and sphere lights are soft: their shadows are measured with shadow
+// rays to many points, not with one ray or a shadow map.
 struct Light {
   LightType type = LightType::kPoint;
   glm::vec3 position{0.0f};
@@ -42,6 +49,9 @@ struct Light {
   glm::vec3 direction{0.0f, -1.0f, 0.0f};  // unit: a spot's axis, a directional light's travel
   float cosInner = 1.0f;                   // a spot's cones: cosines of their half-angles
   float cosOuter = 0.70710678f;
+  float radius = 0.0f;  // a sphere light's
 };
+
+inline bool softLight(const Light& l) { return l.type == LightType::kArea || l.type == LightType::kSphere; }
 
 }  // namespace glint

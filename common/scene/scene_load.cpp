@@ -307,6 +307,11 @@ class SceneLoader {
           l.allowKeys({"type", "direction", "color"});
           light.direction = unitDirection(l["direction"]);
           break;
+        case LightType::kSphere:
+          l.allowKeys({"type", "position", "radius", "color", "attenuation", "samples"});
+          light.radius = l["radius"].number(0.0f, kMax, true);
+          readSamples(l, light);
+          break;
       }
       if (light.type != LightType::kDirectional) light.position = l["position"].vec3();
       light.color = l.vec3("color", glm::vec3(1.0f));
@@ -328,6 +333,11 @@ class SceneLoader {
     const glm::vec3 normal = glm::cross(light.u, light.v);
     const float area2 = glm::dot(normal, normal);  // the squared area
     if (!(area2 > 0.0f) || !std::isfinite(area2)) l["v"].fail("must not be parallel to u (the light needs an area)");
+    readSamples(l, light);
+  }
+
+  // A soft light's shadow rays per query.
+  static void readSamples(const JsonReader& l, Light& light) {
     if (auto n = l.find("samples")) light.samples = n->integer(1, FrameLimits::kMaxLightSamples);
   }
 

@@ -1,0 +1,213 @@
+// Sphere lights in the tracer: the soft shadow of a ball on a floor against
+// the share of the light each floor point sees, worked out here in double
+// precision over the cone the light's ball fills; unshadowed, a point light
+// at the centre; the shadow rays a query takes; the same bytes however the
+// frame is split.
+#include <cmath>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "common/render/linear_frame.h"
+#include "common/render/sphere_light.h"
+#include "tests/support/test_support.h"
+
+namespace glint {
+namespace {
+
+using nlohmann::json;
+
+const glm::dvec3 kBall(0.0, 1.0, 0.0);  // the occluder
+constexpr double kBallRadius = 0.5;
+const glm::dvec3 kLight(1.5, 3.0, 0.0);
+constexpr double kLightRadius = 0.6;
+
+json lightJson(int samples) {
+  return {{"type", "sphere"},
+          {"position", {kLight.x, kLight.y, kLight.z}},
+          {"radius", kLightRadius},
+          {"samples", samples}};
+}
+
+json floorScene(bool ball, const json& light) {
+  json objects = json::array({{{"type", "quad"},
+                               {"corners", {{-8, 0, -8}, {8, 0, -8}, {8, 0, 8}, {-8, 0, 8}}},
+                               {"material", "white"}}});
+  if (ball) {
+    objects.push_back({{"type", "sphere"}, {"center", {kBall.x, kBall.y, kBall.z}}, {"radius", kBallRadius},
+                       {"material", "white"}});
+  }
+  return {{"glint", 1},
+          {"image", {{"width", 96}, {"height", 72}}},
+          {"camera", {{"eye", {0, 6, 4}}, {"look_at", {-0.6, 0, 0}}, {"fov_y", 50}}},
+          {"materials", {{"white", {{"color", {1, 1, 1}}, {"diffuse", 1}}}}},
+          {"lights", {light}},
+          {"objects", objects}};
+}
+
+// Where a ray from p along unit d enters a ball; infinity when it misses.
+double entry(const glm::dvec3& p, const glm::dvec3& d, const glm::dvec3& centre, double radius) {
+  const glm::dvec3 m = p - centre;
+  const double b = glm::dot(m, d), c = glm::dot(m, m) - radius * radius;
+  const double disc = b * b - c;
+  if (disc < 0.0) return INFINITY;
+  const double t = -b - std::sqrt(disc);
+  return t > 0.0 ? t : INFINITY;
+}
+
+// Whether the cones from p to the light's ball and to the occluder are
+// apart: p sees the whole light.
+bool seesWhole(const glm::dvec3& p) {
+  const glm::dvec3 toLight = kLight - p, toBall = kBall - p;
+  const double apart = std::acos(glm::dot(toLight, toBall) / (glm::length(toLight) * glm::length(toBall)));
+  return apart > std::asin(kLightRadius / glm::length(toLight)) + std::asin(kBallRadius / glm::length(toBall));
+}
+
+// The share of the light a floor point sees: 1 where the cones are apart,
+// else a 200 x 200 midpoint grid over the cone to the light's ball, uniform
+// in solid angle, each direction weighted by its cosine at the floor; a
+// direction is shadowed when the occluder is met before the light's ball.
+double visibleShare(const glm::dvec3& p) {
+  if (seesWhole(p)) return 1.0;
+  constexpr int kGrid = 200;
+  const glm::dvec3 toLight = kLight - p;
+  const double distance = glm::length(toLight);
+  const glm::dvec3 w = toLight / distance;
+  const glm::dvec3 t = glm::normalize(glm::cross(std::abs(w.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0), w));
+  const glm::dvec3 b = glm::cross(w, t);
+  const double cosMax = std::sqrt(1.0 - (kLightRadius / distance) * (kLightRadius / distance));
+  double open = 0.0, total = 0.0;
+  for (int i = 0; i < kGrid; ++i) {
+    const double cosTheta = 1.0 - (i + 0.5) / kGrid * (1.0 - cosMax);
+    const double sinTheta = std::sqrt(1.0 - cosTheta * cosTheta);
+    for (int j = 0; j < kGrid; ++j) {
+      const double phi = 2.0 * std::numbers::pi * (j + 0.5) / kGrid;
+      const glm::dvec3 d = sinTheta * std::cos(phi) * t + sinTheta * std::sin(phi) * b + cosTheta * w;
+      total += d.y;
+      if (!(entry(p, d, kBall, kBallRadius) < entry(p, d, kLight, kLightRadius))) open += d.y;
+    }
+  }
+  return open / total;
+}
+
+TEST(SphereLight, SoftShadowFollowsTheShareOfTheBallSeen) {
+  const Scene shadowed = test::sceneFromJson(floorScene(true, lightJson(400)).dump());
+  const Scene open = test::sceneFromJson(floorScene(false, lightJson(400)).dump());
+  RayStats stats;
+  const LinearImage withBall = test::renderLinearFrame(shadowed, stats);
+  const LinearImage without = test::renderLinearFrame(open, stats);
+  const Camera camera(shadowed.frame.camera, shadowed.frame.width, shadowed.frame.height);
+  int penumbra = 0, umbra = 0, lit = 0, litExact = 0;
+  double errorSum = 0.0, worst = 0.0;
+  for (int y = 0; y < withBall.height; ++y) {
+    for (int x = 0; x < withBall.width; ++x) {
+      const Ray ray = camera.generateRay({x + 0.5f, y + 0.5f});
+      const glm::dvec3 o(ray.o), d(ray.d);
+      // The ball and its silhouette's pixels aside.
+      if (glm::length(glm::cross(kBall - o, d)) < 1.05 * kBallRadius || !(d.y < 0.0)) continue;
+      const glm::dvec3 p = o + (-o.y / d.y) * d;
+      const std::size_t i = (static_cast<std::size_t>(y) * withBall.width + x) * 3 + 1;
+      if (!(without.rgb[i] > 0.0f)) continue;
+      const double ratio = withBall.rgb[i] / without.rgb[i];
+      const double expected = visibleShare(p);
+      if (expected == 1.0) {
+        ++lit;
+        litExact += ratio == 1.0 ? 1 : 0;
+        continue;
+      }
+      if (expected == 0.0) {
+        ++umbra;
+        EXPECT_EQ(ratio, 0.0) << "umbra pixel " << x << ", " << y;
+        continue;
+      }
+      ++penumbra;
+      errorSum += std::abs(ratio - expected);
+      worst = std::max(worst, std::abs(ratio - expected));
+      EXPECT_NEAR(ratio, expected, 0.04) << "pixel " << x << ", " << y;
+    }
+  }
+  EXPECT_GT(penumbra, 300);
+  EXPECT_GT(umbra, 20);
+  EXPECT_GT(lit, 2000);
+  // Where the whole ball is seen, the image is the unshadowed one to the bit.
+  EXPECT_GE(litExact, lit * 98 / 100);
+  EXPECT_LT(errorSum / penumbra, 0.006) << "worst " << worst;
+  std::printf("penumbra %d umbra %d lit %d (exact %d) mean error %.5f worst %.4f\n", penumbra, umbra, lit, litExact,
+              errorSum / penumbra, worst);
+}
+
+TEST(SphereLight, UnshadowedItIsAPointLightAtItsCentre) {
+  // A diffuse floor and ball lit by a sphere light, and by a point light at
+  // its centre: where nothing blocks the ball, the same bytes.
+  const json ball = floorScene(true, lightJson(16));
+  json point = ball;
+  point["lights"][0] = {{"type", "point"}, {"position", {kLight.x, kLight.y, kLight.z}}};
+  const FrameImage soft = test::render(test::sceneFromJson(ball.dump()), 2, 16).image;
+  const FrameImage hard = test::render(test::sceneFromJson(point.dump()), 2, 16).image;
+  const Scene scene = test::sceneFromJson(ball.dump());
+  const Camera camera(scene.frame.camera, scene.frame.width, scene.frame.height);
+  int lit = 0;
+  for (int y = 0; y < scene.frame.height; ++y) {
+    for (int x = 0; x < scene.frame.width; ++x) {
+      const Ray ray = camera.generateRay({x + 0.5f, y + 0.5f});
+      const glm::dvec3 o(ray.o), d(ray.d);
+      if (glm::length(glm::cross(kBall - o, d)) < 1.05 * kBallRadius || !(d.y < 0.0)) continue;
+      const glm::dvec3 p = o + (-o.y / d.y) * d;
+      if (!seesWhole(p)) continue;
+      ++lit;
+      const std::size_t i = (static_cast<std::size_t>(y) * scene.frame.width + x) * 3;
+      for (std::size_t c = 0; c < 3; ++c) ASSERT_EQ(soft.rgb[i + c], hard.rgb[i + c]) << x << ", " << y;
+    }
+  }
+  EXPECT_GT(lit, 2000);
+  EXPECT_NE(soft.rgb, hard.rgb);  // the shadows differ
+}
+
+TEST(SphereLight, EachLitPointTakesTheLightsSamples) {
+  Scene scene = test::sceneFromJson(floorScene(true, lightJson(16)).dump());
+  RayStats own, four;
+  test::renderLinearFrame(scene, own);
+  scene.frame.sampling.lightSamples = 4;
+  test::renderLinearFrame(scene, four);
+  EXPECT_GT(four.shadow, 0u);
+  EXPECT_EQ(own.primary, four.primary);
+  EXPECT_NEAR(static_cast<double>(own.shadow) / static_cast<double>(four.shadow), 4.0, 0.05);
+}
+
+TEST(SphereLight, SameBytesForAnyThreadsTilesAndPattern) {
+  Scene scene = test::sceneFromJson(floorScene(true, lightJson(9)).dump());
+  for (SamplePattern pattern : {SamplePattern::kRegular, SamplePattern::kJittered, SamplePattern::kAdaptive,
+                                SamplePattern::kPerceptual}) {
+    scene.frame.sampling.pattern = pattern;
+    scene.frame.sampling.samples = 4;
+    const FrameImage one = test::render(scene, 1, 64).image;
+    const FrameImage split = test::render(scene, 2, 7).image;
+    EXPECT_EQ(one.rgb, split.rgb) << enumWord(pattern);
+  }
+}
+
+TEST(SphereLight, RaysEndOnTheBallsNearSideWithinItsCone) {
+  const glm::vec3 centre(0.3f, -2.0f, 5.0f);
+  const glm::vec3 p(1.0f, 2.0f, -1.0f);
+  constexpr float kRadius = 1.5f;
+  const auto view = SphereLightView::from(centre, kRadius, p);
+  ASSERT_TRUE(view);
+  const double distance = glm::length(glm::dvec3(centre - p));
+  const double cosMax = std::sqrt(1.0 - (kRadius / distance) * (kRadius / distance));
+  for (int k = 0; k < 64; ++k) {
+    for (const glm::vec2 u : {glm::vec2(0.0f), glm::vec2(0.5f), glm::vec2(0.999f)}) {
+      const SphereLightView::Sample s = view->sample(jitteredStratum(64, k), u);
+      const glm::dvec3 q = glm::dvec3(p) + static_cast<double>(s.distance) * glm::dvec3(s.direction);
+      EXPECT_NEAR(glm::length(q - glm::dvec3(centre)), kRadius, 1e-4) << k;  // on the ball
+      EXPECT_GE(glm::dot(glm::dvec3(s.direction), glm::dvec3(centre - p)) / distance, cosMax - 1e-6);
+      EXPECT_GT(glm::dot(q - glm::dvec3(centre), glm::dvec3(p - centre)), 0.0);  // its near side
+    }
+  }
+  EXPECT_FALSE(SphereLightView::from(centre, kRadius, centre + glm::vec3(1.0f, 0.0f, 0.0f)));  // in the ball
+  EXPECT_FALSE(SphereLightView::from(glm::vec3(INFINITY), kRadius, p));
+}
+
+}  // namespace
+}  // namespace glint
