@@ -3,6 +3,7 @@
 // way sampling theory says.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +18,7 @@
 #include "common/image/flip.h"
 #include "common/image/image_metrics.h"
 #include "common/image/image_read.h"
+#include "common/scene/scene_load.h"
 #include "tests/support/test_support.h"
 
 namespace glint {
@@ -73,6 +75,18 @@ TEST(AccuracySweep, BadVaryValuesNameTheKeyAndWhatItTakes) {
   EXPECT_NE(varyError("min_weight=2").find("it takes numbers in [0, 1]"), std::string::npos);
   EXPECT_NE(varyError("max_depth=").find("no values"), std::string::npos);
   EXPECT_EQ(parseVary("pattern=regular,jittered").values, (std::vector<std::string>{"regular", "jittered"}));
+}
+
+// The default sweep varies light_samples where a scene has a soft light.
+TEST(AccuracySweep, LightSamplesVaryWhereASceneHasASoftLight) {
+  const auto varies = [](const char* name) {
+    const std::vector<Series> sweep = defaultSweep(loadSceneFile(test::sourcePath(name)));
+    return std::any_of(sweep.begin(), sweep.end(), [](const Series& s) { return s.key == AccuracyKey::kLightSamples; });
+  };
+  EXPECT_TRUE(varies("scenes/soft-shadows.json"));
+  EXPECT_TRUE(varies("scenes/sphere-light.json"));
+  EXPECT_FALSE(varies("scenes/lights.json"));
+  EXPECT_FALSE(varies("scenes/room.json"));
 }
 
 struct CsvRow {

@@ -376,6 +376,17 @@ TEST_F(Cli, InfoNamesTheEnvironmentImage) {
   EXPECT_NE(flat.output.find("(escaping rays; the background drawn flat by OpenGL)"), std::string::npos) << flat.output;
 }
 
+// A sphere light is named with its ball and shadow rays, and soft shadows
+// are simulated.
+TEST_F(Cli, InfoNamesTheSphereLight) {
+  const Result info = glint("info " + scene("sphere-light.json") + " --no-raster");
+  ASSERT_EQ(info.status, 0) << info.output;
+  EXPECT_NE(info.output.find("sphere at (1.2, 3.4, 0.8), radius 0.7, 16 samples, colour (1, 1, 1)"), std::string::npos)
+      << info.output;
+  EXPECT_NE(info.output.find(" soft_shadows"), std::string::npos) << info.output;
+  EXPECT_EQ(info.output.find("left out: soft_shadows"), std::string::npos) << info.output;
+}
+
 // --fit frames every object as the scene's "fit": true does: the same image.
 TEST_F(Cli, FitFromTheCommandLineOrTheScene) {
   std::string text = kTwoObjects;

@@ -516,14 +516,15 @@ TEST(Hybrid, PerceptualRuleTracesItsPixelsAlikeEverywhere) {
   EXPECT_GT(hybrid(glassScene.scene(), glassService, glass.frame, glassMask).rasterEdgePixels, autoEdges + 300);
 }
 
-// An area light's soft shadows on surfaces OpenGL draws: the raster shades
-// its unshadowed light, the pixels not proved to see it whole are traced
-// (with direct light, as an undecided shadow), and the frame is the full
-// trace's within 8/255 while casting a fraction of its shadow rays;
-// the traced pixels are the full trace's to the byte, here, split into other
-// tiles and through a glintd.
-TEST(Hybrid, AreaLightsTracedOnlyWhereTheLightMayBeBlocked) {
-  const SceneSetup s = load("scenes/soft-shadows.json");
+// A soft light's shadows on surfaces OpenGL draws: the raster shades its
+// unshadowed light, the pixels not proved to see it whole are traced (with
+// direct light, as an undecided shadow), and the frame is the full trace's
+// within 8/255 while casting a fraction of its shadow rays; the traced
+// pixels are the full trace's to the byte, here, split into other tiles and
+// through a glintd.
+void expectOnlyWhereTheLightMayBeBlocked(const char* scene) {
+  SCOPED_TRACE(scene);
+  const SceneSetup s = load(scene);
   const PreparedScene prepared(s.loaded.scene, BvhSettings{});
   ThreadPool pool(2);
   LocalTileService local(prepared, pool);
@@ -545,9 +546,9 @@ TEST(Hybrid, AreaLightsTracedOnlyWhereTheLightMayBeBlocked) {
   for (std::size_t i = 0; i < here.mask.size(); ++i) {
     worst = std::max(worst, channelDifference(hybridCentre.image, fullCentre, i));
   }
-  std::printf("soft shadows: %zu pixels traced for the area light, shadow rays %llu of the full trace's %llu; "
+  std::printf("%s: %zu pixels traced for the soft light, shadow rays %llu of the full trace's %llu; "
               "at the pixel centres at most %d/255 from the full trace\n",
-              here.shadowEdgePixels, static_cast<unsigned long long>(here.rays.shadow),
+              scene, here.shadowEdgePixels, static_cast<unsigned long long>(here.rays.shadow),
               static_cast<unsigned long long>(full.stats.shadow), worst);
   EXPECT_LE(worst, 8);
   EXPECT_EQ(differing, 0);
@@ -558,6 +559,14 @@ TEST(Hybrid, AreaLightsTracedOnlyWhereTheLightMayBeBlocked) {
   server::BackgroundServer glintd(quietLoopback(2));
   DistributedTileService remote(resolveServers({glintd.address()}), s.loaded.bundle);
   EXPECT_EQ(hybrid(prepared.scene(), remote, s.frame, mask).image.rgb, here.image.rgb);
+}
+
+TEST(Hybrid, AreaLightsTracedOnlyWhereTheLightMayBeBlocked) {
+  expectOnlyWhereTheLightMayBeBlocked("scenes/soft-shadows.json");
+}
+
+TEST(Hybrid, SphereLightsTracedOnlyWhereTheBallMayBeBlocked) {
+  expectOnlyWhereTheLightMayBeBlocked("scenes/sphere-light.json");
 }
 
 // Spot and directional lights: the spot's shadows come from its (point

@@ -79,7 +79,8 @@ class ServerTest : public ::testing::Test {
 
 TEST_F(ServerTest, FramesThroughTheServerEqualInProcessFrames) {
   TestServer server;
-  for (const char* scene : {"scenes/room.json", "scenes/glass.json", "scenes/bunny.json", "scenes/environment.json"}) {
+  for (const char* scene : {"scenes/room.json", "scenes/glass.json", "scenes/bunny.json", "scenes/environment.json",
+                            "scenes/sphere-light.json"}) {
     const RoomFrame r = smallRoom(scene);
     EXPECT_EQ(remoteImage(server.address(), r).rgb, localImage(r).rgb) << scene;
   }

@@ -76,28 +76,34 @@ TEST(Effects, BlackLightsAndUnlitMaterialsCastNoShadowRays) {
   EXPECT_GT(f2.stats.shadow, 0u);
 }
 
-TEST(Effects, SoftShadowsOnlyWhereAnAreaLightCanBeBlocked) {
-  json j = sphereScene();
-  j["lights"][0] = {{"type", "area"}, {"position", {2, 3, 4}}, {"u", {1, 0, 0}}, {"v", {0, 1, 0}}, {"samples", 4}};
-  j["lights"][0]["v"] = {0, 0, 1};  // u x v points down, at the sphere
-  j["lights"][0]["position"] = {0, 4, 0};
-  const Scene alone = test::sceneFromJson(j.dump());
-  EXPECT_FALSE(EffectPlan::derive(alone).softShadows);  // one sphere cannot shadow itself
-  EXPECT_EQ(derivedAndFull(alone).first.stats.shadow, 0u);
-  j["objects"].push_back({{"type", "sphere"}, {"center", {0, -2, 0}}, {"radius", 0.5}, {"material", "m"}});
-  const Scene two = test::sceneFromJson(j.dump());
-  EXPECT_TRUE(EffectPlan::derive(two).softShadows);
-  EXPECT_GT(derivedAndFull(two).first.stats.shadow, 0u);
-  // Every scene of the project without an area light has no soft shadows.
-  for (const char* name : {"scenes/room.json", "scenes/glass.json", "scenes/bunny.json"}) {
+TEST(Effects, SoftShadowsOnlyWhereASoftLightCanBeBlocked) {
+  // An area light facing down at the sphere, and a sphere light above it.
+  for (const json& light :
+       {json{{"type", "area"}, {"position", {0, 4, 0}}, {"u", {1, 0, 0}}, {"v", {0, 0, 1}}, {"samples", 4}},
+        json{{"type", "sphere"}, {"position", {0, 4, 0}}, {"radius", 0.5}, {"samples", 4}}}) {
+    json j = sphereScene();
+    j["lights"][0] = light;
+    const Scene alone = test::sceneFromJson(j.dump());
+    EXPECT_FALSE(EffectPlan::derive(alone).softShadows) << light;  // one sphere cannot shadow itself
+    EXPECT_EQ(derivedAndFull(alone).first.stats.shadow, 0u) << light;
+    j["objects"].push_back({{"type", "sphere"}, {"center", {0, -2, 0}}, {"radius", 0.5}, {"material", "m"}});
+    const Scene two = test::sceneFromJson(j.dump());
+    EXPECT_TRUE(EffectPlan::derive(two).softShadows) << light;
+    EXPECT_GT(derivedAndFull(two).first.stats.shadow, 0u) << light;
+  }
+  // Every scene of the project without a soft light has no soft shadows.
+  for (const char* name : {"scenes/room.json", "scenes/glass.json", "scenes/bunny.json", "scenes/lights.json"}) {
     EXPECT_FALSE(EffectPlan::derive(loadSceneFile(test::sourcePath(name))).softShadows) << name;
+  }
+  for (const char* name : {"scenes/soft-shadows.json", "scenes/sphere-light.json"}) {
+    EXPECT_TRUE(EffectPlan::derive(loadSceneFile(test::sourcePath(name))).softShadows) << name;
   }
 }
 
 // Only the scene with an environment image looks one up.
 TEST(Effects, EnvironmentOnlyWhereTheSceneHasOne) {
   for (const char* name : {"scenes/room.json", "scenes/glass.json", "scenes/bunny.json", "scenes/glossy.json",
-                           "scenes/lights.json", "scenes/soft-shadows.json"}) {
+                           "scenes/lights.json", "scenes/soft-shadows.json", "scenes/sphere-light.json"}) {
     EXPECT_FALSE(EffectPlan::derive(loadSceneFile(test::sourcePath(name))).environment) << name;
   }
   const Scene sky = loadSceneFile(test::sourcePath("scenes/environment.json"));

@@ -198,11 +198,24 @@ TEST(SceneLoad, BadScenesNameThePlace) {
        },
        "lights[0].samples"},
       {"point light with edges", [](json& j) { j["lights"][0]["u"] = {1, 0, 0}; }, "lights[0]"},
+      {"sphere light without radius", [](json& j) { j["lights"][0] = {{"type", "sphere"}, {"position", {0, 3, 0}}}; },
+       "lights[0].radius"},
+      {"sphere light radius zero",
+       [](json& j) { j["lights"][0] = {{"type", "sphere"}, {"position", {0, 3, 0}}, {"radius", 0}}; },
+       "lights[0].radius: must be > 0"},
+      {"sphere light samples", [](json& j) {
+         j["lights"][0] = {{"type", "sphere"}, {"position", {0, 3, 0}}, {"radius", 1}, {"samples", 5000}};
+       },
+       "lights[0].samples"},
+      {"sphere light with edges", [](json& j) {
+         j["lights"][0] = {{"type", "sphere"}, {"position", {0, 3, 0}}, {"radius", 1}, {"u", {1, 0, 0}}};
+       },
+       "lights[0]"},
       {"negative aperture", [](json& j) { j["camera"]["aperture"] = -0.1; }, "camera.aperture"},
       {"zero focus", [](json& j) { j["camera"]["focus_distance"] = 0; }, "camera.focus_distance"},
       {"light samples", [](json& j) { j["sampling"]["light_samples"] = 5000; }, "sampling.light_samples"},
       {"light type", [](json& j) { j["lights"][0]["type"] = "sun"; },
-       "lights[0].type: 'sun' is not one of: point, area, spot, directional"},
+       "lights[0].type: 'sun' is not one of: point, area, spot, directional, sphere"},
       {"spot cones", [](json& j) {
          j["lights"][0] = {{"type", "spot"}, {"position", {0, 3, 0}}, {"direction", {0, -1, 0}},
                            {"inner_angle", 40}, {"outer_angle", 30}};
