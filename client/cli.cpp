@@ -214,7 +214,7 @@ void addFrameOptions(CLI::App* app, FrameOverrides& o) {
                   "Under --pattern or --mask perceptual: a colour difference (FLIP's colour term, 0-1, default 0.3) "
                   "above this is visible and gets the frame's samples");
   app->add_option("--light-samples", o.lightSamples,
-                  "Points each area light takes per shadow query (default 0: each light's own samples)")
+                  "Shadow rays each area and sphere light takes per query (default 0: each light's own samples)")
       ->check(CLI::Range(0, FrameLimits::kMaxLightSamples));
   addEnumOption(app, "--filter", o.filter, "Pixel filter (default: the scene's)");
   app->add_option("--seed", o.seed, "Seed of the jitter (same seed, same image)")
