@@ -5,6 +5,7 @@
 #include <glm/geometric.hpp>
 
 #include "common/math/basis.h"
+#include "common/math/circular.h"
 #include "common/render/optics.h"
 
 namespace glint {
@@ -19,10 +20,10 @@ glm::vec3 ggxMicrofacetNormal(const glm::vec3& n, float alpha, const glm::vec2& 
   const float cos2 = (1.0f - u.x) / (1.0f + (alpha * alpha - 1.0f) * u.x);
   const float cosTheta = std::sqrt(cos2);
   const float sinTheta = std::sqrt(std::max(0.0f, 1.0f - cos2));
-  const float phi = kTwoPi * u.y;
+  const SineCosine phi = sineCosine(kTwoPi * u.y);
   glm::vec3 t, b;
   orthonormalBasis(n, t, b);
-  return glm::normalize(sinTheta * std::cos(phi) * t + sinTheta * std::sin(phi) * b + cosTheta * n);
+  return glm::normalize(sinTheta * phi.cos * t + sinTheta * phi.sin * b + cosTheta * n);
 }
 
 glm::vec3 glossyDirection(const glm::vec3& d, const glm::vec3& ns, const glm::vec3& ng, float roughness,

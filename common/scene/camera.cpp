@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "common/math/circular.h"
 #include "common/math/finite.h"
 
 namespace glint {
@@ -32,7 +33,7 @@ CameraSpec fitCamera(const CameraSpec& spec, const Bounds3& bounds, float aspect
   const float halfH = std::atan(std::tan(halfV) * aspect);
   const float radius = 0.5f * glm::length(bounds.extent());
   const glm::vec3 forward = glm::normalize(spec.lookAt - spec.eye);
-  const float distance = radius > 0.0f ? radius / std::sin(std::min(halfV, halfH)) : glm::length(spec.lookAt - spec.eye);
+  const float distance = radius > 0.0f ? radius / sineCosine(std::min(halfV, halfH)).sin : glm::length(spec.lookAt - spec.eye);
   CameraSpec out = spec;
   out.lookAt = bounds.centre();
   out.eye = out.lookAt - distance * forward;
@@ -66,8 +67,8 @@ Ray Camera::generateRay(const glm::vec2& film, const glm::vec2& lens) const {
   if (aperture_ == 0.0f) return pinhole;
   const glm::vec3 focus = eye_ + (focusDistance_ / glm::dot(pinhole.d, forward_)) * pinhole.d;
   const float r = 0.5f * aperture_ * std::sqrt(lens.x);
-  const float phi = 6.28318530717958647692f * lens.y;
-  const glm::vec3 origin = eye_ + (r * std::cos(phi)) * right_ + (r * std::sin(phi)) * up_;
+  const SineCosine phi = sineCosine(6.28318530717958647692f * lens.y);
+  const glm::vec3 origin = eye_ + (r * phi.cos) * right_ + (r * phi.sin) * up_;
   return Ray(origin, glm::normalize(focus - origin));
 }
 

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/base/error.h"
+#include "common/math/circular.h"
 #include "common/scene/gltf_json.h"
 #include "common/scene/gltf_nodes.h"
 
@@ -58,8 +59,8 @@ Light fromEntry(const json& entry, const glm::mat4& world, const std::string& pl
     if (!(inner >= 0.0f && inner <= outer && outer <= 1.5707964f)) {
       throw InputError(place + ": spot cones must satisfy 0 <= innerConeAngle <= outerConeAngle <= pi / 2");
     }
-    light.cosInner = std::cos(inner);
-    light.cosOuter = std::cos(outer);
+    light.cosInner = sineCosine(inner).cos;
+    light.cosOuter = sineCosine(outer).cos;
   } else if (type == "directional") {
     light.type = LightType::kDirectional;
     light.attenuation = {1.0f, 0.0f, 0.0f};

@@ -10,6 +10,7 @@
 #include "common/base/error.h"
 #include "common/scene/frame_limits.h"
 #include "common/base/json_reader.h"
+#include "common/math/circular.h"
 #include "common/math/power.h"
 #include "common/scene/image_decode.h"
 #include "common/scene/mesh_import.h"
@@ -347,8 +348,8 @@ class SceneLoader {
     const float inner = l.number("inner_angle", 0.0f, 0.0f, 90.0f);
     const float outer = l.number("outer_angle", 45.0f, 0.0f, 90.0f, true);
     if (inner > outer) l["inner_angle"].fail("must not exceed outer_angle");
-    light.cosInner = std::cos(glm::radians(inner));
-    light.cosOuter = std::cos(glm::radians(outer));
+    light.cosInner = sineCosine(glm::radians(inner)).cos;
+    light.cosOuter = sineCosine(glm::radians(outer)).cos;
   }
 
   static glm::vec3 unitDirection(const JsonReader& d) {
