@@ -153,7 +153,10 @@ TEST(ManyServers, TilesOfAServerCaughtLyingAreTracedAgainElsewhere) {
 
 // A stopped server holds its tiles without a word; once the stall timeout
 // passes (the frame is long enough: 4800 tiles) they go to the others. Woken
-// again, it is taken back on a frame after its backoff (1 s).
+// again, it is taken back after its backoff (1 s): its link is made again at
+// the start of a frame and joins that frame once it is ready, so on a busy
+// machine (the woken glintd first finishes the tiles it held) it may take a
+// few frames.
 TEST(ManyServers, AStoppedServerStallsAndItsTilesGoElsewhere) {
   Room room;
   room.frame.width = 640;
@@ -172,7 +175,9 @@ TEST(ManyServers, AStoppedServerStallsAndItsTilesGoElsewhere) {
   EXPECT_GT(service.lastFrame().reissuedTiles, 0u);
 
   std::this_thread::sleep_for(std::chrono::milliseconds(1100));
-  EXPECT_EQ(renderFrame(service, room.frame, smallTiles()).image.rgb, image.rgb);
+  for (int frame = 0; frame == 0 || (frame < 5 && service.lastFrame().servers[1].tiles == 0); ++frame) {
+    EXPECT_EQ(renderFrame(service, room.frame, smallTiles()).image.rgb, image.rgb);
+  }
   const ServerReport& back = service.lastFrame().servers[1];
   EXPECT_EQ(back.state, ServerState::kOk) << back.why;
   EXPECT_GT(back.tiles, 0u);
