@@ -35,11 +35,10 @@ struct Row {
   RayStats rays;
 };
 
-}  // namespace
-
-void softShadowSection(const std::string& scenes, bool quick) {
+// One scene's table.
+void softShadowTable(const std::string& scenes, const char* name, bool quick) {
   const int frames = quick ? 1 : 9;
-  const Scene scene = loadSceneFile(std::filesystem::path(scenes) / "soft-shadows.json");
+  const Scene scene = loadSceneFile(std::filesystem::path(scenes) / name);
   FrameSettings frame = scene.frame;
   if (quick) {
     frame.width = 160;
@@ -52,9 +51,9 @@ void softShadowSection(const std::string& scenes, bool quick) {
   gl::RasterScene raster(context.api(), prepared.scene());
   const Encoder encoder(frame.output);
   const LinearImage converged = displayedLight(reference(prepared, frame, pool, quick), encoder);
-  std::printf("\n## Soft shadows: the hybrid frame and the full trace (soft-shadows.json, %dx%d, median of %d frames, "
+  std::printf("\n## Soft shadows: the hybrid frame and the full trace (%s, %dx%d, median of %d frames, "
               "2 tracing threads)\n\n",
-              frame.width, frame.height, frames);
+              name, frame.width, frame.height, frames);
   std::printf("FLIP: mean against a full trace of %d light samples a pixel, as displayed. The scene's 4 jittered "
               "samples a pixel.\n\n",
               quick ? 64 : 1024);
@@ -82,6 +81,12 @@ void softShadowSection(const std::string& scenes, bool quick) {
                 static_cast<double>(result.rays.shadow) / static_cast<double>(full.rays.shadow), flipHybrid / flipFull,
                 hybridMs / fullMs);
   }
+}
+
+}  // namespace
+
+void softShadowSection(const std::string& scenes, bool quick) {
+  for (const char* name : {"soft-shadows.json", "sphere-light.json"}) softShadowTable(scenes, name, quick);
 }
 
 }  // namespace glint::bench

@@ -4,7 +4,8 @@
 
 namespace glint::bench {
 
-// Area lights' soft shadows (scenes/soft-shadows.json): the hybrid frame,
+// Soft shadows of an area light (scenes/soft-shadows.json) and of a sphere
+// light (scenes/sphere-light.json): the hybrid frame,
 // which traces only the pixels not proved to see the light whole, beside the
 // full trace at the same settings, for several light sample counts: shadow
 // rays, median frame time and mean FLIP against a reference of 1,024 light
