@@ -10,6 +10,7 @@
 #include "common/base/thread_pool.h"
 #include "common/render/linear_frame.h"
 #include "common/render/prepared_scene.h"
+#include "tests/support/soft_shadow_check.h"
 #include "tests/support/test_support.h"
 
 namespace glint {
@@ -78,46 +79,7 @@ TEST(AreaLight, SoftShadowFollowsTheShareOfTheLightSeen) {
   RayStats stats;
   const LinearImage withSphere = test::renderLinearFrame(shadowed, stats);
   const LinearImage without = test::renderLinearFrame(open, stats);
-  const Camera camera(shadowed.frame.camera, shadowed.frame.width, shadowed.frame.height);
-  int penumbra = 0, umbra = 0, lit = 0, litExact = 0;
-  double errorSum = 0.0, worst = 0.0;
-  for (int y = 0; y < withSphere.height; ++y) {
-    for (int x = 0; x < withSphere.width; ++x) {
-      const Ray ray = camera.generateRay({x + 0.5f, y + 0.5f});
-      const glm::dvec3 o(ray.o), d(ray.d);
-      // The sphere and its silhouette's pixels aside.
-      if (glm::length(glm::cross(kSphere - o, d)) < 1.05 * kRadius || !(d.y < 0.0)) continue;
-      const glm::dvec3 p = o + (-o.y / d.y) * d;
-      const std::size_t i = (static_cast<std::size_t>(y) * withSphere.width + x) * 3 + 1;
-      if (!(without.rgb[i] > 0.0f)) continue;
-      const double ratio = withSphere.rgb[i] / without.rgb[i];
-      const double expected = visibleShare(p);
-      if (expected == 1.0) {
-        ++lit;
-        litExact += ratio == 1.0 ? 1 : 0;
-        continue;
-      }
-      if (expected == 0.0) {
-        ++umbra;
-        EXPECT_EQ(ratio, 0.0) << "umbra pixel " << x << ", " << y;
-        continue;
-      }
-      ++penumbra;
-      errorSum += std::abs(ratio - expected);
-      worst = std::max(worst, std::abs(ratio - expected));
-      EXPECT_NEAR(ratio, expected, 0.04) << "pixel " << x << ", " << y;
-    }
-  }
-  EXPECT_GT(penumbra, 300);
-  EXPECT_GT(umbra, 20);
-  EXPECT_GT(lit, 2000);
-  // Where every point of the light is seen, the image is the unshadowed one
-  // to the bit (the ratio estimator); a jittered point may still graze the
-  // sphere at the penumbra's outer edge.
-  EXPECT_GE(litExact, lit * 98 / 100);
-  EXPECT_LT(errorSum / penumbra, 0.006) << "worst " << worst;
-  std::printf("penumbra %d umbra %d lit %d (exact %d) mean error %.5f worst %.4f\n", penumbra, umbra, lit, litExact,
-              errorSum / penumbra, worst);
+  test::expectShadowFollowsTheShareSeen(shadowed, withSphere, without, kSphere, kRadius, visibleShare);
 }
 
 TEST(AreaLight, FrameLightSamplesSetThePointsPerShadowQuery) {
