@@ -18,32 +18,21 @@ namespace {
 
 using nlohmann::json;
 
-const glm::dvec3 kSphere(0.0, 1.0, 0.0);
-constexpr double kRadius = 0.5;
+const glm::dvec3& kSphere = test::kShadowBall;
+constexpr double kRadius = test::kShadowBallRadius;
 const glm::dvec3 kLight(1.5, 3.0, 0.0);
 const glm::dvec3 kU(1.5, 0.0, 0.0);
 const glm::dvec3 kV(0.0, 0.0, 1.5);  // u x v points down, at the floor
 
-json floorScene(bool sphere, int lightSamples) {
-  json objects = json::array({{{"type", "quad"},
-                               {"corners", {{-8, 0, -8}, {8, 0, -8}, {8, 0, 8}, {-8, 0, 8}}},
-                               {"material", "white"}}});
-  if (sphere) {
-    objects.push_back({{"type", "sphere"}, {"center", {kSphere.x, kSphere.y, kSphere.z}}, {"radius", kRadius},
-                       {"material", "white"}});
-  }
-  return {{"glint", 1},
-          {"image", {{"width", 96}, {"height", 72}}},
-          {"camera", {{"eye", {0, 6, 4}}, {"look_at", {-0.6, 0, 0}}, {"fov_y", 50}}},
-          {"materials", {{"white", {{"color", {1, 1, 1}}, {"diffuse", 1}}}}},
-          {"lights",
-           {{{"type", "area"},
-             {"position", {kLight.x, kLight.y, kLight.z}},
-             {"u", {kU.x, kU.y, kU.z}},
-             {"v", {kV.x, kV.y, kV.z}},
-             {"samples", lightSamples}}}},
-          {"objects", objects}};
+json lightJson(int samples) {
+  return {{"type", "area"},
+          {"position", {kLight.x, kLight.y, kLight.z}},
+          {"u", {kU.x, kU.y, kU.z}},
+          {"v", {kV.x, kV.y, kV.z}},
+          {"samples", samples}};
 }
+
+json floorScene(bool sphere, int lightSamples) { return test::floorScene(sphere, lightJson(lightSamples)); }
 
 bool segmentHitsSphere(const glm::dvec3& p, const glm::dvec3& q) {
   const glm::dvec3 d = q - p;
@@ -79,31 +68,14 @@ TEST(AreaLight, SoftShadowFollowsTheShareOfTheLightSeen) {
   RayStats stats;
   const LinearImage withSphere = test::renderLinearFrame(shadowed, stats);
   const LinearImage without = test::renderLinearFrame(open, stats);
-  test::expectShadowFollowsTheShareSeen(shadowed, withSphere, without, kSphere, kRadius, visibleShare);
+  test::expectShadowFollowsTheShareSeen(shadowed, withSphere, without, visibleShare);
 }
 
 TEST(AreaLight, FrameLightSamplesSetThePointsPerShadowQuery) {
-  Scene scene = test::sceneFromJson(floorScene(true, 16).dump());
-  RayStats own, four;
-  test::renderLinearFrame(scene, own);
-  scene.frame.sampling.lightSamples = 4;
-  test::renderLinearFrame(scene, four);
-  EXPECT_GT(four.shadow, 0u);
-  EXPECT_EQ(own.primary, four.primary);
-  EXPECT_NEAR(static_cast<double>(own.shadow) / static_cast<double>(four.shadow), 4.0, 0.05);
+  test::expectFrameLightSamplesSetTheRays(lightJson(16));
 }
 
-TEST(AreaLight, SameBytesForAnyThreadsTilesAndPattern) {
-  Scene scene = test::sceneFromJson(floorScene(true, 9).dump());
-  for (SamplePattern pattern : {SamplePattern::kRegular, SamplePattern::kJittered, SamplePattern::kAdaptive,
-                                SamplePattern::kPerceptual}) {
-    scene.frame.sampling.pattern = pattern;
-    scene.frame.sampling.samples = 4;
-    const FrameImage one = test::render(scene, 1, 64).image;
-    const FrameImage split = test::render(scene, 2, 7).image;
-    EXPECT_EQ(one.rgb, split.rgb) << enumWord(pattern);
-  }
-}
+TEST(AreaLight, SameBytesForAnyThreadsTilesAndPattern) { test::expectSameBytesHoweverSplit(lightJson(9)); }
 
 TEST(AreaLight, PointLightsTakeNoSampleOfTheLight) {
   // The same scene with a point light at the area light's centre: each lit

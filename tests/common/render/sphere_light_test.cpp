@@ -20,8 +20,8 @@ namespace {
 
 using nlohmann::json;
 
-const glm::dvec3 kBall(0.0, 1.0, 0.0);  // the occluder
-constexpr double kBallRadius = 0.5;
+const glm::dvec3& kBall = test::kShadowBall;  // the occluder
+constexpr double kBallRadius = test::kShadowBallRadius;
 const glm::dvec3 kLight(1.5, 3.0, 0.0);
 constexpr double kLightRadius = 0.6;
 
@@ -30,22 +30,6 @@ json lightJson(int samples) {
           {"position", {kLight.x, kLight.y, kLight.z}},
           {"radius", kLightRadius},
           {"samples", samples}};
-}
-
-json floorScene(bool ball, const json& light) {
-  json objects = json::array({{{"type", "quad"},
-                               {"corners", {{-8, 0, -8}, {8, 0, -8}, {8, 0, 8}, {-8, 0, 8}}},
-                               {"material", "white"}}});
-  if (ball) {
-    objects.push_back({{"type", "sphere"}, {"center", {kBall.x, kBall.y, kBall.z}}, {"radius", kBallRadius},
-                       {"material", "white"}});
-  }
-  return {{"glint", 1},
-          {"image", {{"width", 96}, {"height", 72}}},
-          {"camera", {{"eye", {0, 6, 4}}, {"look_at", {-0.6, 0, 0}}, {"fov_y", 50}}},
-          {"materials", {{"white", {{"color", {1, 1, 1}}, {"diffuse", 1}}}}},
-          {"lights", {light}},
-          {"objects", objects}};
 }
 
 // Where a ray from p along unit d enters a ball; infinity when it misses.
@@ -94,18 +78,18 @@ double visibleShare(const glm::dvec3& p) {
 }
 
 TEST(SphereLight, SoftShadowFollowsTheShareOfTheBallSeen) {
-  const Scene shadowed = test::sceneFromJson(floorScene(true, lightJson(400)).dump());
-  const Scene open = test::sceneFromJson(floorScene(false, lightJson(400)).dump());
+  const Scene shadowed = test::sceneFromJson(test::floorScene(true, lightJson(400)).dump());
+  const Scene open = test::sceneFromJson(test::floorScene(false, lightJson(400)).dump());
   RayStats stats;
   const LinearImage withBall = test::renderLinearFrame(shadowed, stats);
   const LinearImage without = test::renderLinearFrame(open, stats);
-  test::expectShadowFollowsTheShareSeen(shadowed, withBall, without, kBall, kBallRadius, visibleShare);
+  test::expectShadowFollowsTheShareSeen(shadowed, withBall, without, visibleShare);
 }
 
 TEST(SphereLight, UnshadowedItIsAPointLightAtItsCentre) {
   // A diffuse floor and ball lit by a sphere light, and by a point light at
   // its centre: where nothing blocks the ball, the same bytes.
-  const json ball = floorScene(true, lightJson(16));
+  const json ball = test::floorScene(true, lightJson(16));
   json point = ball;
   point["lights"][0] = {{"type", "point"}, {"position", {kLight.x, kLight.y, kLight.z}}};
   const FrameImage soft = test::render(test::sceneFromJson(ball.dump()), 2, 16).image;
@@ -129,28 +113,11 @@ TEST(SphereLight, UnshadowedItIsAPointLightAtItsCentre) {
   EXPECT_NE(soft.rgb, hard.rgb);  // the shadows differ
 }
 
-TEST(SphereLight, EachLitPointTakesTheLightsSamples) {
-  Scene scene = test::sceneFromJson(floorScene(true, lightJson(16)).dump());
-  RayStats own, four;
-  test::renderLinearFrame(scene, own);
-  scene.frame.sampling.lightSamples = 4;
-  test::renderLinearFrame(scene, four);
-  EXPECT_GT(four.shadow, 0u);
-  EXPECT_EQ(own.primary, four.primary);
-  EXPECT_NEAR(static_cast<double>(own.shadow) / static_cast<double>(four.shadow), 4.0, 0.05);
+TEST(SphereLight, FrameLightSamplesSetTheRaysPerShadowQuery) {
+  test::expectFrameLightSamplesSetTheRays(lightJson(16));
 }
 
-TEST(SphereLight, SameBytesForAnyThreadsTilesAndPattern) {
-  Scene scene = test::sceneFromJson(floorScene(true, lightJson(9)).dump());
-  for (SamplePattern pattern : {SamplePattern::kRegular, SamplePattern::kJittered, SamplePattern::kAdaptive,
-                                SamplePattern::kPerceptual}) {
-    scene.frame.sampling.pattern = pattern;
-    scene.frame.sampling.samples = 4;
-    const FrameImage one = test::render(scene, 1, 64).image;
-    const FrameImage split = test::render(scene, 2, 7).image;
-    EXPECT_EQ(one.rgb, split.rgb) << enumWord(pattern);
-  }
-}
+TEST(SphereLight, SameBytesForAnyThreadsTilesAndPattern) { test::expectSameBytesHoweverSplit(lightJson(9)); }
 
 TEST(SphereLight, RaysEndOnTheBallsNearSideWithinItsCone) {
   const glm::vec3 centre(0.3f, -2.0f, 5.0f);
