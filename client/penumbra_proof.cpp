@@ -128,7 +128,7 @@ std::optional<PenumbraProof::Base> PenumbraProof::baseFrom(const SoftLight& ligh
   const float d = glm::length(toApex);
   const float ratio = radius / d;
   const float halfSide = radius / std::sqrt(1.0f - ratio * ratio);
-  if (!(ratio < 1.0f) || !std::isfinite(halfSide)) return std::nullopt;
+  if (!std::isfinite(d) || !(ratio < 1.0f) || !std::isfinite(halfSide)) return std::nullopt;
   const glm::vec3 axis = toApex / d;
   glm::vec3 t, b;
   orthonormalBasis(axis, t, b);

@@ -569,6 +569,29 @@ TEST(Hybrid, SphereLightsTracedOnlyWhereTheBallMayBeBlocked) {
   expectOnlyWhereTheLightMayBeBlocked("scenes/sphere-light.json");
 }
 
+// A sphere light far away, huge, tiny, holding the scene or low beside the
+// objects: the proof decides or leaves the pixel to the tracer; the traced
+// pixels are the full trace's to the byte, and at the pixel centres the
+// frame is the full trace's within 8/255.
+TEST(Hybrid, HostileSphereLightsStayTheFullTraces) {
+  for (const auto& [position, radius] : std::vector<std::pair<glm::vec3, float>>{
+           {glm::vec3(1e30f), 1e29f}, {{-1e38f, 1e38f, 0.0f}, 1e38f}, {{1.5f, 3.0f, 0.0f}, 3e38f},
+           {{1.2f, 3.4f, 0.8f}, 1e-30f}, {{0.0f, 0.5f, 3.0f}, 0.2f}}) {
+    SceneSetup s = load("scenes/sphere-light.json", 80, 60);
+    s.loaded.scene.lights[0].position = position;
+    s.loaded.scene.lights[0].radius = radius;
+    s.frame.sampling = {SamplePattern::kRegular, 1, FilterType::kBox, 0};
+    const PreparedScene prepared(s.loaded.scene, BvhSettings{});
+    ThreadPool pool(2);
+    LocalTileService local(prepared, pool);
+    const auto [here, full, tracedUnlike] = hybridAgainstTheTrace(prepared.scene(), local, s.frame);
+    EXPECT_EQ(tracedUnlike, 0) << radius;
+    int worst = 0;
+    for (std::size_t i = 0; i < here.mask.size(); ++i) worst = std::max(worst, channelDifference(here.image, full, i));
+    EXPECT_LE(worst, 8) << radius;
+  }
+}
+
 // Spot and directional lights: the spot's shadows come from its (point
 // light's) cube map, the directional light's from its orthographic map; at
 // the pixel centres the frame is the full trace's within 2/255, few pixels

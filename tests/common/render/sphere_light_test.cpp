@@ -5,6 +5,8 @@
 // frame is split.
 #include <cmath>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -118,6 +120,22 @@ TEST(SphereLight, FrameLightSamplesSetTheRaysPerShadowQuery) {
 }
 
 TEST(SphereLight, SameBytesForAnyThreadsTilesAndPattern) { test::expectSameBytesHoweverSplit(lightJson(9)); }
+
+// Balls far away, huge, tiny, or holding the whole scene: every pixel stays
+// finite, and a scene point inside the ball is lit unshadowed.
+TEST(SphereLight, HostileBallsStayFinite) {
+  for (const auto& [position, radius] : std::vector<std::pair<glm::dvec3, double>>{
+           {{1e30, 1e30, 1e30}, 1e29}, {{1e30, 1e30, 1e30}, 1e-30}, {{1.5, 3, 0}, 1e-30},
+           {{1.5, 3, 0}, 3e38}, {{0, 1e-30, 0}, 1e-30}, {{-1e38, 1e38, 0}, 1e38}}) {
+    json light = lightJson(4);
+    light["position"] = {position.x, position.y, position.z};
+    light["radius"] = radius;
+    RayStats stats;
+    const LinearImage image = test::renderLinearFrame(test::sceneFromJson(test::floorScene(true, light).dump()), stats);
+    EXPECT_EQ(stats.nonFiniteSamples, 0u) << light;
+    for (float v : image.rgb) ASSERT_TRUE(std::isfinite(v)) << light;
+  }
+}
 
 TEST(SphereLight, RaysEndOnTheBallsNearSideWithinItsCone) {
   const glm::vec3 centre(0.3f, -2.0f, 5.0f);
