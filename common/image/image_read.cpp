@@ -91,11 +91,14 @@ ImageFile readImageFile(const std::filesystem::path& path) {
   }
   if (bytes.starts_with("PF") || bytes.starts_with("Pf")) return {decodePfm(bytes, place, limits.maxTexturePixels), false};
   SceneBudget budget(limits);
+  if (looksLikeRadiance(bytes)) {
+    FloatPixels pixels = decodeLinearImage(bytes, place, budget);
+    return {{pixels.width, pixels.height, std::move(pixels.rgb)}, false};
+  }
   const Image decoded = decodeImage(bytes, place, budget);
   LinearImage values{decoded.width, decoded.height, std::vector<float>(decoded.rgb.size())};
   for (std::size_t i = 0; i < decoded.rgb.size(); ++i) values.rgb[i] = static_cast<float>(decoded.rgb[i]) / 255.0f;
-  const bool radiance = bytes.starts_with("#?");  // an HDR file's values are linear (clamped to [0, 1] here)
-  return {std::move(values), !radiance};
+  return {std::move(values), true};
 }
 
 LinearImage displayedLight(const ImageFile& file) {

@@ -13,9 +13,9 @@ struct ImageFile {
   bool eightBit = false;
 };
 
-// Reads a PNG, JPEG, BMP or TGA (8 bits), an OpenEXR or a PFM (floats), or
-// a Radiance HDR (linear, clamped to [0, 1]) of at most LoadLimits' texture
-// size. Throws InputError naming the file and what
+// Reads a PNG, JPEG, BMP or TGA (8 bits), or an OpenEXR, a PFM or a
+// Radiance HDR (linear floats, as the file holds them) of at most
+// LoadLimits' texture size. Throws InputError naming the file and what
 // is wrong with it.
 ImageFile readImageFile(const std::filesystem::path& path);
 

@@ -91,7 +91,7 @@ std::optional<ImageFormat> imageFormat(std::string_view b) {
   if (b.starts_with("\x89PNG\r\n\x1a\n")) return ImageFormat::kPng;
   if (b.starts_with("BM")) return ImageFormat::kBmp;
   if (b.starts_with("\xff\xd8\xff")) return ImageFormat::kJpeg;
-  if (b.starts_with("#?RADIANCE") || b.starts_with("#?RGBE")) return ImageFormat::kHdr;
+  if (looksLikeRadiance(b)) return ImageFormat::kHdr;
   if (looksLikeExr(b)) return ImageFormat::kExr;
   if (looksLikeTga(b)) return ImageFormat::kTga;
   return std::nullopt;
@@ -157,6 +157,8 @@ void admitStb(std::string_view bytes, const std::function<void(int, int)>& admit
 }
 
 }  // namespace
+
+bool looksLikeRadiance(std::string_view bytes) { return bytes.starts_with("#?RADIANCE") || bytes.starts_with("#?RGBE"); }
 
 Image decodeImage(std::string_view bytes, const std::string& place, SceneBudget& budget) {
   checkDecodable(bytes, place);

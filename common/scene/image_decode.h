@@ -17,6 +17,9 @@ namespace glint {
 // `place`.
 Image decodeImage(std::string_view bytes, const std::string& place, SceneBudget& budget);
 
+// Whether the bytes start as a Radiance HDR file does.
+bool looksLikeRadiance(std::string_view bytes);
+
 // Decodes a Radiance HDR or OpenEXR image into its linear RGB floats as the
 // file holds them (an environment's light: nothing clamped), under the same
 // checks, its floats charged to the budget. Any other format is an
