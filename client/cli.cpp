@@ -346,10 +346,10 @@ std::function<void()> declareAccuracy(CLI::App* accuracy) {
 }
 
 constexpr const char* kCompareHelp =
-    "Compare two images of one size (PNG, JPEG, BMP, TGA: 8-bit values shown through sRGB; EXR, PFM, HDR: linear): print "
-    "the mean FLIP error (the perceptual difference a viewer sees flipping between them, 0 none, 1 the most; "
-    "HDR-FLIP over a range of exposures when both are EXR, PFM or HDR) with its 95th and 99th percentiles, the RMSE and "
-    "the PSNR, one line each; -o writes FLIP's error map.";
+    "Compare two images of one size (PNG, JPEG, BMP, TGA: 8-bit values shown through sRGB; EXR, PFM, HDR: "
+    "linear): print the mean FLIP error (the perceptual difference a viewer sees flipping between them, 0 none, "
+    "1 the most; HDR-FLIP over a range of exposures when both are EXR, PFM or HDR) with its 95th and 99th "
+    "percentiles, the RMSE and the PSNR, one line each; -o writes FLIP's error map.";
 
 // Declares `glint compare`'s options; returns what runs once they are parsed.
 std::function<void()> declareCompare(CLI::App* compare) {

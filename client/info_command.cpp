@@ -88,8 +88,8 @@ std::string describeLight(const Light& l) {
       return kind + " at " + vec(l.position) + ", edges " + vec(l.u) + " " + vec(l.v) + ", " +
              std::to_string(l.samples) + " samples, " + light + falloff;
     case LightType::kSphere:
-      return kind + " at " + vec(l.position) + ", radius " + scalar(l.radius) + ", " +
-             std::to_string(l.samples) + " samples, " + light + falloff;
+      return kind + " at " + vec(l.position) + ", radius " + scalar(l.radius) + ", " + std::to_string(l.samples) +
+             " samples, " + light + falloff;
     case LightType::kPoint:
       break;
   }

@@ -376,7 +376,7 @@ void RasterScene::setLightUniforms(unsigned program, const FrameSettings& frame)
       normals.emplace_back(0.0f);
       continue;
     }
-    const AreaLightPoints points(l, areaLightSamples(l, frame.sampling.lightSamples));
+    const AreaLightPoints points(l, softLightSamples(l, frame.sampling.lightSamples));
     for (const glm::vec3& c : points.centres) {
       positions.push_back(c);
       colors.push_back(points.color);
@@ -386,8 +386,8 @@ void RasterScene::setLightUniforms(unsigned program, const FrameSettings& frame)
   }
   if (positions.size() > kMaxAreaPoints) {
     throw InputError("the OpenGL path draws at most " + std::to_string(kMaxAreaPoints) +
-                     " points of area lights and centres of sphere lights; the scene's take " + std::to_string(positions.size()) +
-                     " (fewer light samples, or --mask all traces them all)");
+                     " points of area lights and centres of sphere lights; the scene's take " +
+                     std::to_string(positions.size()) + " (fewer light samples, or --mask all traces them all)");
   }
   gl_.Uniform1i(at("uAreaCount"), static_cast<int>(positions.size()));
   if (!positions.empty()) {

@@ -26,8 +26,4 @@ bool AreaLightPoints::lights(const glm::vec3& point, const glm::vec3& p) const {
   return glm::dot(p - point, normal) > 0.0f;
 }
 
-int areaLightSamples(const Light& light, int frameLightSamples) {
-  return frameLightSamples > 0 ? frameLightSamples : light.samples;
-}
-
 }  // namespace glint

@@ -38,8 +38,4 @@ struct AreaLightPoints {
   glm::vec3 u_, v_;
 };
 
-// The points an area light takes per shadow query: the frame's light_samples
-// when set (above 0), else the light's own.
-int areaLightSamples(const Light& light, int frameLightSamples);
-
 }  // namespace glint

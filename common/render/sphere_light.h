@@ -33,11 +33,11 @@ class SphereLightView {
 
  private:
   SphereLightView(const glm::vec3& axis, float distance, float sin2Max);
-  glm::vec3 axis_;      // unit, to the centre
-  glm::vec3 t_, b_;     // completing the axis to an orthonormal basis
-  float distance_;      // to the centre
-  float sin2Max_;       // sin^2 of the cone's half-angle: (radius / distance)^2
-  float oneMinusCos_;   // 1 - cos of the cone's half-angle
+  glm::vec3 axis_;     // unit, to the centre
+  glm::vec3 t_, b_;    // completing the axis to an orthonormal basis
+  float distance_;     // to the centre
+  float sin2Max_;      // sin^2 of the cone's half-angle: (radius / distance)^2
+  float oneMinusCos_;  // 1 - cos of the cone's half-angle
 };
 
 }  // namespace glint

@@ -16,7 +16,7 @@ Tracer::Tracer(const Scene& scene, const Bvh& bvh, const FrameSettings& frame, c
       plan_(plan),
       environment_(plan.environment ? scene.environment.get() : nullptr) {
   for (const Light& l : scene.lights) {
-    const int count = areaLightSamples(l, frame.sampling.lightSamples);
+    const int count = softLightSamples(l, frame.sampling.lightSamples);
     areas_.push_back(l.type == LightType::kArea ? std::optional<AreaLightPoints>(std::in_place, l, count)
                                                 : std::nullopt);
     sphereStrata_.emplace_back();
@@ -136,8 +136,7 @@ void Tracer::addAreaLight(const ShadingPoint& at, const Surface& f, int light, P
   result += lit * visibleShare(at, light, static_cast<int>(a.strata.size()), path, target, weight);
 }
 
-void Tracer::addSphereLight(const ShadingPoint& at, const Surface& f, int light, Path& path,
-                            glm::vec3& result) const {
+void Tracer::addSphereLight(const ShadingPoint& at, const Surface& f, int light, Path& path, glm::vec3& result) const {
   const Light& l = scene_.lights[static_cast<std::size_t>(light)];
   const std::optional<Direction> d = towards(at, l.position);
   if (!d) return;

@@ -33,7 +33,8 @@ CameraSpec fitCamera(const CameraSpec& spec, const Bounds3& bounds, float aspect
   const float halfH = std::atan(std::tan(halfV) * aspect);
   const float radius = 0.5f * glm::length(bounds.extent());
   const glm::vec3 forward = glm::normalize(spec.lookAt - spec.eye);
-  const float distance = radius > 0.0f ? radius / sineCosine(std::min(halfV, halfH)).sin : glm::length(spec.lookAt - spec.eye);
+  const float distance =
+      radius > 0.0f ? radius / sineCosine(std::min(halfV, halfH)).sin : glm::length(spec.lookAt - spec.eye);
   CameraSpec out = spec;
   out.lookAt = bounds.centre();
   out.eye = out.lookAt - distance * forward;

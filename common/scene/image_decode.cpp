@@ -158,7 +158,9 @@ void admitStb(std::string_view bytes, const std::function<void(int, int)>& admit
 
 }  // namespace
 
-bool looksLikeRadiance(std::string_view bytes) { return bytes.starts_with("#?RADIANCE") || bytes.starts_with("#?RGBE"); }
+bool looksLikeRadiance(std::string_view bytes) {
+  return bytes.starts_with("#?RADIANCE") || bytes.starts_with("#?RGBE");
+}
 
 Image decodeImage(std::string_view bytes, const std::string& place, SceneBudget& budget) {
   checkDecodable(bytes, place);

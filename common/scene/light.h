@@ -52,6 +52,14 @@ struct Light {
   float radius = 0.0f;  // a sphere light's
 };
 
-inline bool softLight(const Light& l) { return l.type == LightType::kArea || l.type == LightType::kSphere; }
+inline bool softLight(const Light& l) {
+  return l.type == LightType::kArea || l.type == LightType::kSphere;
+}
+
+// The shadow rays a soft light takes per query: the frame's light_samples
+// when set (above 0), else the light's own.
+inline int softLightSamples(const Light& l, int frameLightSamples) {
+  return frameLightSamples > 0 ? frameLightSamples : l.samples;
+}
 
 }  // namespace glint

@@ -8,10 +8,10 @@
 #include <glm/vector_relational.hpp>
 
 #include "common/base/error.h"
-#include "common/scene/frame_limits.h"
 #include "common/base/json_reader.h"
 #include "common/math/circular.h"
 #include "common/math/power.h"
+#include "common/scene/frame_limits.h"
 #include "common/scene/image_decode.h"
 #include "common/scene/mesh_import.h"
 #include "common/scene/smooth_normals.h"

@@ -10,9 +10,9 @@
 
 #include "common/base/enum_words.h"
 #include "common/image/linear_image.h"
-#include "tests/support/test_support.h"
 #include "common/scene/camera.h"
 #include "common/scene/scene.h"
+#include "tests/support/test_support.h"
 
 namespace glint::test {
 
