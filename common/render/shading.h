@@ -1,6 +1,9 @@
 #pragma once
 
+#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
+
+#include "common/math/power.h"
 
 namespace glint {
 
@@ -13,11 +16,22 @@ namespace glint {
 
 glm::vec3 phongAmbient(const glm::vec3& c, float rA);
 // Zero when the light is behind the surface (N . L <= 0).
-glm::vec3 phongDiffuse(const glm::vec3& lightI, const glm::vec3& c, float rD, const glm::vec3& n,
-                       const glm::vec3& l);
+inline glm::vec3 phongDiffuse(const glm::vec3& lightI, const glm::vec3& c, float rD, const glm::vec3& n,
+                              const glm::vec3& l) {
+  const float nl = glm::dot(n, l);
+  if (nl <= 0.0f) return glm::vec3(0.0f);
+  return lightI * c * (rD * nl);
+}
 // Zero when N . L <= 0 or V . R <= 0.
-glm::vec3 phongSpecular(const glm::vec3& lightI, float rS, float h, const glm::vec3& n,
-                        const glm::vec3& l, const glm::vec3& v);
+inline glm::vec3 phongSpecular(const glm::vec3& lightI, float rS, float h, const glm::vec3& n, const glm::vec3& l,
+                               const glm::vec3& v) {
+  const float nl = glm::dot(n, l);
+  if (nl <= 0.0f) return glm::vec3(0.0f);
+  const glm::vec3 r = 2.0f * nl * n - l;
+  const float vr = glm::dot(v, r);
+  if (vr <= 0.0f) return glm::vec3(0.0f);
+  return lightI * (rS * power(vr, h));
+}
 // I_L = color / (c + l d + q d^2) for attenuation (c, l, q) at distance d.
 glm::vec3 attenuate(const glm::vec3& color, const glm::vec3& attenuation, float d);
 // A spot light's share at unit direction l from the surface towards the

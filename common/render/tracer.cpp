@@ -60,27 +60,27 @@ glm::vec3 Tracer::emitted(const Material& m, const glm::vec2& uv) const {
   return m.emissionTexture >= 0 ? m.emission * scene_.textures[m.emissionTexture].evaluate(uv) : m.emission;
 }
 
-std::optional<Tracer::Direction> Tracer::towards(const ShadingPoint& at, const glm::vec3& position) const {
+inline std::optional<Tracer::Direction> Tracer::towards(const ShadingPoint& at, const glm::vec3& position) const {
   const glm::vec3 toLight = position - at.s.p;
   const float distance = glm::length(toLight);
   if (!(distance > 0.0f)) return std::nullopt;
   return facing(at, Direction{toLight / distance, distance});
 }
 
-std::optional<Tracer::Direction> Tracer::facing(const ShadingPoint& at, const Direction& d) const {
+inline std::optional<Tracer::Direction> Tracer::facing(const ShadingPoint& at, const Direction& d) const {
   // A light behind the geometric surface or the shading normal adds nothing.
   if (glm::dot(d.l, at.s.ng) <= 0.0f || glm::dot(d.l, at.s.ns) <= 0.0f) return std::nullopt;
   return d;
 }
 
-void Tracer::addPhong(const ShadingPoint& at, const Surface& f, const Direction& d, const glm::vec3& lightI,
-                      glm::vec3& result) const {
+inline void Tracer::addPhong(const ShadingPoint& at, const Surface& f, const Direction& d, const glm::vec3& lightI,
+                             glm::vec3& result) const {
   result += phongDiffuse(lightI, f.color, f.m.diffuse, at.s.ns, d.l);
   if (f.e.specular) result += phongSpecular(lightI, f.m.specular, f.m.shininess, at.s.ns, d.l, at.toViewer);
 }
 
-void Tracer::addPunctualLight(const ShadingPoint& at, const Surface& f, int light, Path& path,
-                              glm::vec3& result) const {
+inline void Tracer::addPunctualLight(const ShadingPoint& at, const Surface& f, int light, Path& path,
+                                     glm::vec3& result) const {
   const Light& l = scene_.lights[static_cast<std::size_t>(light)];
   const bool directional = l.type == LightType::kDirectional;
   const std::optional<Direction> d =
@@ -96,7 +96,7 @@ void Tracer::addPunctualLight(const ShadingPoint& at, const Surface& f, int ligh
   addPhong(at, f, *d, lightI, result);
 }
 
-bool Tracer::blocked(const ShadingPoint& at, const Light& l, Path& path) const {
+inline bool Tracer::blocked(const ShadingPoint& at, const Light& l, Path& path) const {
   ++path.stats.shadow;
   bool hit = false;
   if (l.type == LightType::kDirectional) {

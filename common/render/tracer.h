@@ -64,6 +64,8 @@ class Tracer {
     glm::vec3 l;
     float distance;
   };
+  // towards to blocked run for each light at each hit: defined inline in
+  // tracer.cpp, so that the compiler keeps them in shade's registers.
   std::optional<Direction> towards(const ShadingPoint& at, const glm::vec3& position) const;
   // d, unless the light comes from behind the surface.
   std::optional<Direction> facing(const ShadingPoint& at, const Direction& d) const;
@@ -75,8 +77,14 @@ class Tracer {
   // Whether the shadow ray from the point to the light (to infinity for a
   // directional light) is blocked.
   bool blocked(const ShadingPoint& at, const Light& l, Path& path) const;
-  void addAreaLight(const ShadingPoint& at, const Surface& f, int light, Path& path, glm::vec3& result) const;
-  void addSphereLight(const ShadingPoint& at, const Surface& f, int light, Path& path, glm::vec3& result) const;
+  // The soft lights, kept out of line: inlined, they would make the
+  // shading point and surface they take by reference live in memory on every
+  // hit, and the point lights' path would pay for lights a scene may not
+  // have (and, inlined in trace, crowd out the inlining of its hot calls).
+  [[gnu::noinline]] void addAreaLight(const ShadingPoint& at, const Surface& f, int light, Path& path,
+                                      glm::vec3& result) const;
+  [[gnu::noinline]] void addSphereLight(const ShadingPoint& at, const Surface& f, int light, Path& path,
+                                        glm::vec3& result) const;
   // The share of a soft light's unshadowed light that reaches the point: one
   // shadow ray for each of `count` strata, to target(k, u) (none: the
   // stratum's point gives nothing), its verdict weighted by weight(cosine,
