@@ -2,16 +2,16 @@
 BUILD ?= build
 JOBS  ?= 2
 
-# Debian packages the build and the tests need; `make deps` installs the missing ones.
+# Debian packages the build and the tests need; `make deps` installs the missing ones
+# (gnuplot-nox draws glint accuracy's plot).
 DEPS := cmake g++ make pkg-config libglm-dev nlohmann-json3-dev libtinyobjloader-dev \
         libstb-dev libcli11-dev libgtest-dev libgmock-dev \
         libflatbuffers-dev flatbuffers-compiler libssl-dev libasio-dev libosmesa6-dev \
-        libegl-dev libglfw3-dev libgl1-mesa-dri xvfb xauth x11-utils openssl iproute2 \
-        libopenexr-dev libassimp-dev libjpeg-dev assimp-testmodels
+        libegl-dev libglfw3-dev libgl1-mesa-dri xvfb xauth x11-utils x11-apps netpbm openssl iproute2 \
+        libopenexr-dev libassimp-dev libjpeg-dev assimp-testmodels \
+        gnuplot-nox
 # The benchmark also compares against POV-Ray 3.7 and Embree 3.
 BENCH_DEPS := povray libembree-dev
-# `make accuracy` plots with gnuplot.
-ACCURACY_DEPS := gnuplot-nox
 # The fuzzers are built with clang and its libFuzzer.
 FUZZ_DEPS := clang libclang-rt-14-dev
 FUZZ_BUILD ?= build-fuzz
@@ -19,7 +19,7 @@ FUZZ_SECONDS ?= 60
 
 SUDO := $(shell [ "$$(id -u)" -eq 0 ] || echo sudo)
 
-.PHONY: all deps bench-deps accuracy-deps fuzz-deps configure build test demo install bench accuracy fuzz fuzz-seeds clean
+.PHONY: all deps bench-deps fuzz-deps configure build test demo install bench accuracy fuzz fuzz-seeds clean
 
 all: build
 
@@ -47,7 +47,7 @@ build: configure
 	cmake --build $(BUILD) -j$(JOBS)
 
 test: build
-	cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
+	tests/run_suite.sh $(BUILD) $(JOBS)
 
 # The demo needs only the two programs (the tests build in `make test`).
 demo: configure
@@ -65,15 +65,12 @@ install: configure
 bench: bench-deps build
 	$(BUILD)/bin/glint-bench --scenes scenes
 
-accuracy-deps: deps
-	$(call install_missing,$(ACCURACY_DEPS))
-
 # The default accuracy sweep on the thesis's scenes 1 and 2, the mask rules
 # and the perceptual threshold on three more, an area light's samples on
 # soft-shadows.json: out/accuracy/, and
 # docs/accuracy.md with its plots in docs/images/.
 RULE_SWEEP = --vary mask_rule=auto,perceptual --vary perceptual_threshold=0.1,0.2,0.3,0.5,0.8
-accuracy: accuracy-deps build
+accuracy: build
 	$(BUILD)/bin/glint accuracy scenes/room.json -o out/accuracy/room
 	$(BUILD)/bin/glint accuracy scenes/room-gl-floor.json -o out/accuracy/room-gl-floor
 	for s in glass bunny room-bright; do $(BUILD)/bin/glint accuracy scenes/$$s.json -o out/accuracy/$$s $(RULE_SWEEP) || exit 1; done

@@ -122,10 +122,23 @@ std::vector<std::uint8_t> maskOverlay(const HybridResult& r) {
   return rgb;
 }
 
-// Draws a top-down RGB image over the window.
+// Draws a top-down RGB image over the window. glDrawPixels' fragments pass
+// the per-fragment tests like any other, so it sets every state they read
+// instead of taking what the raster pass left: that pass leaves a reversed
+// depth test (GL_GREATER) on, against which the window's depth buffer, never
+// cleared, refused every pixel, and the window stayed black while the frame
+// was right.
 void drawImage(const gl::Api& gl, std::vector<std::uint8_t> rgb, int width, int height) {
   flipRows(rgb, width, height, 3);
   gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  gl.BindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  gl.UseProgram(0);
+  for (const GLenum test : {GL_DEPTH_TEST, GL_STENCIL_TEST, GL_SCISSOR_TEST, GL_BLEND, GL_FRAMEBUFFER_SRGB}) {
+    gl.Disable(test);
+  }
+  gl.Viewport(0, 0, width, height);
+  gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  gl.PixelStorei(GL_UNPACK_ROW_LENGTH, 0);
   gl.WindowPos2i(0, 0);
   gl.DrawPixels(width, height, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
 }

@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# glint view as a user sees it: the window on a virtual display (Xvfb, 24-bit
+# colour), captured by the X server (xwd), not read back from OpenGL, holds
+# the same pixels as glint render's PNG of the same scene and size, once the
+# title says the frame (not the one-sample preview) is shown.
+# Usage: view_window.sh GLINT SCENES_DIR
+# Exit 77 (CTest: skipped) without xvfb-run, xwininfo, xwd or netpbm.
+set -euo pipefail
+glint=$1
+scenes=$2
+
+skip() { echo "view_window: skipped: $*"; exit 77; }
+command -v xvfb-run > /dev/null || skip "xvfb-run is not installed"
+command -v xwininfo > /dev/null || skip "xwininfo (x11-utils) is not installed"
+command -v xwd > /dev/null || skip "xwd (x11-apps) is not installed"
+command -v xwdtopnm > /dev/null || skip "xwdtopnm (netpbm) is not installed"
+
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+size=160x120
+pixels=$((160 * 120 * 3))
+
+for name in room glass; do
+  "$glint" render "$scenes/$name.json" --size "$size" -o "$work/$name.png" -q
+  pngtopnm "$work/$name.png" | tail -c "$pixels" > "$work/$name.rgb"
+done
+
+# In the virtual display: for each scene, open the view, wait until its
+# title says the frame is shown, capture the window and compare its pixels
+# (the last WxHx3 bytes of the PPM) with the render's.
+xvfb-run -a -s "-screen 0 640x480x24" bash -c '
+  set -u
+  glint=$1 scenes=$2 work=$3 size=$4 pixels=$5
+  view=""
+  trap "[ -n \"\$view\" ] && kill \$view 2> /dev/null; wait" EXIT
+  window() { xwininfo -root -tree | grep "\"glint view[^\"]*|  frame " | head -n 1 | awk "{print \$1}"; }
+  for name in room glass; do
+    "$glint" view "$scenes/$name.json" --size "$size" > "$work/$name.log" 2>&1 &
+    view=$!
+    same=0
+    for _ in $(seq 1 300); do
+      id=$(window)
+      if [ -n "$id" ]; then
+        xwd -silent -id "$id" | xwdtopnm 2> /dev/null | tail -c "$pixels" > "$work/$name.window.rgb"
+        if cmp -s "$work/$name.window.rgb" "$work/$name.rgb"; then same=1; break; fi
+      fi
+      sleep 0.1
+    done
+    title=$(xwininfo -root -tree | grep -o "\"glint view[^\"]*\"" | head -n 1)
+    kill "$view"; wait "$view" 2> /dev/null || true; view=""
+    if [ "$same" -ne 1 ]; then
+      echo "the window of $name.json never showed glint render'"'"'s pixels; its title: $title" >&2
+      [ -s "$work/$name.window.rgb" ] && echo "its most common pixels (count, RGB): $(od -v -An -tu1 -w3 "$work/$name.window.rgb" | sort | uniq -c | sort -rn | head -n 3)" >&2
+      cat "$work/$name.log" >&2
+      exit 1
+    fi
+    echo "view_window: the window of $name.json shows glint render'"'"'s pixels"
+  done
+' bash "$glint" "$scenes" "$work" "$size" "$pixels"
