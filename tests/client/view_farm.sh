@@ -24,7 +24,8 @@ cleanup() {
 }
 trap cleanup EXIT
 
-# A glintd on a free loopback port; its address on stdout.
+# A glintd on a free loopback port; its address in $address. Run in this
+# shell, not in $(...), so that its PID reaches the cleanup.
 start_glintd() {
   "$glintd" --listen 127.0.0.1:0 --threads 1 --quiet > "$work/glintd$1.log" 2>&1 &
   pids+=($!)
@@ -32,10 +33,12 @@ start_glintd() {
     grep -q "listening on" "$work/glintd$1.log" && break
     sleep 0.05
   done
-  sed -n 's/^glintd: listening on \([^,]*\).*/\1/p' "$work/glintd$1.log"
+  address=$(sed -n 's/^glintd: listening on \([^,]*\).*/\1/p' "$work/glintd$1.log")
 }
-a=$(start_glintd 0)
-b=$(start_glintd 1)
+start_glintd 0
+a=$address
+start_glintd 1
+b=$address
 [ -n "$a" ] && [ -n "$b" ] || { echo "a glintd did not start" >&2; exit 1; }
 
 list="$work/farm.txt"
