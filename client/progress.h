@@ -14,7 +14,8 @@ namespace glint {
 enum class ProgressMode { kAuto, kForced, kQuiet };
 
 // One frame's progress line: tiles traced of the total, the share each
-// server traced, and an estimate of the time left from the pace so far.
+// server traced, and, once the pace of the tiles is known, an estimate of
+// the time left.
 // Time is an input, so that what it prints can be tested.
 class ProgressLine {
  public:
@@ -34,7 +35,7 @@ class ProgressLine {
   void update(int done, int total, const Shares& shares, Clock::time_point now);
 
  private:
-  std::string text(int done, int total, const Shares& shares, double seconds) const;
+  std::string text(int done, int total, const Shares& shares, Clock::time_point now) const;
 
   ProgressMode mode_;
   std::FILE* out_;
@@ -43,6 +44,8 @@ class ProgressLine {
   Clock::time_point start_;
   Clock::time_point lastLine_{};  // when the last line was printed (not on a terminal)
   bool drawn_ = false;            // a line is drawn in place
+  int paceDone_ = 0;              // the tiles done when the first was seen, and when
+  Clock::time_point paceStart_{};
 };
 
 // stderr, and whether it is a terminal.

@@ -59,9 +59,28 @@ TEST(ProgressLine, OffATerminalOnlyProgressPrintsLinesAtMostOneASecondAndTheLast
     line.update(4, 4, {}, t0 + milliseconds(1300));  // the last: always
   }
   EXPECT_EQ(forced.text(),
-            "frame 2 of 3: 1/4 tiles (25 %), 0.1 s, about 0 s left\n"
-            "frame 2 of 3: 3/4 tiles (75 %), 1.2 s, about 0 s left\n"
+            "frame 2 of 3: 1/4 tiles (25 %), 0.1 s\n"
+            "frame 2 of 3: 3/4 tiles (75 %), 1.2 s, about 1 s left\n"
             "frame 2 of 3: 4/4 tiles (100 %), 1.3 s\n");
+}
+
+// The time left comes from the pace of the tiles after the first: a first
+// tile that arrives late (the set-up, a server's latency) says nothing of the
+// rest, and one tile is no pace.
+TEST(ProgressLine, TheTimeLeftWaitsForThePaceOfTheTiles) {
+  Written out;
+  {
+    ProgressLine line(ProgressMode::kForced, out.file(), false, "rendering", t0);
+    line.update(1, 100, {}, t0 + milliseconds(680));    // the first, after the set-up
+    line.update(2, 100, {}, t0 + milliseconds(1690));   // one more: no pace yet
+    line.update(41, 100, {}, t0 + milliseconds(2700));  // 40 in 2.02 s: 59 x 50.5 ms left
+    line.update(100, 100, {}, t0 + milliseconds(5700));
+  }
+  EXPECT_EQ(out.text(),
+            "rendering: 1/100 tiles (1 %), 0.7 s\n"
+            "rendering: 2/100 tiles (2 %), 1.7 s\n"
+            "rendering: 41/100 tiles (41 %), 2.7 s, about 3 s left\n"
+            "rendering: 100/100 tiles (100 %), 5.7 s\n");
 }
 
 TEST(ProgressLine, QuietPrintsNothingAnywhere) {
