@@ -162,6 +162,11 @@ TEST(Accuracy, ErrorFallsWithSamplesOnASmallScene) {
   std::ifstream script(dir / "accuracy.gp");
   const std::string gp((std::istreambuf_iterator<char>(script)), std::istreambuf_iterator<char>());
   EXPECT_NE(gp.find("mean FLIP against the reference"), std::string::npos);
+  // The plot itself: gnuplot is among the packages make test installs.
+  ASSERT_EQ(std::system("command -v gnuplot > /dev/null 2>&1"), 0) << "gnuplot is not installed (make deps)";
+  const auto plot = readImageFile(dir / "accuracy.png");
+  EXPECT_GT(plot.values.width, 100);
+  EXPECT_GT(plot.values.height, 100);
   fs::remove_all(dir);
 }
 
