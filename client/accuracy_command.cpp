@@ -11,7 +11,6 @@
 #include "client/offscreen_context.h"
 #include "client/raster_scene.h"
 #include "client/scene_warnings.h"
-#include "client/usage_error.h"
 #include "common/base/error.h"
 #include "common/scene/frame_limits.h"
 #include "common/image/encoding.h"

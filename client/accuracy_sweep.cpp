@@ -5,7 +5,6 @@
 #include <cmath>
 #include <sstream>
 
-#include "client/usage_error.h"
 #include "common/base/error.h"
 #include "common/scene/frame_limits.h"
 

@@ -1,6 +1,7 @@
 #include "client/cli.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -22,10 +23,10 @@
 #include "client/render_command.h"
 #include "client/server_list.h"
 #include "client/server_source.h"
-#include "client/usage_error.h"
 #include "client/view_command.h"
 #include "common/base/build_identity.h"
 #include "common/base/error.h"
+#include "common/base/nearest_word.h"
 #include "common/scene/frame_limits.h"
 
 namespace glint {
@@ -37,7 +38,8 @@ constexpr const char* kRenderHelp =
     "whatever --threads and --tile-size are.";
 constexpr const char* kViewHelp =
     "Open a window on a scene: the hybrid frame, live. Left drag orbits, right drag pans, the wheel "
-    "zooms; M cycles the mask rule (auto, all, none), O shows the mask, Q or Escape closes. While the camera "
+    "zooms; M cycles the mask rule (auto, perceptual, all, none), O shows the mask, P (with --server) tints each "
+    "traced pixel by the server that traced it, Q or Escape closes. While the camera "
     "moves each frame is a one-sample preview; at rest the scene's samples follow. The window may be resized.";
 
 void parseSize(const std::string& text, std::optional<int>& width, std::optional<int>& height) {
@@ -240,7 +242,7 @@ void addFrameOptions(CLI::App* app, FrameOverrides& o) {
 std::function<void()> declareRender(CLI::App* render) {
   auto options = std::make_shared<RenderOptions>();
   RenderOptions& o = *options;
-  render->add_option("scene", o.scene, "Scene file (.json)")->required()->check(CLI::ExistingFile);
+  render->add_option("scene", o.scene, "Scene file (.json)")->required();
   render
       ->add_option("-o,--output", o.output,
                    "Image to write, its format by extension: .png (8-bit), .exr (half float, linear), .pfm (float, "
@@ -281,7 +283,7 @@ std::function<void()> declareRender(CLI::App* render) {
 std::function<void()> declareView(CLI::App* view) {
   auto options = std::make_shared<ViewOptions>();
   ViewOptions& o = *options;
-  view->add_option("scene", o.scene, "Scene file (.json)")->required()->check(CLI::ExistingFile);
+  view->add_option("scene", o.scene, "Scene file (.json)")->required();
   addServerOptions(view, o.remote);
   addFrameOptions(view, o.frame);
   view->add_option("--threads", o.threads, "Tracing threads; 0 = one per hardware thread")->check(CLI::Range(0, 1024));
@@ -301,7 +303,7 @@ constexpr const char* kInfoHelp =
 std::function<void()> declareInfo(CLI::App* info) {
   auto options = std::make_shared<InfoOptions>();
   InfoOptions& o = *options;
-  info->add_option("scene", o.scene, "Scene file (.json)")->required()->check(CLI::ExistingFile);
+  info->add_option("scene", o.scene, "Scene file (.json)")->required();
   addFrameOptions(info, o.frame);
   addGlOption(info, o.gl);
   info->add_flag("!--no-raster", o.raster, "Skip the raster pass (no OpenGL; no traced-pixel count)");
@@ -321,7 +323,7 @@ std::string accuracyHelp() {
 std::function<void()> declareAccuracy(CLI::App* accuracy) {
   auto options = std::make_shared<AccuracyOptions>();
   AccuracyOptions& o = *options;
-  accuracy->add_option("scene", o.scene, "Scene file (.json)")->required()->check(CLI::ExistingFile);
+  accuracy->add_option("scene", o.scene, "Scene file (.json)")->required();
   accuracy->add_option("-o,--output", o.outDir, "Folder for the report, the CSV and the images")->required();
   accuracy->add_option("--vary", o.vary, "KEY=V1,V2,...: one series (repeatable)")
       ->type_name("KEY=V1,V2,...")
@@ -355,8 +357,8 @@ constexpr const char* kCompareHelp =
 std::function<void()> declareCompare(CLI::App* compare) {
   auto options = std::make_shared<CompareOptions>();
   CompareOptions& o = *options;
-  compare->add_option("reference", o.reference, "The reference image")->required()->check(CLI::ExistingFile);
-  compare->add_option("test", o.test, "The image judged against it")->required()->check(CLI::ExistingFile);
+  compare->add_option("reference", o.reference, "The reference image")->required();
+  compare->add_option("test", o.test, "The image judged against it")->required();
   compare->add_option("-o,--output", o.errorMap, "Write the FLIP error map (magma: black none, yellow most) as a PNG");
   compare
       ->add_option("--ppd", o.pixelsPerDegree,
@@ -384,55 +386,68 @@ const CommandSpec kCommands[] = {
 
 constexpr int kUsageError = 2;
 
-std::size_t editDistance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
+std::string joined(const std::vector<std::string>& words) {
+  std::string text;
+  for (const std::string& w : words) text += (text.empty() ? "" : ", ") + w;
+  return text;
 }
 
-// For each --option the command does not have, the nearest one it has
-// ("--smaples": did you mean --samples?), printed before CLI11's message.
-void suggestOptions(CLI::App& app, int argc, char** argv) {
-  CLI::App* command = nullptr;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (!command) {
-      for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
-        if (sub->get_name() == arg) command = sub;
-      }
-      continue;
-    }
-    if (arg.rfind("--", 0) != 0) continue;
-    const std::string name = arg.substr(2, arg.find('=') - 2);
-    if (command->get_option_no_throw("--" + name)) continue;
-    std::string best;
-    std::size_t bestDistance = 3;  // more edits than this is no misspelling
-    for (const CLI::Option* option : command->get_options()) {
-      for (const std::string& known : option->get_lnames()) {
-        const std::size_t d = editDistance(name, known);
-        if (d < bestDistance) {
-          bestDistance = d;
-          best = known;
-        }
-      }
-    }
-    if (!best.empty()) std::fprintf(stderr, "glint: --%s: did you mean --%s?\n", name.c_str(), best.c_str());
+// An argument that looks like an option: "--name[=value]" or "-x".
+std::optional<std::string> optionName(const std::string& arg) {
+  if (arg.rfind("--", 0) == 0 && arg.size() > 2) return arg.substr(0, arg.find('='));
+  if (arg.size() == 2 && arg[0] == '-' && std::isalpha(static_cast<unsigned char>(arg[1]))) return arg;
+  return std::nullopt;
+}
+
+// The first option `command` does not have, with the nearest one it has
+// ("--sampels": did you mean --samples?); empty when every option is its.
+std::string unknownOption(CLI::App& command, int first, int argc, char** argv) {
+  std::vector<std::string> known;
+  for (const CLI::Option* option : command.get_options()) {
+    for (const std::string& name : option->get_lnames()) known.push_back("--" + name);
+    for (const std::string& name : option->get_snames()) known.push_back("-" + name);
   }
+  for (int i = first; i < argc; ++i) {
+    const std::optional<std::string> name = optionName(argv[i]);
+    if (!name || command.get_option_no_throw(*name)) continue;
+    const std::string near = nearestWord(*name, known);
+    return "glint " + command.get_name() + " has no option " + *name +
+           (near.empty() ? "" : "; did you mean " + near + "?");
+  }
+  return {};
+}
+
+// What CLI11 found wrong, said so that the user knows what to type instead:
+// a command glint lacks or an option the command lacks (each with the
+// nearest there is), else CLI11's own words.
+std::string usageProblem(CLI::App& app, const CLI::ParseError& e, int argc, char** argv) {
+  std::vector<std::string> commands;
+  CLI::App* command = nullptr;
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+    commands.push_back(sub->get_name());
+    if (argc > 1 && sub->get_name() == argv[1]) command = sub;
+  }
+  if (argc < 2) return "a command is required: " + joined(commands);
+  if (argv[1][0] == '-') return e.what();
+  if (!command) {
+    const std::string near = nearestWord(argv[1], commands);
+    return std::string("'") + argv[1] + "' is not a glint command (" + joined(commands) + ")" +
+           (near.empty() ? "" : "; did you mean '" + near + "'?");
+  }
+  const std::string unknown = unknownOption(*command, 2, argc, argv);
+  return unknown.empty() ? e.what() : unknown;
 }
 
 // Where the options are listed: "glint render --help" for the command given.
 std::string helpHint(const CLI::App& app) {
   for (const CLI::App* sub : app.get_subcommands()) return "the options: glint " + sub->get_name() + " --help";
   return "the commands: glint --help";
+}
+
+// A usage error in one line: what is wrong, then where the options are.
+int usageError(const CLI::App& app, const std::string& problem) {
+  std::fprintf(stderr, "glint: error: %s (%s)\n", problem.c_str(), helpHint(app).c_str());
+  return kUsageError;
 }
 
 int runCli(int argc, char** argv) {
@@ -450,9 +465,7 @@ int runCli(int argc, char** argv) {
     // --help and --version are not errors; a usage error exits with 2, as
     // shells expect, in the same words as every other error.
     if (e.get_exit_code() == 0) return app.exit(e);
-    if (dynamic_cast<const CLI::ExtrasError*>(&e)) suggestOptions(app, argc, argv);
-    std::fprintf(stderr, "glint: error: %s\n%s\n", e.what(), helpHint(app).c_str());
-    return kUsageError;
+    return usageError(app, usageProblem(app, e, argc, argv));
   }
   try {
     for (const auto& [sub, run] : commands) {
@@ -460,8 +473,7 @@ int runCli(int argc, char** argv) {
     }
     return 0;
   } catch (const UsageError& e) {
-    std::fprintf(stderr, "glint: error: %s\n%s\n", e.what(), helpHint(app).c_str());
-    return kUsageError;
+    return usageError(app, e.what());
   } catch (const InputError& e) {
     std::fprintf(stderr, "glint: error: %s\n", e.what());
     return 1;

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-#include "client/usage_error.h"
+#include "common/base/error.h"
 #include "common/image/image_metrics.h"
 #include "common/image/image_read.h"
 #include "common/image/image_write.h"

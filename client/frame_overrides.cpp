@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "client/usage_error.h"
+#include "common/base/error.h"
 #include "common/scene/load_limits.h"
 
 namespace glint {

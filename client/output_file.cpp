@@ -11,7 +11,6 @@
 #include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfOutputFile.h>
 
-#include "client/usage_error.h"
 #include "common/base/error.h"
 #include "common/image/image_write.h"
 

@@ -19,7 +19,6 @@
 #include "client/scene_warnings.h"
 #include "client/stats_json.h"
 #include "client/tile_backend.h"
-#include "client/usage_error.h"
 #include "common/base/error.h"
 #include "common/base/timing.h"
 #include "common/image/encoding.h"

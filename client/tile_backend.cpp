@@ -1,7 +1,7 @@
 #include "client/tile_backend.h"
 
 #include "client/distributed_tile_service.h"
-#include "client/usage_error.h"
+#include "common/base/error.h"
 
 namespace glint {
 

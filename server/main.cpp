@@ -3,12 +3,16 @@
 #include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "common/base/build_identity.h"
 #include "common/base/error.h"
 #include "common/base/heap_tuning.h"
+#include "common/base/nearest_word.h"
+#include "proto/endpoint.h"
 #include "server/log.h"
 #include "server/server.h"
 
@@ -45,8 +49,23 @@ void addSeconds(CLI::App& app, const char* name, std::chrono::milliseconds& dura
       ->default_str(CLI::detail::to_string(static_cast<double>(duration.count()) / 1000.0));
 }
 
+// An address glintd can listen on, checked while the options are read so
+// that a bad one is a usage error; CLI11 puts the option's name before the
+// words.
+std::string listenProblem(const std::string& address) {
+  const std::string option = "--listen";
+  try {
+    glint::proto::parseEndpoint(address, option);
+    return {};
+  } catch (const glint::InputError& e) {
+    return std::string(e.what()).substr(option.size() + 1);
+  }
+}
+
 void declareOptions(CLI::App& app, glint::server::ServerOptions& o, bool& quiet) {
-  app.add_option("--listen", o.listen, "HOST:PORT to listen on (port 0: any free port)")->default_val(o.listen);
+  app.add_option("--listen", o.listen, "HOST:PORT to listen on (port 0: any free port)")
+      ->check(listenProblem, "HOST:PORT")
+      ->default_val(o.listen);
   app.add_option("--threads", o.threads, "Tracing threads; 0 = one per hardware thread")
       ->check(CLI::Range(0, 1024))
       ->default_val(0);
@@ -85,6 +104,31 @@ void declareOptions(CLI::App& app, glint::server::ServerOptions& o, bool& quiet)
   app.add_flag("-q,--quiet", quiet, "No log lines");
 }
 
+// The first option glintd does not have, with the nearest it has; else
+// CLI11's words for what is wrong.
+std::string usageProblem(const CLI::App& app, const CLI::ParseError& e, int argc, char** argv) {
+  std::vector<std::string> known;
+  for (const CLI::Option* option : app.get_options()) {
+    for (const std::string& name : option->get_lnames()) known.push_back("--" + name);
+  }
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg.rfind("--", 0) != 0) continue;
+    const std::string name = arg.substr(0, arg.find('='));
+    if (app.get_option_no_throw(name)) continue;
+    const std::string near = glint::nearestWord(name, known);
+    return "glintd has no option " + name + (near.empty() ? "" : "; did you mean " + near + "?");
+  }
+  return e.what();
+}
+
+// How clients reach it, for the line scripts wait for.
+std::string transport(const glint::server::ServerOptions& o) {
+  return o.tls.any() ? "TLS 1.3, client certificates required" : "no TLS";
+}
+
+constexpr int kUsageError = 2;
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -101,8 +145,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int printed = app.exit(e);  // --help and --version print and are not errors
-    return printed == 0 ? 0 : 2;      // a usage error, as shells expect
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help and --version print and are not errors
+    std::fprintf(stderr, "glintd: error: %s (the options: glintd --help)\n", usageProblem(app, e, argc, argv).c_str());
+    return kUsageError;  // as shells expect
   }
   setLogging(!quiet);
   raiseDescriptorLimit(o);
@@ -110,11 +155,15 @@ int main(int argc, char** argv) {
     Server server(o);
     // One line on stdout that scripts can wait for; the port is the real one.
     const std::string host = o.listen.substr(0, o.listen.rfind(':'));
-    std::printf("glintd: listening on %s:%u, %d threads\n", host.c_str(), server.port(), server.threads());
+    std::printf("glintd: listening on %s:%u, %d thread%s, %s\n", host.c_str(), server.port(), server.threads(),
+                server.threads() == 1 ? "" : "s", transport(o).c_str());
     std::fflush(stdout);
     server.run();
     logLine("stopped");
     return 0;
+  } catch (const glint::UsageError& e) {
+    std::fprintf(stderr, "glintd: error: %s (the options: glintd --help)\n", e.what());
+    return kUsageError;
   } catch (const glint::InputError& e) {
     std::fprintf(stderr, "glintd: error: %s\n", e.what());
     return 1;

@@ -16,17 +16,17 @@ namespace {
 const ServerOptions& checked(const ServerOptions& o) {
   const auto mb = [](std::size_t bytes) { return std::to_string(bytes >> 20); };
   if (o.maxSceneBytes > o.cacheBytes) {
-    throw InputError("--max-scene-mb " + mb(o.maxSceneBytes) + " is over --cache-mb " + mb(o.cacheBytes) +
+    throw UsageError("--max-scene-mb " + mb(o.maxSceneBytes) + " is over --cache-mb " + mb(o.cacheBytes) +
                      ": the cache must be able to hold the largest scene");
   }
   if (o.cacheBytes + 2 * o.maxSceneBytes > o.maxMemoryBytes) {
-    throw InputError("--max-memory-mb " + mb(o.maxMemoryBytes) + " is below --cache-mb + 2 x --max-scene-mb (" +
+    throw UsageError("--max-memory-mb " + mb(o.maxMemoryBytes) + " is below --cache-mb + 2 x --max-scene-mb (" +
                      mb(o.cacheBytes + 2 * o.maxSceneBytes) +
                      "): the scene cache, the uploaded files kept, and a "
                      "scene being built");
   }
   if (o.tls.any() && (o.tls.ca.empty() || o.tls.cert.empty() || o.tls.key.empty())) {
-    throw InputError(
+    throw UsageError(
         "TLS needs all three of --tls-cert, --tls-key and --tls-client-ca (deploy/glint-certs makes them)");
   }
   return o;
@@ -38,7 +38,7 @@ const ServerOptions& checked(const ServerOptions& o) {
 void checkExposure(const ServerOptions& o, const asio::ip::tcp::endpoint& endpoint) {
   if (o.tls.any() || endpoint.address().is_loopback()) return;
   if (!o.insecure) {
-    throw InputError("--listen " + o.listen +
+    throw UsageError("--listen " + o.listen +
                      ": not a loopback address, and without TLS anyone who reaches it can use glintd and read its "
                      "clients' pixels; give --tls-cert, --tls-key and --tls-client-ca (docs/deploy.md), or "
                      "--insecure if that is really meant");

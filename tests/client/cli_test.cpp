@@ -277,13 +277,36 @@ TEST_F(Cli, MeshLargerThanTheMessageLimitGoesThroughInPieces) {
   EXPECT_EQ(decodePng(path("there.png")).rgb, decodePng(path("here.png")).rgb);
 }
 
-// A usage error (an option that does not exist) exits with 2, other errors with 1.
+// A usage error (an option or command that does not exist) exits with 2 and
+// names the nearest one there is; other errors, a missing file among them,
+// exit with 1. Every error is one line.
 TEST_F(Cli, UsageErrorsExitWithTwo) {
+  const auto oneLine = [](const Result& r) {
+    return r.output.find('\n') == r.output.size() - 1 && r.output.rfind("glint: error: ", 0) == 0;
+  };
   const Result misspelt = glint("render " + scene("room.json") + " -o " + path("x.png") + " --smaples 4");
   EXPECT_EQ(misspelt.status, 2);
-  EXPECT_NE(misspelt.output.find("--smaples: did you mean --samples?"), std::string::npos) << misspelt.output;
+  EXPECT_EQ(misspelt.output,
+            "glint: error: glint render has no option --smaples; did you mean --samples? (the options: glint render "
+            "--help)\n");
+  const Result command = glint("rendr " + scene("room.json"));
+  EXPECT_EQ(command.status, 2);
+  EXPECT_NE(command.output.find("'rendr' is not a glint command (render, view, accuracy, info, compare); did you "
+                                "mean 'render'?"),
+            std::string::npos)
+      << command.output;
+  EXPECT_TRUE(oneLine(command)) << command.output;
+  // info takes the frame options, not render's --threads: said so, not "arguments not expected: 2 --threads".
+  const Result info = glint("info " + scene("room.json") + " --threads 2");
+  EXPECT_EQ(info.status, 2);
+  EXPECT_EQ(info.output, "glint: error: glint info has no option --threads (the options: glint info --help)\n");
   EXPECT_EQ(glint("render " + scene("room.json") + " -o " + path("x.png") + " --eye 1,2").status, 2);
-  EXPECT_EQ(glint("render " + path("missing.json") + " -o " + path("x.png")).status, 2);  // CLI11's file check
+  // A scene or image that is not there is a file error.
+  const Result missing = glint("render " + path("missing.json") + " -o " + path("x.png"));
+  EXPECT_EQ(missing.status, 1);
+  EXPECT_NE(missing.output.find("missing.json"), std::string::npos) << missing.output;
+  EXPECT_TRUE(oneLine(missing)) << missing.output;
+  EXPECT_EQ(glint("compare " + path("a.png") + " " + path("b.png")).status, 1);
   // A value glint cannot use, or options that do not go together, are usage errors too; every message in
   // one style, with where the options are listed.
   for (const char* options : {"-o x.jpg", "-o x.png --size 640", "-o x.png --size -5x10",
@@ -293,8 +316,8 @@ TEST_F(Cli, UsageErrorsExitWithTwo) {
                               "-o x.png --server 127.0.0.1:7878,host:port"}) {
     const Result run = glint("render " + scene("room.json") + " " + options);
     EXPECT_EQ(run.status, 2) << options << "\n" << run.output;
-    EXPECT_EQ(run.output.rfind("glint: error: ", 0), 0u) << options << "\n" << run.output;
-    EXPECT_NE(run.output.find("the options: glint render --help"), std::string::npos) << run.output;
+    EXPECT_TRUE(oneLine(run)) << options << "\n" << run.output;
+    EXPECT_NE(run.output.find("(the options: glint render --help)"), std::string::npos) << run.output;
   }
   // Everything else is 1: a scene, a file, a server.
   EXPECT_EQ(glint("render " + writeScene("bad.json", R"({"glint": 1, "objects": 3})") + " -o " + path("x.png")).status,

@@ -12,8 +12,9 @@
 
 namespace glint::test {
 
-GlintRun runGlint(const std::string& args, const std::string& prefix) {
-  const std::string command = prefix + std::string(GLINT_BIN) + " " + args + " 2>&1";
+namespace {
+
+GlintRun runToEnd(const std::string& command) {
   FILE* pipe = popen(command.c_str(), "r");
   GlintRun run;
   if (!pipe) return run;
@@ -23,6 +24,14 @@ GlintRun runGlint(const std::string& args, const std::string& prefix) {
   run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   return run;
 }
+
+}  // namespace
+
+GlintRun runGlint(const std::string& args, const std::string& prefix) {
+  return runToEnd(prefix + std::string(GLINT_BIN) + " " + args + " 2>&1");
+}
+
+GlintRun runGlintd(const std::string& args) { return runToEnd(std::string(GLINTD_BIN) + " " + args + " 2>&1"); }
 
 Image decodePngFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

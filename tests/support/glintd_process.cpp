@@ -46,6 +46,7 @@ GlintdProcess::GlintdProcess(const std::vector<std::string>& args) {
     throw std::runtime_error(std::string("glintd did not start: ") + line);
   }
   port_ = static_cast<std::uint16_t>(port);
+  listeningLine_ = line;
 }
 
 GlintdProcess::~GlintdProcess() {

@@ -23,6 +23,8 @@ class GlintdProcess {
   pid_t pid() const { return pid_; }
   std::uint16_t port() const { return port_; }
   std::string address() const { return "127.0.0.1:" + std::to_string(port_); }
+  // The line it said it was listening on ("glintd: listening on ...").
+  const std::string& listeningLine() const { return listeningLine_; }
   // True while the process has not exited.
   bool running();
   // Resident memory now and at its peak, in KiB (/proc/PID/status VmRSS, VmHWM).
@@ -45,6 +47,7 @@ class GlintdProcess {
 
   pid_t pid_ = 0;
   std::uint16_t port_ = 0;
+  std::string listeningLine_;
   int status_ = -1;  // set once reaped
 };
 
