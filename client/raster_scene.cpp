@@ -21,7 +21,7 @@ namespace glint::gl {
 namespace {
 
 // The texture units the fragment shaders read.
-enum TextureUnit : int { kImageUnit = 0, kShadowMapUnit = 1, kEmissionUnit = 2 };
+enum TextureUnit : int { kImageUnit = 0, kShadowMapUnit = 1, kEmissionUnit = 2, kAreaPointsUnit = 3 };
 
 unsigned compile(const Api& gl, GLenum type, std::initializer_list<const char*> parts) {
   const unsigned shader = gl.CreateShader(type);
@@ -129,6 +129,7 @@ RasterScene::~RasterScene() {
   for (unsigned image : images_) {
     if (image) gl_.DeleteTextures(1, &image);
   }
+  if (areaPoints_) gl_.DeleteTextures(1, &areaPoints_);
   for (const auto& [key, program] : programs_) gl_.DeleteProgram(program);
 }
 
@@ -360,43 +361,47 @@ void RasterScene::setLightUniforms(unsigned program, const FrameSettings& frame)
     gl_.Uniform2fv(at("uLightCone"), n, glm::value_ptr(cones[0]));
     gl_.Uniform1iv(at("uLightKind"), n, kinds.data());
   }
+  const int areaCount = uploadAreaPoints(frame);
+  gl_.Uniform1i(at("uAreaCount"), areaCount);
+  gl_.Uniform1i(at("uAreaPoints"), kAreaPointsUnit);
+}
+
+int RasterScene::uploadAreaPoints(const FrameSettings& frame) {
   // Each area light as the points its unshadowed light is the sum of; a
   // sphere light as its centre, lighting every side (no normal).
-  std::vector<glm::vec3> normals;
-  positions.clear();
-  colors.clear();
-  attenuations.clear();
+  std::vector<glm::vec3> fields;
+  const auto add = [&fields](const glm::vec3& position, const glm::vec3& colour, const glm::vec3& attenuation,
+                             const glm::vec3& normal) { fields.insert(fields.end(), {position, colour, attenuation, normal}); };
   for (std::size_t i = 0; i < scene_.lights.size(); ++i) {
     const Light& l = scene_.lights[i];
     if (!softLight(l) || !plan_.lights[i]) continue;
     if (l.type == LightType::kSphere) {
-      positions.push_back(l.position);
-      colors.push_back(l.color);
-      attenuations.push_back(l.attenuation);
-      normals.emplace_back(0.0f);
+      add(l.position, l.color, l.attenuation, glm::vec3(0.0f));
       continue;
     }
     const AreaLightPoints points(l, softLightSamples(l, frame.sampling.lightSamples));
-    for (const glm::vec3& c : points.centres) {
-      positions.push_back(c);
-      colors.push_back(points.color);
-      attenuations.push_back(l.attenuation);
-      normals.push_back(points.normal);
-    }
+    for (const glm::vec3& c : points.centres) add(c, points.color, l.attenuation, points.normal);
   }
-  if (positions.size() > kMaxAreaPoints) {
-    throw InputError("the OpenGL path draws at most " + std::to_string(kMaxAreaPoints) +
-                     " points of area lights and centres of sphere lights; the scene's take " +
-                     std::to_string(positions.size()) + " (fewer light samples, or --mask all traces them all)");
+  const int count = static_cast<int>(fields.size() / kAreaPointFields);
+  if (count == 0 || fields == areaPointFields_) return count;
+  // Whole rows of kAreaPointsPerRow points, the last padded.
+  const int rows = (count + kAreaPointsPerRow - 1) / kAreaPointsPerRow;
+  areaPointFields_ = fields;
+  fields.resize(static_cast<std::size_t>(rows) * kAreaPointsPerRow * kAreaPointFields, glm::vec3(0.0f));
+  if (!areaPoints_) gl_.GenTextures(1, &areaPoints_);
+  gl_.ActiveTexture(GL_TEXTURE0 + kAreaPointsUnit);
+  gl_.BindTexture(GL_TEXTURE_2D, areaPoints_);
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, kAreaPointsPerRow * kAreaPointFields, rows, 0, GL_RGB, GL_FLOAT,
+                 fields.data());
+  gl_.ActiveTexture(GL_TEXTURE0);
+  if (gl_.GetError() != GL_NO_ERROR) {
+    areaPointFields_.clear();
+    throw InputError("OpenGL: cannot hold the " + std::to_string(count) +
+                     " points of the area and sphere lights (fewer light samples, or --mask all traces them all)");
   }
-  gl_.Uniform1i(at("uAreaCount"), static_cast<int>(positions.size()));
-  if (!positions.empty()) {
-    const auto n = static_cast<GLsizei>(positions.size());
-    gl_.Uniform3fv(at("uAreaPosition"), n, glm::value_ptr(positions[0]));
-    gl_.Uniform3fv(at("uAreaColor"), n, glm::value_ptr(colors[0]));
-    gl_.Uniform3fv(at("uAreaAttenuation"), n, glm::value_ptr(attenuations[0]));
-    gl_.Uniform3fv(at("uAreaNormal"), n, glm::value_ptr(normals[0]));
-  }
+  return count;
 }
 
 bool RasterScene::objectLit(std::uint32_t object) const {

@@ -107,6 +107,9 @@ class RasterScene {
   // The point lights', the area lights' points (frame's light samples) and
   // the sphere lights' centres.
   void setLightUniforms(unsigned program, const FrameSettings& frame);
+  // The area lights' points and sphere lights' centres into their texture
+  // (uploaded when they change); returns how many there are.
+  int uploadAreaPoints(const FrameSettings& frame);
   // A texture's uv transform (identity for none) into a mat3x2 uniform.
   void setUvTransform(int location, const std::optional<UvTransform>& transform);
   void setViewUniforms(unsigned program, const Projection& projection);
@@ -148,6 +151,8 @@ class RasterScene {
   bool shadows_ = false;  // the current frame reads the shadow maps
   std::map<int, unsigned> programs_;  // by ShaderVariant::key()
   std::vector<unsigned> images_;      // per texture: its GL texture (image textures), else 0
+  unsigned areaPoints_ = 0;           // the area points' texture (uAreaPoints), made on first use
+  std::vector<glm::vec3> areaPointFields_;  // what it holds
   std::vector<Batch> batches_;
   Bounds3 bounds_;  // every primitive's, for the far plane
   RasterTarget target_;

@@ -54,7 +54,8 @@ std::string fragmentPrelude(const ShaderVariant& variant) {
     return "#define " + std::string(name) + " " + value + "\n";
   };
   return "#version 330\n" + define("MAX_LIGHTS", std::to_string(kMaxLights)) +
-         define("MAX_AREA_POINTS", std::to_string(kMaxAreaPoints)) +
+         define("AREA_POINT_FIELDS", std::to_string(kAreaPointFields)) +
+         define("AREA_POINTS_PER_ROW", std::to_string(kAreaPointsPerRow)) +
          define("SHADOW_RADIUS", std::to_string(kShadowRadius)) +
          define("LIGHT_SPOT", std::to_string(static_cast<int>(LightType::kSpot))) +
          define("LIGHT_DIRECTIONAL", std::to_string(static_cast<int>(LightType::kDirectional))) +
@@ -77,10 +78,9 @@ uniform int uLightKind[MAX_LIGHTS];          // LightType: point, spot or direct
 uniform vec3 uLightDirection[MAX_LIGHTS];    // unit: a spot's axis, a directional light's travel
 uniform vec2 uLightCone[MAX_LIGHTS];         // a spot's cosInner, cosOuter
 uniform int uAreaCount;                      // area lights' points (AreaLightPoints' centres), sphere lights' centres
-uniform vec3 uAreaPosition[MAX_AREA_POINTS];
-uniform vec3 uAreaColor[MAX_AREA_POINTS];
-uniform vec3 uAreaAttenuation[MAX_AREA_POINTS];
-uniform vec3 uAreaNormal[MAX_AREA_POINTS];  // towards the light's lit side; zero: every side
+// Their texture (RGB float, read exactly): per point its position, colour,
+// attenuation and normal (towards the light's lit side; zero: every side).
+uniform sampler2D uAreaPoints;
 uniform vec3 uColor;                         // the material's colour (times its texture)
 uniform vec4 uTerms;                         // ambient, diffuse, specular, shininess
 uniform vec3 uCheckerColor0;
@@ -377,14 +377,18 @@ vec3 shade(vec3 p, vec3 ng, vec3 ns, vec2 uv) {
   // Area and sphere lights unshadowed: where they may be blocked the pixel
   // is traced (client/penumbra_proof.h).
   for (int i = 0; i < uAreaCount; ++i) {
-    if (uAreaNormal[i] != vec3(0.0) && dot(p - uAreaPosition[i], uAreaNormal[i]) <= 0.0) continue;
-    vec3 toLight = uAreaPosition[i] - p;
+    ivec2 at = ivec2(AREA_POINT_FIELDS * (i % AREA_POINTS_PER_ROW), i / AREA_POINTS_PER_ROW);
+    vec3 position = texelFetch(uAreaPoints, at, 0).rgb;
+    vec3 normal = texelFetch(uAreaPoints, at + ivec2(3, 0), 0).rgb;
+    if (normal != vec3(0.0) && dot(p - position, normal) <= 0.0) continue;
+    vec3 toLight = position - p;
     float d = length(toLight);
     if (!(d > 0.0)) continue;
     vec3 l = toLight / d;
     if (dot(l, ng) <= 0.0 || dot(l, ns) <= 0.0) continue;
-    vec3 a = uAreaAttenuation[i];
-    addPhong(result, uAreaColor[i] / (a.x + a.y * d + a.z * d * d), c, ns, l, toViewer);
+    vec3 a = texelFetch(uAreaPoints, at + ivec2(2, 0), 0).rgb;
+    addPhong(result, texelFetch(uAreaPoints, at + ivec2(1, 0), 0).rgb / (a.x + a.y * d + a.z * d * d), c, ns, l,
+             toViewer);
   }
 #endif
   return result;

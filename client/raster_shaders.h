@@ -53,9 +53,12 @@ extern const char* const kSphereFragmentShader;
 
 // The length of the shaders' light arrays (defined only here; MAX_LIGHTS).
 constexpr int kMaxLights = 16;
-// The length of their arrays of area lights' points and sphere lights'
-// centres (MAX_AREA_POINTS).
-constexpr std::size_t kMaxAreaPoints = 64;
+// Area lights' points and sphere lights' centres are a float texture, not
+// uniform arrays, so that their number is bounded by memory alone: 4 texels
+// a point (kAreaPointFields: position, colour, attenuation, normal), this
+// many points a row (AREA_POINTS_PER_ROW).
+constexpr int kAreaPointFields = 4;
+constexpr int kAreaPointsPerRow = 1024;
 // Texels on each side of a point's own that its shadow test reads (1: 3 x 3;
 // the shaders' SHADOW_RADIUS).
 constexpr int kShadowRadius = 1;

@@ -565,6 +565,25 @@ TEST(Hybrid, AreaLightsTracedOnlyWhereTheLightMayBeBlocked) {
   expectOnlyWhereTheLightMayBeBlocked("scenes/soft-shadows.json");
 }
 
+// An area light's points are bounded by memory alone in the raster, as in
+// the tracer: 256 of them (more than the shaders' uniform arrays once held)
+// draw, and the frame at the pixel centres is the full trace's within 8/255,
+// its traced pixels the full trace's to the byte.
+TEST(Hybrid, AnAreaLightOfManyPointsIsDrawn) {
+  SceneSetup s = load("scenes/soft-shadows.json", 80, 60);
+  s.frame.sampling = {SamplePattern::kRegular, 1, FilterType::kBox, 0};
+  s.frame.sampling.lightSamples = 256;
+  const PreparedScene prepared(s.loaded.scene, BvhSettings{});
+  ThreadPool pool(2);
+  LocalTileService local(prepared, pool);
+  const auto [here, full, tracedUnlike] = hybridAgainstTheTrace(prepared.scene(), local, s.frame);
+  EXPECT_EQ(tracedUnlike, 0);
+  int worst = 0;
+  for (std::size_t i = 0; i < here.mask.size(); ++i) worst = std::max(worst, channelDifference(here.image, full, i));
+  EXPECT_LE(worst, 8);
+  EXPECT_LT(here.shadowEdgePixels, here.mask.size() / 2);  // the raster drew the rest
+}
+
 TEST(Hybrid, SphereLightsTracedOnlyWhereTheBallMayBeBlocked) {
   expectOnlyWhereTheLightMayBeBlocked("scenes/sphere-light.json");
 }
