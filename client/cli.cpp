@@ -231,8 +231,8 @@ void addFrameOptions(CLI::App* app, FrameOverrides& o) {
       ->type_name("WxH");
   addCameraOptions(app, o);
   addEnumOption(app, "--encoding", o.encoding,
-                "8-bit values (PNG): linear (the thesis's frame buffer) or srgb (the sRGB transfer function); "
-                "default: the scene's image.encoding, else linear");
+                "8-bit values (PNG): srgb (the sRGB transfer function, as a display shows a PNG) or linear (the "
+                "thesis's frame buffer); default: the scene's image.encoding, else srgb");
   app->add_option("--exposure", o.exposure, "Scale the colour by 2^EV before encoding (default: the scene's, 0)")
       ->type_name("EV")
       ->check(CLI::Range(-FrameLimits::kMaxExposure, FrameLimits::kMaxExposure));

@@ -16,8 +16,10 @@ namespace {
 // tests OpenGL's own depth; 7: a material's colour multiplies its texture
 // (glTF's baseColorFactor; the scenes' own pixels are unchanged); 8: a
 // material's emission (glTF's emissiveFactor x emissiveTexture, MTL's Ke),
-// glTF's KHR_texture_transform and a mesh's vertex colours.
-constexpr int kTracerVersion = 8;
+// glTF's KHR_texture_transform and a mesh's vertex colours; 9: sRGB is the
+// 8-bit encoding of a scene that names none (the scenes in scenes/ name
+// linear and keep their bytes).
+constexpr int kTracerVersion = 9;
 
 // FNV-1a: the flags only need a short, stable fingerprint.
 std::uint64_t fingerprint(const char* text) {

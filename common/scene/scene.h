@@ -86,9 +86,12 @@ struct MaskSettings {
 };
 
 // What a frame's colour becomes in its output: scaled by 2^exposure (EV),
-// then, for 8-bit values, encoded (common/image/encoding.h).
+// then, for 8-bit values, encoded (common/image/encoding.h). sRGB unless a
+// scene says otherwise: a PNG is shown through a display's sRGB response,
+// and assets (glTF's colours and textures) are authored for it; the thesis's
+// scenes in scenes/ name the linear frame buffer they were made for.
 struct OutputSettings {
-  Encoding encoding = Encoding::kLinear;
+  Encoding encoding = Encoding::kSrgb;
   float exposure = 0.0f;
 };
 

@@ -454,10 +454,11 @@ TEST_F(Cli, BaseColorFactorTimesTheTexture) {
 // on the panel that has it, every renderer (the full trace, the raster
 // alone, the hybrid frame) adds exactly emission x texel to the pixels of
 // the panel without it, and not one other pixel changes (it lights nothing).
+// Linear bytes, so that light adds as bytes do.
 TEST_F(Cli, EmissionAddsToItsSurfaceOnly) {
   std::ofstream(path("glow.png"), std::ios::binary) << glint::test::flatPng(2, 2);  // texels 200 / 255
   const auto sceneWith = [&](const std::string& name, const std::string& emission) {
-    return writeScene(name, R"({"glint": 1, "image": {"width": 64, "height": 48},
+    return writeScene(name, R"({"glint": 1, "image": {"width": 64, "height": 48, "encoding": "linear"},
       "camera": {"eye": [0, 0.5, 5], "look_at": [0, 0, 0]}, "background": [0, 0, 0.2],
       "textures": {"glow": {"type": "image", "file": "glow.png"}},
       "materials": {"panel": {"color": [0.4, 0.4, 0.4], "ambient": 0.1)" + emission + R"(},
@@ -589,7 +590,8 @@ TEST_F(Cli, GltfTextureTransformAsTheExtensionSays) {
 // triangle: a PLY (an OBJ, a glTF's COLOR_0) quad red on its left edge and blue on its right shows, in
 // every pixel, red and blue adding up to the uncoloured quad's value (the
 // light is the same; the colour is a linear blend), red falling from left
-// to right, in the full trace, the raster and through a server.
+// to right, in the full trace, the raster and through a server (linear
+// bytes, so that the blend adds as bytes do).
 TEST_F(Cli, VertexColorsBlendAcrossTheMesh) {
   const auto ply = [&](const std::string& name, bool colored) {
     std::ofstream out(path(name));
@@ -634,7 +636,7 @@ TEST_F(Cli, VertexColorsBlendAcrossTheMesh) {
   gltf("plain.gltf", false);
   gltf("colored.gltf", true);
   const auto sceneOf = [&](const std::string& file) {
-    return writeScene(file + ".json", R"({"glint": 1, "image": {"width": 64, "height": 64},
+    return writeScene(file + ".json", R"({"glint": 1, "image": {"width": 64, "height": 64, "encoding": "linear"},
       "camera": {"eye": [0, 0, 3], "look_at": [0, 0, 0]}, "lights": [{"type": "point", "position": [0.5, 0.5, 3]}],
       "objects": [{"type": "mesh", "file": ")" +
                                           file + R"("}]})");

@@ -175,10 +175,11 @@ void expectRasterMatchesDirectTrace(const char* sceneFile, const OutputSettings&
 
 // A GL-only frame of an analytic scene: a diffuse, specular sphere lit by one
 // point light, every pixel computed here in double precision from the
-// scene's definition (gluLookAt / gluPerspective rays, Lambert and Phong).
+// scene's definition (gluLookAt / gluPerspective rays, Lambert and Phong),
+// stored as it is (the linear encoding).
 TEST(Hybrid, RasterOfAnAnalyticSphere) {
   const Scene scene = test::sceneFromJson(R"({
-    "glint": 1, "image": {"width": 64, "height": 64},
+    "glint": 1, "image": {"width": 64, "height": 64, "encoding": "linear"},
     "camera": {"eye": [0, 0, 6], "look_at": [0, 0, 0], "fov_y": 30},
     "materials": {"m": {"color": [1, 0.5, 0.25], "ambient": 0.05, "diffuse": 0.7, "specular": 0.4, "shininess": 20}},
     "lights": [{"type": "point", "position": [3, 4, 5], "attenuation": [1, 0.02, 0.01]}],

@@ -34,8 +34,11 @@ TEST(Encoding, SrgbTransferFunctionMatchesTheStandard) {
   EXPECT_EQ(srgb.byte(0.18f), 118);
 }
 
-TEST(Encoding, DefaultLeavesEveryByteAsItWas) {
-  const Encoder linear(OutputSettings{});
+// The default is sRGB, as a display shows a PNG (below); linear, the
+// thesis's frame buffer, stores each value as it is.
+TEST(Encoding, LinearLeavesEveryByteAsItWas) {
+  EXPECT_EQ(OutputSettings{}.encoding, Encoding::kSrgb);
+  const Encoder linear({Encoding::kLinear, 0.0f});
   for (int b = 0; b < 256; ++b) {
     const float v = static_cast<float>(b) / 255.0f;
     EXPECT_EQ(linear.byte(v), toByte(v)) << b;

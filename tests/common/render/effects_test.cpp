@@ -186,6 +186,7 @@ TEST(Effects, EmissionOnlyWhereAMaterialEmits) {
 
   j["lights"] = json::array();
   j["objects"].erase(0);
+  j["image"]["encoding"] = "linear";  // bytes are the light itself
   const Scene dark = test::sceneFromJson(j.dump());
   const FrameResult r = test::render(dark, EffectPlan::derive(dark), 1);
   const test::Rgb centre = test::pixelAt(r.image, 35, 16);  // the sphere: 1.5 right of the middle, 11.6 pixels

@@ -15,10 +15,12 @@ namespace {
 
 using nlohmann::json;
 constexpr int kSize = 64;
+// Every scene here stores its light as it is ("encoding": "linear"), so that
+// a byte is 255 x the analytic value.
 
 json sphereScene(const json& material, const json& light) {
   return {{"glint", 1},
-          {"image", {{"width", kSize}, {"height", kSize}}},
+          {"image", {{"width", kSize}, {"height", kSize}, {"encoding", "linear"}}},
           {"camera", {{"eye", {0, 0, 6}}, {"look_at", {0, 0, 0}}, {"fov_y", 30}}},
           {"materials", {{"m", material}}},
           {"lights", {light}},
@@ -92,7 +94,7 @@ TEST(RenderAnalytic, Attenuation) { expectSphereMatches(0.3, 10.0, {0.2, 0.05, 0
 TEST(RenderAnalytic, Mirror) {
   const json scene = {
       {"glint", 1},
-      {"image", {{"width", 32}, {"height", 24}}},
+      {"image", {{"width", 32}, {"height", 24}, {"encoding", "linear"}}},
       {"camera", {{"eye", {0, 0, 5}}, {"look_at", {0, 0, 0}}, {"fov_y", 40}}},
       {"materials",
        {{"mirror", {{"ambient", 0}, {"diffuse", 0}, {"reflectivity", 0.75}}},
@@ -117,7 +119,7 @@ TEST(RenderAnalytic, Mirror) {
 TEST(RenderAnalytic, CheckerOrientation) {
   const json scene = {
       {"glint", 1},
-      {"image", {{"width", 40}, {"height", 40}}},
+      {"image", {{"width", 40}, {"height", 40}, {"encoding", "linear"}}},
       {"camera", {{"eye", {0, 0, 3}}, {"look_at", {0, 0, 0}}, {"fov_y", 30}}},
       {"textures", {{"c", {{"type", "checker"}, {"colors", {{1, 0, 0}, {0, 0, 1}}}, {"scale", 2}}}}},
       {"materials", {{"m", {{"texture", "c"}, {"ambient", 1}, {"diffuse", 0}}}}},
@@ -138,7 +140,7 @@ TEST(RenderAnalytic, CheckerOrientation) {
 TEST(RenderAnalytic, HardShadow) {
   const json scene = {
       {"glint", 1},
-      {"image", {{"width", 80}, {"height", 60}}},
+      {"image", {{"width", 80}, {"height", 60}, {"encoding", "linear"}}},
       {"camera", {{"eye", {0, 4, 4}}, {"look_at", {0, 0, 0}}, {"fov_y", 60}}},
       {"materials", {{"floor", {{"ambient", 0.2}, {"diffuse", 0.8}}}, {"ball", {{"color", {1, 0, 0}}}}}},
       {"lights", {{{"type", "point"}, {"position", {0, 5, 0}}}}},

@@ -68,6 +68,11 @@ TEST(SceneLoad, DefaultsAreTheFormats) {
   EXPECT_EQ(m.ior, 1.0f);
   EXPECT_EQ(m.ambient, 0.0f);
   EXPECT_EQ(s.frame.camera.up, glm::vec3(0, 1, 0));
+  // 8-bit values as a display shows them, unless the scene says linear.
+  EXPECT_EQ(s.frame.output.encoding, Encoding::kSrgb);
+  json linear = minimalScene();
+  linear["image"]["encoding"] = "linear";
+  EXPECT_EQ(loadScene(linear.dump(), files).frame.output.encoding, Encoding::kLinear);
 }
 
 // emission times emission_texture, either alone the emission, none by
