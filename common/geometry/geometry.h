@@ -110,8 +110,9 @@ class Geometry {
   const std::vector<glm::vec3>& faceNormals() const { return faceNormals_; }
   const std::vector<Model>& models() const { return models_; }
   // Triangles left out because they cannot be hit: zero area, collinear or
-  // repeated vertices, non-finite coordinates.
+  // repeated vertices, non-finite coordinates (kDroppedWhy, in words).
   std::size_t droppedTriangles() const { return dropped_; }
+  static constexpr const char* kDroppedWhy = "a vertex not finite, or no area";
 
  private:
   std::vector<glm::vec3> positions_;

@@ -119,7 +119,12 @@ class SceneLoader {
   // "fit": true: the camera moved along its direction to frame every object.
   void fitToScene(const JsonReader& fit) {
     const Bounds3 bounds = scene_.geometry.bounds();
-    if (bounds.empty()) fit.fail("the scene has no object to frame");
+    if (bounds.empty()) {
+      const std::size_t dropped = scene_.geometry.droppedTriangles();
+      fit.fail("the scene has no object to frame" +
+               (dropped ? " (" + std::to_string(dropped) + " triangles were dropped: " + Geometry::kDroppedWhy + ")"
+                        : std::string()));
+    }
     FrameSettings& f = scene_.frame;
     f.camera = fitCamera(f.camera, bounds, static_cast<float>(f.width) / static_cast<float>(f.height));
   }
@@ -396,7 +401,7 @@ class SceneLoader {
       case ObjectKind::kQuad:
         return readQuad(o);
       case ObjectKind::kMesh:
-        return readMesh(o);
+        return readMeshWarned(o);
     }
   }
 
@@ -447,6 +452,20 @@ class SceneLoader {
     mesh.indices = {0, 1, 2, 0, 2, 3};
     mesh.material = material(o);
     addMesh(o, std::move(mesh));
+  }
+
+  // A mesh, and a warning if it leaves nothing to see: every triangle
+  // dropped (BoxWithInfinites.glb's), which would otherwise be an empty frame
+  // without a word.
+  void readMeshWarned(const JsonReader& o) {
+    const Geometry& g = scene_.geometry;
+    const std::size_t kept = g.triangles().size(), dropped = g.droppedTriangles();
+    readMesh(o);
+    const std::size_t lost = g.droppedTriangles() - dropped;
+    if (lost == 0 || g.triangles().size() > kept) return;
+    const std::string file = o.has("file") ? " ('" + o["file"].string() + "')" : "";
+    warn(o.path() + file + ": all " + std::to_string(lost) + " of its triangles were dropped (" +
+         Geometry::kDroppedWhy + "): nothing of this mesh can be seen");
   }
 
   void readMesh(const JsonReader& o) {

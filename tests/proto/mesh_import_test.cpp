@@ -132,6 +132,24 @@ TEST(MeshImport, CameraFromAGltfFile) {
   fs::remove_all(dir);
 }
 
+// Khronos' BoxWithInfinites: every vertex has an infinite coordinate, so
+// every triangle is dropped; the scene says so, naming the file.
+TEST(MeshImport, AModelWithNothingFiniteIsNamed) {
+  const fs::path dir = fs::temp_directory_path() / "glint_gltf_infinites";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  fs::copy_file(kModels / "glTF2/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb", dir / "box.glb");
+  std::ofstream(dir / "scene.json") << R"({"glint": 1, "image": {"width": 8, "height": 6},
+    "camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0]}, "lights": [{"type": "point", "position": [0, 5, 5]}],
+    "objects": [{"type": "mesh", "file": "box.glb"}]})";
+  const Scene s = loadSceneFile(dir / "scene.json");
+  EXPECT_TRUE(s.geometry.triangles().empty());
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("objects[0] ('box.glb'): all "), std::string::npos) << s.warnings[0];
+  EXPECT_NE(s.warnings[0].find("nothing of this mesh can be seen"), std::string::npos) << s.warnings[0];
+  fs::remove_all(dir);
+}
+
 // Through a bundle (what a server gets) the scene is the one loaded from
 // disk, and the bundle holds the imported mesh, not the .gltf, .bin or .png.
 TEST(MeshImport, ServersGetTheImportedMeshNotItsFiles) {

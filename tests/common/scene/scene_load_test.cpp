@@ -75,6 +75,29 @@ TEST(SceneLoad, DefaultsAreTheFormats) {
   EXPECT_EQ(loadScene(linear.dump(), files).frame.output.encoding, Encoding::kLinear);
 }
 
+// A mesh whose every triangle is dropped leaves nothing to see: a warning
+// names it and why; a camera asked to fit such a scene says why there is
+// nothing to frame. A mesh that keeps some triangles warns of nothing.
+TEST(SceneLoad, AMeshWithNoTriangleLeftIsNamed) {
+  json j = minimalScene();
+  j["objects"][1]["positions"] = {0, 0, 0, 1, 0, 0, 2, 0, 0, 0, 0, 0, 0, 1, 0, 0, 2, 0};  // collinear
+  j["objects"][1]["indices"] = {0, 1, 2, 3, 4, 5};
+  MemorySource files;
+  const Scene s = loadScene(j.dump(), files);
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_EQ(s.warnings[0], "objects[1]: all 2 of its triangles were dropped (a vertex not finite, or no area): "
+                           "nothing of this mesh can be seen");
+  EXPECT_TRUE(loadScene(minimalScene().dump(), files).warnings.empty());
+
+  j["objects"].erase(0);
+  j["camera"]["fit"] = true;
+  const std::string error = loadError(j.dump(), files);
+  EXPECT_NE(error.find("camera.fit: the scene has no object to frame (2 triangles were dropped: a vertex not "
+                       "finite, or no area)"),
+            std::string::npos)
+      << error;
+}
+
 // emission times emission_texture, either alone the emission, none by
 // default; a solid texture folds into the emission.
 TEST(SceneLoad, EmissionAndItsTexture) {
