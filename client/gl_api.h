@@ -44,6 +44,7 @@ namespace glint::gl {
   X(UseProgram) \
   X(GetUniformLocation) \
   X(Uniform1i) \
+  X(Uniform2i) \
   X(Uniform1iv) \
   X(Uniform1f) \
   X(Uniform1fv) \

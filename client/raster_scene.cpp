@@ -441,12 +441,14 @@ void RasterScene::setMaterialUniforms(unsigned program, const Material& m) {
   if (m.emissionTexture >= 0) {
     const Texture& e = scene_.textures[static_cast<std::size_t>(m.emissionTexture)];
     setUvTransform(at("uEmissionTransform"), e.transform);
+    gl_.Uniform2i(at("uEmissionWrap"), static_cast<int>(e.wrap[0]), static_cast<int>(e.wrap[1]));
     gl_.ActiveTexture(GL_TEXTURE0 + kEmissionUnit);
     gl_.BindTexture(GL_TEXTURE_2D, images_[static_cast<std::size_t>(m.emissionTexture)]);
   }
   if (m.texture < 0) return;
   const Texture& t = scene_.textures[static_cast<std::size_t>(m.texture)];
   setUvTransform(at("uImageTransform"), t.transform);
+  gl_.Uniform2i(at("uImageWrap"), static_cast<int>(t.wrap[0]), static_cast<int>(t.wrap[1]));
   if (t.type == TextureType::kSolid) gl_.Uniform3fv(at("uColor"), 1, glm::value_ptr(t.colors[0]));
   gl_.Uniform3fv(at("uCheckerColor0"), 1, glm::value_ptr(t.colors[0]));
   gl_.Uniform3fv(at("uCheckerColor1"), 1, glm::value_ptr(t.colors[1]));

@@ -5,6 +5,7 @@
 
 #include "common/render/shading.h"
 #include "common/scene/light.h"
+#include "common/scene/texture.h"
 
 namespace glint::gl {
 
@@ -59,6 +60,8 @@ std::string fragmentPrelude(const ShaderVariant& variant) {
          define("SHADOW_RADIUS", std::to_string(kShadowRadius)) +
          define("LIGHT_SPOT", std::to_string(static_cast<int>(LightType::kSpot))) +
          define("LIGHT_DIRECTIONAL", std::to_string(static_cast<int>(LightType::kDirectional))) +
+         define("WRAP_MIRRORED_REPEAT", std::to_string(static_cast<int>(TextureWrap::kMirroredRepeat))) +
+         define("WRAP_CLAMP_TO_EDGE", std::to_string(static_cast<int>(TextureWrap::kClampToEdge))) +
          define("HARD_SPOT_EDGE", floatLiteral(kHardSpotEdge)) + variant.defines();
 }
 
@@ -88,9 +91,11 @@ uniform vec3 uCheckerColor1;
 uniform float uCheckerScale;
 uniform sampler2D uImage;                    // the material's image texture, RGB float, read with texelFetch
 uniform mat3x2 uImageTransform;              // the texture's uv transform (Texture::transform)
+uniform ivec2 uImageWrap;                    // its wrap modes along u and v (TextureWrap)
 uniform vec3 uEmission;                      // the material's emission (times its emission image)
 uniform sampler2D uEmissionImage;            // as uImage
 uniform mat3x2 uEmissionTransform;
+uniform ivec2 uEmissionWrap;
 uniform sampler2DArray uShadowMaps;          // depth: distance from the light / uShadowFar
 uniform int uShadowSize;                     // texels a face edge
 uniform int uShadowLayer[MAX_LIGHTS];        // the light's first face, -1: no map
@@ -124,31 +129,50 @@ uint surfaceOf(int object) {
 }
 
 #if defined(TEXTURE_IMAGE) || defined(EMISSION_IMAGE)
-vec3 texel(sampler2D image, int x, int y) {
-  ivec2 size = textureSize(image, 0);
-  x = ((x % size.x) + size.x) % size.x;
-  y = ((y % size.y) + size.y) % size.y;
-  return texelFetch(image, ivec2(x, y), 0).rgb;
-}
-
-float wrap(float x) {
+// Texture::evaluate's wrapped() and wrappedIndex(), op for op.
+float wrapped(float x, int mode) {
+  if (mode == WRAP_MIRRORED_REPEAT) {
+    float w = x - 2.0 * floor(x * 0.5);
+    return w <= 1.0 ? w : 2.0 - w;
+  }
+  if (mode == WRAP_CLAMP_TO_EDGE) return clamp(x, 0.0, 1.0);
   float w = x - floor(x);
   return w < 1.0 ? w : 0.0;
 }
 
+// i mod n in [0, n) for any i: GLSL leaves % of a negative operand
+// undefined (Mesa's llvmpipe took -1 % 3 as 0, reading the wrong edge).
+int floorMod(int i, int n) {
+  return i >= 0 ? i % n : n - 1 - (-1 - i) % n;
+}
+
+int wrappedIndex(int i, int n, int mode) {
+  if (mode == WRAP_MIRRORED_REPEAT) {
+    int k = floorMod(i, 2 * n);
+    return k < n ? k : 2 * n - 1 - k;
+  }
+  if (mode == WRAP_CLAMP_TO_EDGE) return clamp(i, 0, n - 1);
+  return floorMod(i, n);
+}
+
+vec3 texel(sampler2D image, ivec2 wrap, int x, int y) {
+  ivec2 size = textureSize(image, 0);
+  return texelFetch(image, ivec2(wrappedIndex(x, size.x, wrap.x), wrappedIndex(y, size.y, wrap.y)), 0).rgb;
+}
+
 // An image texture at uv, as Texture::evaluate reads it (`bilinear` is a
 // constant at each call, so the compiler keeps one filter).
-vec3 imageColour(sampler2D image, vec2 uv, bool bilinear) {
+vec3 imageColour(sampler2D image, ivec2 wrap, vec2 uv, bool bilinear) {
   vec2 size = vec2(textureSize(image, 0));
-  float x = wrap(uv.x) * size.x;
-  float y = (1.0 - wrap(uv.y)) * size.y;
-  if (!bilinear) return texel(image, int(x), int(y));
+  float x = wrapped(uv.x, wrap.x) * size.x;
+  float y = (1.0 - wrapped(uv.y, wrap.y)) * size.y;
+  if (!bilinear) return texel(image, wrap, int(x), int(y));
   float fx = x - 0.5, fy = y - 0.5;
   float x0 = floor(fx), y0 = floor(fy);
   float tx = fx - x0, ty = fy - y0;
   int ix = int(x0), iy = int(y0);
-  vec3 top = (1.0 - tx) * texel(image, ix, iy) + tx * texel(image, ix + 1, iy);
-  vec3 bottom = (1.0 - tx) * texel(image, ix, iy + 1) + tx * texel(image, ix + 1, iy + 1);
+  vec3 top = (1.0 - tx) * texel(image, wrap, ix, iy) + tx * texel(image, wrap, ix + 1, iy);
+  vec3 bottom = (1.0 - tx) * texel(image, wrap, ix, iy + 1) + tx * texel(image, wrap, ix + 1, iy + 1);
   return (1.0 - ty) * top + ty * bottom;
 }
 #endif
@@ -159,9 +183,9 @@ vec3 textureColour(vec2 given) {
   float sum = floor(uv.x * uCheckerScale) + floor(uv.y * uCheckerScale);
   return mod(abs(sum), 2.0) == 1.0 ? uCheckerColor1 : uCheckerColor0;
 #elif defined(TEXTURE_BILINEAR)
-  return imageColour(uImage, uv, true);
+  return imageColour(uImage, uImageWrap, uv, true);
 #elif defined(TEXTURE_IMAGE)
-  return imageColour(uImage, uv, false);
+  return imageColour(uImage, uImageWrap, uv, false);
 #else
   return vec3(1.0);
 #endif
@@ -171,9 +195,9 @@ vec3 textureColour(vec2 given) {
 vec3 emitted(vec2 given) {
   vec2 uv = uEmissionTransform * vec3(given, 1.0);
 #if defined(EMISSION_BILINEAR)
-  return uEmission * imageColour(uEmissionImage, uv, true);
+  return uEmission * imageColour(uEmissionImage, uEmissionWrap, uv, true);
 #elif defined(EMISSION_IMAGE)
-  return uEmission * imageColour(uEmissionImage, uv, false);
+  return uEmission * imageColour(uEmissionImage, uEmissionWrap, uv, false);
 #else
   return uEmission;
 #endif

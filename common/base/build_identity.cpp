@@ -18,8 +18,9 @@ namespace {
 // material's emission (glTF's emissiveFactor x emissiveTexture, MTL's Ke),
 // glTF's KHR_texture_transform and a mesh's vertex colours; 9: sRGB is the
 // 8-bit encoding of a scene that names none (the scenes in scenes/ name
-// linear and keep their bytes).
-constexpr int kTracerVersion = 9;
+// linear and keep their bytes); 10: image textures' wrap modes, and glTF
+// samplers' wrap modes and magnification filter.
+constexpr int kTracerVersion = 10;
 
 // FNV-1a: the flags only need a short, stable fingerprint.
 std::uint64_t fingerprint(const char* text) {

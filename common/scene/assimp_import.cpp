@@ -6,6 +6,7 @@
 #include <initializer_list>
 #include <memory>
 
+#include <assimp/GltfMaterial.h>
 #include <assimp/IOStream.hpp>
 #include <assimp/IOSystem.hpp>
 #include <assimp/Importer.hpp>
@@ -138,6 +139,27 @@ KhrTextureTransform khrTransform(const aiUVTransform& uv) {
   return t;
 }
 
+// The texture's sampler (glTF's wrapS, wrapT and magFilter, as Assimp's
+// importer keeps them): its wrap modes, and bilinear for a LINEAR
+// magnification (Glint reads one filter both ways and has no mip maps, so
+// the min filter is not read); none given: repeat, nearest.
+void readSampler(const aiMaterial& m, aiTextureType type, Texture& tex) {
+  const auto wrapOf = [](int mode) {
+    return mode == aiTextureMapMode_Mirror  ? TextureWrap::kMirroredRepeat
+           : mode == aiTextureMapMode_Clamp ? TextureWrap::kClampToEdge
+                                            : TextureWrap::kRepeat;
+  };
+  int u = aiTextureMapMode_Wrap, v = aiTextureMapMode_Wrap;
+  m.Get(AI_MATKEY_MAPPINGMODE_U(type, 0), u);
+  m.Get(AI_MATKEY_MAPPINGMODE_V(type, 0), v);
+  tex.wrap = {wrapOf(u), wrapOf(v)};
+  constexpr int kGlLinear = 9729;  // glTF's (OpenGL's) LINEAR
+  int mag = 0;
+  if (m.Get(AI_MATKEY_GLTF_MAPPINGFILTER_MAG(type, 0), mag) == AI_SUCCESS && mag == kGlLinear) {
+    tex.filter = ImageFilter::kBilinear;
+  }
+}
+
 // The material's texture of the first of `types` it has, from a file
 // beside the mesh or embedded in it; -1 without one, or when its file is
 // missing.
@@ -167,6 +189,7 @@ int readTexture(const aiScene& scene, const aiMaterial& m, std::initializer_list
   tex.image = std::make_shared<Image>(decodeImage(bytes, texPlace, budget));
   aiUVTransform uv;
   if (m.Get(AI_MATKEY_UVTRANSFORM(*type, 0), uv) == AI_SUCCESS) tex.transform = glintUvTransform(khrTransform(uv));
+  readSampler(m, *type, tex);
   model.textures.push_back(std::move(tex));
   return static_cast<int>(model.textures.size()) - 1;
 }

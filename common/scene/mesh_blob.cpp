@@ -14,7 +14,7 @@ namespace glint {
 namespace {
 
 constexpr std::string_view kMagic = "GLINTMSH";
-constexpr std::uint32_t kVersion = 3;
+constexpr std::uint32_t kVersion = 4;
 
 class Writer {
  public:
@@ -144,6 +144,12 @@ Texture readTexture(Reader& r, const std::string& place, SceneBudget& budget) {
   const auto width = r.get<std::uint32_t>(), height = r.get<std::uint32_t>();
   const auto filter = r.get<std::uint8_t>();
   if (filter > static_cast<std::uint8_t>(ImageFilter::kBilinear)) r.fail("has an unknown texture filter");
+  std::array<TextureWrap, 2> wrap{};
+  for (TextureWrap& w : wrap) {
+    const auto mode = r.get<std::uint8_t>();
+    if (mode > static_cast<std::uint8_t>(TextureWrap::kClampToEdge)) r.fail("has an unknown texture wrap mode");
+    w = static_cast<TextureWrap>(mode);
+  }
   if (width == 0 || height == 0 || std::size_t{width} * height > budget.limits().maxTexturePixels) {
     r.fail("has a texture of no pixels or over the limit of " + std::to_string(budget.limits().maxTexturePixels));
   }
@@ -155,6 +161,7 @@ Texture readTexture(Reader& r, const std::string& place, SceneBudget& budget) {
   Texture t;
   t.type = TextureType::kImage;
   t.filter = static_cast<ImageFilter>(filter);
+  t.wrap = wrap;
   t.image = std::move(image);
   if (r.get<std::uint8_t>() != 0) t.transform = UvTransform{r.get<glm::mat2>(), r.get<glm::vec2>()};
   return t;
@@ -192,6 +199,7 @@ std::string encodeMeshBlob(const MeshModel& model) {
     w.put(static_cast<std::uint32_t>(t.image->width));
     w.put(static_cast<std::uint32_t>(t.image->height));
     w.put(static_cast<std::uint8_t>(t.filter));
+    for (const TextureWrap mode : t.wrap) w.put(static_cast<std::uint8_t>(mode));
     w.putArray(t.image->rgb);
     w.put(static_cast<std::uint8_t>(t.transform.has_value()));
     if (t.transform) {

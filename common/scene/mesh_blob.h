@@ -11,8 +11,9 @@ namespace glint {
 // An imported mesh (glTF, PLY) as it travels to a server in place of its
 // files: the MeshModel's arrays, bit for bit, so that the server's scene is
 // the client's. Little-endian:
-//   "GLINTMSH" u32 version (3)
-//   u32 textures,  each: u32 width, u32 height, u8 filter, width*height*3 texels,
+//   "GLINTMSH" u32 version (4)
+//   u32 textures,  each: u32 width, u32 height, u8 filter, u8 wrap along u,
+//                        u8 wrap along v, width*height*3 texels,
 //                        u8 has uv transform, then f32 m[4] (columns) offset[2]
 //   u32 materials, each: u32 name length, name, f32 color[3], i32 texture,
 //                        f32 emission[3], i32 emission texture,

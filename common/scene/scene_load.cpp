@@ -212,17 +212,25 @@ class SceneLoader {
           break;
         }
         case TextureType::kImage: {
-          t.allowKeys({"type", "file", "filter"});
+          t.allowKeys({"type", "file", "filter", "wrap"});
           tex.image = image(t["file"]);
           if (auto f = t.find("filter")) {
             tex.filter = choice<ImageFilter>(*f);
           }
+          if (auto w = t.find("wrap")) tex.wrap = wrapModes(*w);
           break;
         }
       }
       textureIndex_[name] = static_cast<int>(scene_.textures.size());
       scene_.textures.push_back(std::move(tex));
     }
+  }
+
+  // "wrap": one mode for u and v, or [u's, v's].
+  static std::array<TextureWrap, 2> wrapModes(const JsonReader& w) {
+    if (!w.isArray()) return {choice<TextureWrap>(w), choice<TextureWrap>(w)};
+    if (w.arraySize() != 2) w.fail("must be a wrap mode or an array of two (along u, along v)");
+    return {choice<TextureWrap>(w.at(0)), choice<TextureWrap>(w.at(1))};
   }
 
   // The image a texture's "file" names, decoded (and charged) once however

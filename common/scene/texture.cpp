@@ -7,13 +7,38 @@
 namespace glint {
 namespace {
 
-// Wraps a texture coordinate into [0, 1).
-float wrap(float x) {
-  const float w = x - std::floor(x);
-  return w < 1.0f ? w : 0.0f;
+// A texture coordinate in [0, 1] (repeat: [0, 1)) as the wrap mode reads
+// it; the raster's shaders compute it alike (client/raster_shaders.cpp).
+float wrapped(float x, TextureWrap mode) {
+  switch (mode) {
+    case TextureWrap::kRepeat: {
+      const float w = x - std::floor(x);
+      return w < 1.0f ? w : 0.0f;
+    }
+    case TextureWrap::kMirroredRepeat: {
+      const float w = x - 2.0f * std::floor(x * 0.5f);  // [0, 2): forwards, then back
+      return w <= 1.0f ? w : 2.0f - w;
+    }
+    case TextureWrap::kClampToEdge:
+      return std::clamp(x, 0.0f, 1.0f);
+  }
+  return 0.0f;
 }
 
-int wrapIndex(int i, int n) { return ((i % n) + n) % n; }
+// The texel index i of a row or column of n reads, by the wrap mode.
+int wrappedIndex(int i, int n, TextureWrap mode) {
+  switch (mode) {
+    case TextureWrap::kRepeat:
+      return ((i % n) + n) % n;
+    case TextureWrap::kMirroredRepeat: {
+      const int k = ((i % (2 * n)) + 2 * n) % (2 * n);
+      return k < n ? k : 2 * n - 1 - k;
+    }
+    case TextureWrap::kClampToEdge:
+      return std::clamp(i, 0, n - 1);
+  }
+  return 0;
+}
 
 // byte / 255 for every byte, computed once.
 struct UnitTable {
@@ -24,18 +49,19 @@ struct UnitTable {
 };
 constexpr UnitTable kUnit;
 
-glm::vec3 texel(const Image& image, int x, int y) {
-  return image.texel(static_cast<std::size_t>(wrapIndex(y, image.height)) * static_cast<std::size_t>(image.width) +
-                     static_cast<std::size_t>(wrapIndex(x, image.width)));
+glm::vec3 texel(const Image& image, const std::array<TextureWrap, 2>& wrap, int x, int y) {
+  return image.texel(static_cast<std::size_t>(wrappedIndex(y, image.height, wrap[1])) *
+                         static_cast<std::size_t>(image.width) +
+                     static_cast<std::size_t>(wrappedIndex(x, image.width, wrap[0])));
 }
 
 // u runs to the right and v up, so v = 1 is the top row (row 0).
-glm::vec3 lookup(const Image& image, ImageFilter filter, const glm::vec2& uv) {
-  if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return texel(image, 0, 0);
-  const float x = wrap(uv.x) * static_cast<float>(image.width);
-  const float y = (1.0f - wrap(uv.y)) * static_cast<float>(image.height);
+glm::vec3 lookup(const Image& image, ImageFilter filter, const std::array<TextureWrap, 2>& wrap, const glm::vec2& uv) {
+  if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return texel(image, wrap, 0, 0);
+  const float x = wrapped(uv.x, wrap[0]) * static_cast<float>(image.width);
+  const float y = (1.0f - wrapped(uv.y, wrap[1])) * static_cast<float>(image.height);
   if (filter == ImageFilter::kNearest) {
-    return texel(image, static_cast<int>(x), static_cast<int>(y));
+    return texel(image, wrap, static_cast<int>(x), static_cast<int>(y));
   }
   // Bilinear between the four nearest texel centres (at i + 0.5).
   const float fx = x - 0.5f;
@@ -46,8 +72,8 @@ glm::vec3 lookup(const Image& image, ImageFilter filter, const glm::vec2& uv) {
   const float ty = fy - y0;
   const int ix = static_cast<int>(x0);
   const int iy = static_cast<int>(y0);
-  const glm::vec3 top = (1.0f - tx) * texel(image, ix, iy) + tx * texel(image, ix + 1, iy);
-  const glm::vec3 bottom = (1.0f - tx) * texel(image, ix, iy + 1) + tx * texel(image, ix + 1, iy + 1);
+  const glm::vec3 top = (1.0f - tx) * texel(image, wrap, ix, iy) + tx * texel(image, wrap, ix + 1, iy);
+  const glm::vec3 bottom = (1.0f - tx) * texel(image, wrap, ix, iy + 1) + tx * texel(image, wrap, ix + 1, iy + 1);
   return (1.0f - ty) * top + ty * bottom;
 }
 
@@ -82,7 +108,7 @@ glm::vec3 Texture::evaluate(const glm::vec2& given) const {
     case TextureType::kChecker:
       return colors[checkerIndex(uv, scale)];
     case TextureType::kImage:
-      return lookup(*image, filter, uv);
+      return lookup(*image, filter, wrap, uv);
   }
   return colors[0];
 }

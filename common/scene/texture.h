@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -30,6 +31,10 @@ std::uint8_t linearTexelByte(float linear);
 
 enum class TextureType { kSolid, kChecker, kImage };
 enum class ImageFilter { kNearest, kBilinear };
+// Where an image texture's coordinate outside [0, 1] reads, along u or v,
+// as OpenGL's (and glTF's sampler) wrap modes: the image repeated, repeated
+// mirrored every other time, or its edge texels stretched.
+enum class TextureWrap { kRepeat, kMirroredRepeat, kClampToEdge };
 
 template <>
 struct EnumWords<TextureType> {
@@ -40,6 +45,13 @@ template <>
 struct EnumWords<ImageFilter> {
   static constexpr std::array<std::pair<ImageFilter, std::string_view>, 2> kWords{
       {{ImageFilter::kNearest, "nearest"}, {ImageFilter::kBilinear, "bilinear"}}};
+};
+template <>
+struct EnumWords<TextureWrap> {
+  static constexpr std::array<std::pair<TextureWrap, std::string_view>, 3> kWords{
+      {{TextureWrap::kRepeat, "repeat"},
+       {TextureWrap::kMirroredRepeat, "mirrored_repeat"},
+       {TextureWrap::kClampToEdge, "clamp_to_edge"}}};
 };
 
 // An affine map of texture coordinates applied before a lookup (glTF's
@@ -58,6 +70,7 @@ struct Texture {
   float scale = 1.0f;                                        // checker squares per unit of u and v
   std::shared_ptr<const Image> image;
   ImageFilter filter = ImageFilter::kNearest;
+  std::array<TextureWrap, 2> wrap{TextureWrap::kRepeat, TextureWrap::kRepeat};  // along u, along v
   std::optional<UvTransform> transform;  // none: uv as given
 
   glm::vec3 evaluate(const glm::vec2& uv) const;

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
+#include <set>
+#include <string_view>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -238,6 +241,35 @@ int channelDifference(const FrameImage& a, const FrameImage& b, std::size_t pixe
   return d;
 }
 
+// One frame of a prepared scene drawn by OpenGL alone (mask none) and as the
+// tracer's direct light.
+struct RasterAndTrace {
+  FrameImage traced;
+  HybridResult gl;
+};
+RasterAndTrace rasterAndDirectTrace(const PreparedScene& prepared) {
+  const Scene& scene = prepared.scene();
+  ThreadPool pool(2);
+  RasterAndTrace r;
+  r.traced = renderFrame(Renderer(prepared, scene.frame, test::directLightOnly(scene, scene.frame)), pool, {}).image;
+  LocalTileService service(prepared, pool);
+  r.gl = hybrid(scene, service, scene.frame, rule(MaskRule::kNone));
+  return r;
+}
+
+// Of the `covered` pixels (counted in `compared`), those where the raster is
+// more than 2/255 from the trace in some channel.
+int offByMoreThanTwo(const RasterAndTrace& r, const std::vector<bool>& covered, int& compared) {
+  int bad = 0;
+  compared = 0;
+  for (std::size_t i = 0; i < covered.size(); ++i) {
+    if (!covered[i]) continue;
+    ++compared;
+    bad += channelDifference(r.gl.image, r.traced, i) > 2 ? 1 : 0;
+  }
+  return bad;
+}
+
 // Shadow maps: surfaces OpenGL draws get the shadows the tracer's shadow
 // rays find. Every fully covered pixel GL keeps (the maps decided it) equals
 // the tracer's direct light with shadow rays within 2/255; in the room with
@@ -321,11 +353,7 @@ TEST(Hybrid, DenseMeshHasNoStrayAmbientPixels) {
       "objects": [{"type": "mesh", "file": "terrain.obj", "material": "m"}]})",
                                 files);
   const PreparedScene prepared(scene, BvhSettings{});
-  ThreadPool pool(2);
-  const FrameImage traced =
-      renderFrame(Renderer(prepared, scene.frame, test::directLightOnly(scene, scene.frame)), pool, {}).image;
-  LocalTileService service(prepared, pool);
-  const HybridResult gl = hybrid(scene, service, scene.frame, rule(MaskRule::kNone));
+  const auto [traced, gl] = rasterAndDirectTrace(prepared);
   const std::vector<bool> covered = fullyCovered(prepared, scene.frame, 1.0f / 32.0f);
   int stray = 0, off = 0, compared = 0;
   for (std::size_t i = 0; i < traced.rgb.size(); i += 3) {
@@ -994,20 +1022,53 @@ TEST(Hybrid, ManyMaterialsAndTextures) {
                                           materials + R"(}, "objects": [)" + objects + "]}");
   ASSERT_EQ(scene.materials.size(), 300u);
   const PreparedScene prepared(scene, BvhSettings{});
-  ThreadPool pool(2);
-  const FrameImage traced =
-      renderFrame(Renderer(prepared, scene.frame, test::directLightOnly(scene, scene.frame)), pool, {}).image;
-  LocalTileService service(prepared, pool);
-  const HybridResult gl = hybrid(prepared.scene(), service, scene.frame, rule(MaskRule::kNone));
-  const std::vector<bool> covered = fullyCovered(prepared, scene.frame);
-  int compared = 0, bad = 0;
-  for (std::size_t i = 0; i < covered.size(); ++i) {
-    if (!covered[i]) continue;
-    ++compared;
-    bad += channelDifference(gl.image, traced, i) > 2 ? 1 : 0;
+  int compared = 0;
+  EXPECT_EQ(offByMoreThanTwo(rasterAndDirectTrace(prepared), fullyCovered(prepared, scene.frame), compared), 0);
+  EXPECT_GT(compared, static_cast<int>(scene.frame.width * scene.frame.height) / 2);
+}
+
+// An image texture's wrap modes and filters read the same in OpenGL as in
+// the tracer: a quad whose uvs run from -1.25 to 2.25 (three and a half
+// copies of a 4 x 3 image of distinct texels each way), drawn as the
+// tracer's direct light within 2/255, under every mode along u and v.
+TEST(Hybrid, TextureWrapModesAreTheTracers) {
+  FrameImage texels;
+  texels.width = 4;
+  texels.height = 3;
+  for (int i = 0; i < 12; ++i) {
+    texels.rgb.insert(texels.rgb.end(), {static_cast<std::uint8_t>(20 * i), static_cast<std::uint8_t>(240 - 15 * i),
+                                         static_cast<std::uint8_t>(i % 2 ? 200 : 40)});
   }
-  EXPECT_GT(compared, static_cast<int>(covered.size()) / 2);
-  EXPECT_EQ(bad, 0);
+  MemorySource files;
+  files.add("texels.png", test::pngBytes(texels));
+  for (const char* filter : {"nearest", "bilinear"}) {
+    std::set<std::size_t> frames;  // each mode reads the image its own way: the frames' hashes
+    for (const char* wrap : {"\"repeat\"", "\"mirrored_repeat\"", "\"clamp_to_edge\"",
+                             "[\"mirrored_repeat\", \"clamp_to_edge\"]", "[\"clamp_to_edge\", \"repeat\"]"}) {
+      SCOPED_TRACE(std::string(filter) + " " + wrap);
+      const Scene scene = loadScene(R"({"glint": 1, "image": {"width": 96, "height": 96},
+        "camera": {"eye": [0, 0, 2.6], "look_at": [0, 0, 0], "fov_y": 50},
+        "lights": [{"type": "point", "position": [0.5, 0.5, 3]}],
+        "textures": {"t": {"type": "image", "file": "texels.png", "filter": ")" +
+                                        std::string(filter) + R"(", "wrap": )" + wrap + R"(}},
+        "materials": {"m": {"texture": "t", "ambient": 0.2, "diffuse": 0.8}},
+        "objects": [{"type": "quad", "corners": [[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]],
+                     "uvs": [[-1.25, -1.25], [2.25, -1.25], [2.25, 2.25], [-1.25, 2.25]], "material": "m"}]})",
+                                    files);
+      const PreparedScene prepared(scene, BvhSettings{});
+      const RasterAndTrace r = rasterAndDirectTrace(prepared);
+      // Pixels on one triangle throughout; nearest texels also of one colour
+      // (a texel's edge falls where the raster's and the tracer's uv may
+      // round apart).
+      const bool nearest = std::string(filter) == "nearest";
+      int compared = 0;
+      EXPECT_EQ(offByMoreThanTwo(r, fullyCovered(prepared, scene.frame, 0.45f, nearest), compared), 0);
+      EXPECT_GT(compared, scene.frame.width * scene.frame.height / (nearest ? 3 : 2));
+      frames.insert(std::hash<std::string_view>{}(
+          std::string_view(reinterpret_cast<const char*>(r.traced.rgb.data()), r.traced.rgb.size())));
+    }
+    EXPECT_EQ(frames.size(), 5u) << filter;
+  }
 }
 
 // The raster and the tracer encode the background alike: an empty scene's
@@ -1019,7 +1080,7 @@ TEST(Hybrid, BackgroundIsTheTracersToTheByte) {
   const PreparedScene prepared(scene, BvhSettings{});
   ThreadPool pool(2);
   LocalTileService service(prepared, pool);
-  for (const OutputSettings output : {OutputSettings{}, OutputSettings{Encoding::kSrgb, 0.7f}}) {
+  for (const OutputSettings output : {OutputSettings{Encoding::kLinear, 0.0f}, OutputSettings{Encoding::kSrgb, 0.7f}}) {
     FrameSettings frame = scene.frame;
     frame.output = output;
     const FrameImage full = renderFrame(service, frame, {}).image;

@@ -52,9 +52,18 @@ TEST(MeshImport, DebianSampleModels) {
   ASSERT_EQ(gltf.meshes.size(), 1u);
   EXPECT_EQ(gltf.materials[gltf.meshes[0].material].texture, 0);
   EXPECT_EQ(gltf.meshes[0].uvs.size(), gltf.meshes[0].positions.size());
+  // Its sampler: wrapS MIRRORED_REPEAT (its u runs to 6: the logo reads
+  // forwards on every face), wrapT CLAMP_TO_EDGE, magFilter LINEAR.
+  EXPECT_EQ(gltf.textures[0].wrap[0], TextureWrap::kMirroredRepeat);
+  EXPECT_EQ(gltf.textures[0].wrap[1], TextureWrap::kClampToEdge);
+  EXPECT_EQ(gltf.textures[0].filter, ImageFilter::kBilinear);
   const MeshModel glb = import(kModels / "glTF2/BoxTextured-glTF-Binary/BoxTextured.glb");
   EXPECT_EQ(corners(glb), corners(gltf));  // one model, text or binary, texture embedded
   EXPECT_EQ(glb.textures.size(), 1u);
+  // The binary sample's sampler repeats both ways (its JSON says so).
+  EXPECT_EQ(glb.textures[0].wrap[0], TextureWrap::kRepeat);
+  EXPECT_EQ(glb.textures[0].wrap[1], TextureWrap::kRepeat);
+  EXPECT_EQ(glb.textures[0].filter, ImageFilter::kBilinear);
 
   const MeshModel ply = import(kModels / "PLY/cube.ply"), binary = import(kModels / "PLY/cube_binary.ply");
   EXPECT_EQ(triangles(ply), 12u);
@@ -201,6 +210,9 @@ TEST(MeshImport, DamagedBlobsAreRefused) {
   SceneBudget budget;
   const MeshModel back = decodeMeshBlob(blob, "test", budget);
   EXPECT_EQ(corners(back), corners(box));
+  ASSERT_EQ(back.textures.size(), 1u);
+  EXPECT_EQ(back.textures[0].wrap, box.textures[0].wrap);
+  EXPECT_EQ(back.textures[0].filter, box.textures[0].filter);
   for (std::size_t n = 0; n < blob.size(); n += std::max<std::size_t>(1, blob.size() / 4000)) {
     SceneBudget fresh;
     EXPECT_THROW(decodeMeshBlob(std::string_view(blob).substr(0, n), "test", fresh), InputError) << n;

@@ -130,7 +130,11 @@ std::string flatPng(int width, int height) {
   image.width = width;
   image.height = height;
   image.rgb.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3, 200);
-  const std::filesystem::path path = scratchPath("flat.png");
+  return pngBytes(image);
+}
+
+std::string pngBytes(const FrameImage& image) {
+  const std::filesystem::path path = scratchPath("image.png");
   writePng(path, image);
   std::ifstream in(path, std::ios::binary);
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

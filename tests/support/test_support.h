@@ -45,6 +45,8 @@ std::filesystem::path scratchPath(const std::string& name);
 
 // The bytes of a PNG of one colour: small to send, large once decoded.
 std::string flatPng(int width, int height);
+// A PNG file's bytes holding `image`.
+std::string pngBytes(const FrameImage& image);
 
 // RGB of pixel (x, y) of an image.
 struct Rgb {

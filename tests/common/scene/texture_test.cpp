@@ -1,5 +1,6 @@
 #include "common/scene/texture.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -59,6 +60,76 @@ TEST(Texture, ImageUvRunsRightAndUp) {
   const glm::vec3 mid = t.evaluate({0.5f, 0.75f});            // halfway between the top texels
   EXPECT_NEAR(mid.x, 0.5f, 1e-6f);
   EXPECT_NEAR(mid.y, 0.5f, 1e-6f);
+}
+
+// A 4 x 1 image whose texels are 0, 1, 2, 3 (x 10 / 255), read nearest
+// along u: the texel index each wrap mode reads, worked out from OpenGL's
+// definition (its specification's mirror(), clamp to the edge texel
+// centres' range) for coordinates across three periods.
+TEST(Texture, WrapModesReadAsOpenGLDefinesThem) {
+  auto image = std::make_shared<Image>();
+  image->width = 4;
+  image->height = 1;
+  for (int i = 0; i < 4; ++i) image->rgb.insert(image->rgb.end(), 3, static_cast<std::uint8_t>(10 * i));
+  Texture t;
+  t.type = TextureType::kImage;
+  t.image = image;
+  const auto index = [&](float u) { return static_cast<int>(std::lround(t.evaluate({u, 0.5f}).x * 255.0f / 10.0f)); };
+  const auto byDefinition = [](TextureWrap mode, double u) {
+    const double s = u * 4.0;  // texel space
+    const int i = static_cast<int>(std::floor(s));
+    switch (mode) {
+      case TextureWrap::kRepeat:
+        return ((i % 4) + 4) % 4;
+      case TextureWrap::kMirroredRepeat: {
+        // mirror(a) = a for a >= 0, -(1 + a) otherwise, on (i mod 8) - 4.
+        const int a = ((i % 8) + 8) % 8 - 4;
+        return 3 - (a >= 0 ? a : -(1 + a));
+      }
+      case TextureWrap::kClampToEdge:
+        return std::clamp(i, 0, 3);
+    }
+    return -1;
+  };
+  for (const TextureWrap mode : {TextureWrap::kRepeat, TextureWrap::kMirroredRepeat, TextureWrap::kClampToEdge}) {
+    t.wrap = {mode, TextureWrap::kRepeat};
+    for (float u = -3.0f + 0.0625f; u < 3.0f; u += 0.125f) {
+      EXPECT_EQ(index(u), byDefinition(mode, u)) << enumWord(mode) << " at u = " << u;
+    }
+  }
+  // Mirrored: the copy right of the image runs backwards, the next forwards.
+  t.wrap = {TextureWrap::kMirroredRepeat, TextureWrap::kRepeat};
+  EXPECT_EQ(index(1.125f), 3);
+  EXPECT_EQ(index(1.875f), 0);
+  EXPECT_EQ(index(2.125f), 0);
+  // Bilinear at the edge: repeat blends in the far edge's texel, clamp the
+  // edge texel itself, mirror the edge texel (its own mirror image).
+  t.filter = ImageFilter::kBilinear;
+  t.wrap = {TextureWrap::kRepeat, TextureWrap::kRepeat};
+  EXPECT_NEAR(t.evaluate({1.0f, 0.5f}).x * 255.0f, 15.0f, 1e-3f);  // halfway between texels 3 and 0
+  t.wrap = {TextureWrap::kClampToEdge, TextureWrap::kRepeat};
+  EXPECT_NEAR(t.evaluate({1.0f, 0.5f}).x * 255.0f, 30.0f, 1e-3f);
+  t.wrap = {TextureWrap::kMirroredRepeat, TextureWrap::kRepeat};
+  EXPECT_NEAR(t.evaluate({1.0f, 0.5f}).x * 255.0f, 30.0f, 1e-3f);
+}
+
+// v wraps by its own mode, with v up (row 0 at the top).
+TEST(Texture, WrapAlongVIsItsOwn) {
+  auto image = std::make_shared<Image>();
+  image->width = 1;
+  image->height = 2;
+  image->rgb = {255, 255, 255, 0, 0, 0};  // top white, bottom black
+  Texture t;
+  t.type = TextureType::kImage;
+  t.image = image;
+  t.wrap = {TextureWrap::kMirroredRepeat, TextureWrap::kClampToEdge};
+  EXPECT_EQ(t.evaluate({0.5f, 1.75f}).x, 1.0f);   // clamped to the top row
+  EXPECT_EQ(t.evaluate({0.5f, -0.75f}).x, 0.0f);  // clamped to the bottom row
+  t.wrap = {TextureWrap::kClampToEdge, TextureWrap::kMirroredRepeat};
+  EXPECT_EQ(t.evaluate({0.5f, 1.25f}).x, 1.0f);   // mirrored: above the top comes the top again
+  EXPECT_EQ(t.evaluate({0.5f, 1.75f}).x, 0.0f);
+  t.wrap = {TextureWrap::kClampToEdge, TextureWrap::kRepeat};
+  EXPECT_EQ(t.evaluate({0.5f, 1.25f}).x, 0.0f);   // repeated: above the top comes the bottom
 }
 
 // The extension's own example: offset (0, 1), rotation 90 degrees, scale
