@@ -18,7 +18,7 @@ cleanup() {
 trap cleanup EXIT
 
 # Starts a glintd on a free loopback port and sets $address once it listens
-# (glintd says "glintd: listening on 127.0.0.1:PORT, N threads"). Not run in
+# (glintd says "glintd: listening on 127.0.0.1:PORT, N threads, no TLS"). Not run in
 # $(...): the pid must reach the cleanup.
 start_glintd() {
   local log
