@@ -1,7 +1,6 @@
 #include "client/cli.h"
 
 #include <algorithm>
-#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -392,29 +391,14 @@ std::string joined(const std::vector<std::string>& words) {
   return text;
 }
 
-// An argument that looks like an option: "--name[=value]" or "-x".
-std::optional<std::string> optionName(const std::string& arg) {
-  if (arg.rfind("--", 0) == 0 && arg.size() > 2) return arg.substr(0, arg.find('='));
-  if (arg.size() == 2 && arg[0] == '-' && std::isalpha(static_cast<unsigned char>(arg[1]))) return arg;
-  return std::nullopt;
-}
-
-// The first option `command` does not have, with the nearest one it has
-// ("--sampels": did you mean --samples?); empty when every option is its.
-std::string unknownOption(CLI::App& command, int first, int argc, char** argv) {
-  std::vector<std::string> known;
-  for (const CLI::Option* option : command.get_options()) {
-    for (const std::string& name : option->get_lnames()) known.push_back("--" + name);
-    for (const std::string& name : option->get_snames()) known.push_back("-" + name);
+// Every name of the options `app` has ("--samples", "-o").
+std::vector<std::string> optionNames(const CLI::App& app) {
+  std::vector<std::string> names;
+  for (const CLI::Option* option : app.get_options()) {
+    for (const std::string& name : option->get_lnames()) names.push_back("--" + name);
+    for (const std::string& name : option->get_snames()) names.push_back("-" + name);
   }
-  for (int i = first; i < argc; ++i) {
-    const std::optional<std::string> name = optionName(argv[i]);
-    if (!name || command.get_option_no_throw(*name)) continue;
-    const std::string near = nearestWord(*name, known);
-    return "glint " + command.get_name() + " has no option " + *name +
-           (near.empty() ? "" : "; did you mean " + near + "?");
-  }
-  return {};
+  return names;
 }
 
 // What CLI11 found wrong, said so that the user knows what to type instead:
@@ -434,7 +418,8 @@ std::string usageProblem(CLI::App& app, const CLI::ParseError& e, int argc, char
     return std::string("'") + argv[1] + "' is not a glint command (" + joined(commands) + ")" +
            (near.empty() ? "" : "; did you mean '" + near + "'?");
   }
-  const std::string unknown = unknownOption(*command, 2, argc, argv);
+  const std::string unknown =
+      unknownOption("glint " + command->get_name(), std::vector<std::string>(argv + 2, argv + argc), optionNames(*command));
   return unknown.empty() ? e.what() : unknown;
 }
 

@@ -129,7 +129,7 @@ RasterScene::~RasterScene() {
   for (unsigned image : images_) {
     if (image) gl_.DeleteTextures(1, &image);
   }
-  if (areaPoints_) gl_.DeleteTextures(1, &areaPoints_);
+  if (areaPoints_.texture) gl_.DeleteTextures(1, &areaPoints_.texture);
   for (const auto& [key, program] : programs_) gl_.DeleteProgram(program);
 }
 
@@ -332,13 +332,13 @@ void RasterScene::setFrameUniforms(unsigned program, const FrameSettings& frame,
   const auto at = [&](const char* name) { return gl_.GetUniformLocation(program, name); };
   gl_.Uniform1f(at("uExposureScale"), Encoder(frame.output).scale());
   gl_.Uniform1i(at("uMarkUndecided"), mask.rule == MaskRule::kAuto || mask.rule == MaskRule::kPerceptual ? 1 : 0);
-  setLightUniforms(program, frame);
+  setLightUniforms(program);
   gl_.Uniform1i(at("uImage"), kImageUnit);
   gl_.Uniform1i(at("uEmissionImage"), kEmissionUnit);
   shadowMaps_.setUniforms(program, kShadowMapUnit, punctualLights_.size(), shadows_);
 }
 
-void RasterScene::setLightUniforms(unsigned program, const FrameSettings& frame) {
+void RasterScene::setLightUniforms(unsigned program) {
   const auto at = [&](const char* name) { return gl_.GetUniformLocation(program, name); };
   std::vector<glm::vec3> positions, colors, attenuations, directions;
   std::vector<glm::vec2> cones;
@@ -361,12 +361,11 @@ void RasterScene::setLightUniforms(unsigned program, const FrameSettings& frame)
     gl_.Uniform2fv(at("uLightCone"), n, glm::value_ptr(cones[0]));
     gl_.Uniform1iv(at("uLightKind"), n, kinds.data());
   }
-  const int areaCount = uploadAreaPoints(frame);
-  gl_.Uniform1i(at("uAreaCount"), areaCount);
+  gl_.Uniform1i(at("uAreaCount"), areaPoints_.count);
   gl_.Uniform1i(at("uAreaPoints"), kAreaPointsUnit);
 }
 
-int RasterScene::uploadAreaPoints(const FrameSettings& frame) {
+void RasterScene::uploadAreaPoints(const FrameSettings& frame) {
   // Each area light as the points its unshadowed light is the sum of; a
   // sphere light as its centre, lighting every side (no normal).
   std::vector<glm::vec3> fields;
@@ -382,26 +381,23 @@ int RasterScene::uploadAreaPoints(const FrameSettings& frame) {
     const AreaLightPoints points(l, softLightSamples(l, frame.sampling.lightSamples));
     for (const glm::vec3& c : points.centres) add(c, points.color, l.attenuation, points.normal);
   }
-  const int count = static_cast<int>(fields.size() / kAreaPointFields);
-  if (count == 0 || fields == areaPointFields_) return count;
+  areaPoints_.count = static_cast<int>(fields.size() / kAreaPointFields);
+  if (areaPoints_.count == 0) return;
   // Whole rows of kAreaPointsPerRow points, the last padded.
-  const int rows = (count + kAreaPointsPerRow - 1) / kAreaPointsPerRow;
-  areaPointFields_ = fields;
+  const int rows = (areaPoints_.count + kAreaPointsPerRow - 1) / kAreaPointsPerRow;
   fields.resize(static_cast<std::size_t>(rows) * kAreaPointsPerRow * kAreaPointFields, glm::vec3(0.0f));
-  if (!areaPoints_) gl_.GenTextures(1, &areaPoints_);
+  if (!areaPoints_.texture) gl_.GenTextures(1, &areaPoints_.texture);
   gl_.ActiveTexture(GL_TEXTURE0 + kAreaPointsUnit);
-  gl_.BindTexture(GL_TEXTURE_2D, areaPoints_);
+  gl_.BindTexture(GL_TEXTURE_2D, areaPoints_.texture);
   gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, kAreaPointsPerRow * kAreaPointFields, rows, 0, GL_RGB, GL_FLOAT,
                  fields.data());
   gl_.ActiveTexture(GL_TEXTURE0);
   if (gl_.GetError() != GL_NO_ERROR) {
-    areaPointFields_.clear();
-    throw InputError("OpenGL: cannot hold the " + std::to_string(count) +
+    throw InputError("OpenGL: cannot hold the " + std::to_string(areaPoints_.count) +
                      " points of the area and sphere lights (fewer light samples, or --mask all traces them all)");
   }
-  return count;
 }
 
 bool RasterScene::objectLit(std::uint32_t object) const {
@@ -578,6 +574,7 @@ double RasterScene::draw(const FrameSettings& frame, const MaskSettings& mask) {
   const Clock::time_point start = Clock::now();
   shadows_ = prepareShadows(mask);
   const double shadowMs = msSince(start);
+  uploadAreaPoints(frame);
   target_.bind(frame.width, frame.height);
   gl_.Viewport(0, 0, frame.width, frame.height);
   const Encoder encoder(frame.output);

@@ -104,12 +104,12 @@ class RasterScene {
   void setFrameUniforms(unsigned program, const FrameSettings& frame, const Projection& projection,
                         const MaskSettings& mask);
   void setMaterialUniforms(unsigned program, const Material& material);
-  // The point lights', the area lights' points (frame's light samples) and
-  // the sphere lights' centres.
-  void setLightUniforms(unsigned program, const FrameSettings& frame);
-  // The area lights' points and sphere lights' centres into their texture
-  // (uploaded when they change); returns how many there are.
-  int uploadAreaPoints(const FrameSettings& frame);
+  // The point lights', and the count and texture unit of the area lights'
+  // points and the sphere lights' centres (uploadAreaPoints).
+  void setLightUniforms(unsigned program);
+  // The frame's area lights' points and sphere lights' centres into their
+  // texture (once a frame, before the draws read them).
+  void uploadAreaPoints(const FrameSettings& frame);
   // A texture's uv transform (identity for none) into a mat3x2 uniform.
   void setUvTransform(int location, const std::optional<UvTransform>& transform);
   void setViewUniforms(unsigned program, const Projection& projection);
@@ -151,8 +151,10 @@ class RasterScene {
   bool shadows_ = false;  // the current frame reads the shadow maps
   std::map<int, unsigned> programs_;  // by ShaderVariant::key()
   std::vector<unsigned> images_;      // per texture: its GL texture (image textures), else 0
-  unsigned areaPoints_ = 0;           // the area points' texture (uAreaPoints), made on first use
-  std::vector<glm::vec3> areaPointFields_;  // what it holds
+  struct AreaPoints {
+    unsigned texture = 0;  // uAreaPoints, made on first use
+    int count = 0;         // the current frame's points
+  } areaPoints_;
   std::vector<Batch> batches_;
   Bounds3 bounds_;  // every primitive's, for the far plane
   RasterTarget target_;

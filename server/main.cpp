@@ -110,16 +110,10 @@ std::string usageProblem(const CLI::App& app, const CLI::ParseError& e, int argc
   std::vector<std::string> known;
   for (const CLI::Option* option : app.get_options()) {
     for (const std::string& name : option->get_lnames()) known.push_back("--" + name);
+    for (const std::string& name : option->get_snames()) known.push_back("-" + name);
   }
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg.rfind("--", 0) != 0) continue;
-    const std::string name = arg.substr(0, arg.find('='));
-    if (app.get_option_no_throw(name)) continue;
-    const std::string near = glint::nearestWord(name, known);
-    return "glintd has no option " + name + (near.empty() ? "" : "; did you mean " + near + "?");
-  }
-  return e.what();
+  const std::string unknown = glint::unknownOption("glintd", std::vector<std::string>(argv + 1, argv + argc), known);
+  return unknown.empty() ? e.what() : unknown;
 }
 
 // How clients reach it, for the line scripts wait for.
@@ -128,6 +122,7 @@ std::string transport(const glint::server::ServerOptions& o) {
 }
 
 constexpr int kUsageError = 2;
+constexpr const char* kHelpHint = "(the options: glintd --help)";
 
 }  // namespace
 
@@ -146,7 +141,7 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help and --version print and are not errors
-    std::fprintf(stderr, "glintd: error: %s (the options: glintd --help)\n", usageProblem(app, e, argc, argv).c_str());
+    std::fprintf(stderr, "glintd: error: %s %s\n", usageProblem(app, e, argc, argv).c_str(), kHelpHint);
     return kUsageError;  // as shells expect
   }
   setLogging(!quiet);
@@ -162,7 +157,7 @@ int main(int argc, char** argv) {
     logLine("stopped");
     return 0;
   } catch (const glint::UsageError& e) {
-    std::fprintf(stderr, "glintd: error: %s (the options: glintd --help)\n", e.what());
+    std::fprintf(stderr, "glintd: error: %s %s\n", e.what(), kHelpHint);
     return kUsageError;
   } catch (const glint::InputError& e) {
     std::fprintf(stderr, "glintd: error: %s\n", e.what());

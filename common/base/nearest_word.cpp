@@ -1,6 +1,8 @@
 #include "common/base/nearest_word.h"
 
 #include <algorithm>
+#include <cctype>
+#include <optional>
 #include <vector>
 
 namespace glint {
@@ -32,6 +34,28 @@ std::string nearestWord(std::string_view typed, std::span<const std::string> kno
     }
   }
   return best;
+}
+
+namespace {
+
+// An argument that looks like an option: "--name[=value]" or "-x".
+std::optional<std::string> optionName(const std::string& arg) {
+  if (arg.rfind("--", 0) == 0 && arg.size() > 2) return arg.substr(0, arg.find('='));
+  if (arg.size() == 2 && arg[0] == '-' && std::isalpha(static_cast<unsigned char>(arg[1]))) return arg;
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::string unknownOption(std::string_view program, std::span<const std::string> args,
+                          std::span<const std::string> known) {
+  for (const std::string& arg : args) {
+    const std::optional<std::string> name = optionName(arg);
+    if (!name || std::find(known.begin(), known.end(), *name) != known.end()) continue;
+    const std::string near = nearestWord(*name, known);
+    return std::string(program) + " has no option " + *name + (near.empty() ? "" : "; did you mean " + near + "?");
+  }
+  return {};
 }
 
 }  // namespace glint

@@ -38,5 +38,17 @@ TEST(NearestWord, NamesNothingFarOrShortWordsCannotBeMisspelledAs) {
   EXPECT_EQ(nearestWord("-x", short_), "-o");
 }
 
+// The first argument that looks like an option and is not one, named with
+// the nearest there is; values (even negative numbers) are not options.
+TEST(UnknownOption, NamesTheFirstAndItsNearest) {
+  const std::vector<std::string> known{"--samples", "--size", "-o", "--eye"};
+  const std::vector<std::string> fine{"scene.json", "-o", "x.png", "--samples=4", "--eye", "-1,2,3"};
+  EXPECT_EQ(unknownOption("glint render", fine, known), "");
+  const std::vector<std::string> typo{"scene.json", "--sampels=4", "--bogus"};
+  EXPECT_EQ(unknownOption("glint render", typo, known), "glint render has no option --sampels; did you mean --samples?");
+  const std::vector<std::string> far{"--threads", "2"};
+  EXPECT_EQ(unknownOption("glint info", far, known), "glint info has no option --threads");
+}
+
 }  // namespace
 }  // namespace glint
