@@ -332,6 +332,7 @@ void RasterScene::setFrameUniforms(unsigned program, const FrameSettings& frame,
   const auto at = [&](const char* name) { return gl_.GetUniformLocation(program, name); };
   gl_.Uniform1f(at("uExposureScale"), Encoder(frame.output).scale());
   gl_.Uniform1i(at("uMarkUndecided"), mask.rule == MaskRule::kAuto || mask.rule == MaskRule::kPerceptual ? 1 : 0);
+  gl_.Uniform1i(at("uSelfShadowing"), plan_.shadows ? 1 : 0);
   setLightUniforms(program);
   gl_.Uniform1i(at("uImage"), kImageUnit);
   gl_.Uniform1i(at("uEmissionImage"), kEmissionUnit);

@@ -109,9 +109,10 @@ uniform vec3 uShadowFaceS[6];
 uniform vec3 uShadowFaceT[6];
 uniform vec3 uShadowFaceM[6];
 uniform bool uMarkUndecided;                 // a pixel the maps cannot decide is traced (rule auto)
+uniform bool uSelfShadowing;                 // the tracer casts shadow rays (EffectPlan::shadows)
 layout(location = 0) out vec4 fragColor;
 layout(location = 1) out uint fragSurface;   // object << 2 | PixelMark
-bool gShadowUndecided = false;               // set by shadowVisibility()
+bool gShadowUndecided = false;               // set by shadowVisibility() and behindTriangle()
 
 vec3 encodeOutput(vec3 linear) {
   vec3 v = clamp(linear * uExposureScale, 0.0, 1.0);
@@ -349,6 +350,19 @@ float spotFactor(vec3 axis, vec2 cone, vec3 l) {
 }
 #endif
 
+#ifdef LIT
+// Whether light from l reaches the smooth surface from behind the flat
+// triangle (a smooth mesh's terminator; the caller has checked ns). Whether
+// the triangle's neighbours block it is the tracer's to decide, its shadow
+// rays leaving from the point lifted onto that surface (Geometry::lifted):
+// undecided wherever the tracer casts shadow rays. GL's estimate: unshadowed.
+bool behindTriangle(vec3 l, vec3 ng) {
+  if (dot(l, ng) > 0.0) return false;
+  if (uSelfShadowing) gShadowUndecided = true;
+  return true;
+}
+#endif
+
 vec3 shade(vec3 p, vec3 ng, vec3 ns, vec2 uv) {
   vec3 c = surfaceColour(uv);
   vec3 result = c * uTerms.x;
@@ -365,9 +379,10 @@ vec3 shade(vec3 p, vec3 ng, vec3 ns, vec2 uv) {
 #ifdef DIRECTIONAL_LIGHTS
     if (uLightKind[i] == LIGHT_DIRECTIONAL) {
       vec3 l = -uLightDirection[i];
-      if (dot(l, ng) <= 0.0 || dot(l, ns) <= 0.0) continue;
+      if (dot(l, ns) <= 0.0) continue;
+      bool behind = behindTriangle(l, ng);
 #ifdef SHADOWS
-      float visible = parallelVisibility(i, p, ng);
+      float visible = behind ? 1.0 : parallelVisibility(i, p, ng);
       if (visible == 0.0) continue;
 #else
       float visible = 1.0;
@@ -380,13 +395,14 @@ vec3 shade(vec3 p, vec3 ng, vec3 ns, vec2 uv) {
     float d = length(toLight);
     if (!(d > 0.0)) continue;
     vec3 l = toLight / d;
-    if (dot(l, ng) <= 0.0 || dot(l, ns) <= 0.0) continue;
+    if (dot(l, ns) <= 0.0) continue;
 #ifdef SPOT_LIGHTS
     float share = uLightKind[i] == LIGHT_SPOT ? spotFactor(uLightDirection[i], uLightCone[i], l) : 1.0;
     if (share == 0.0) continue;
 #endif
+    bool behind = behindTriangle(l, ng);
 #ifdef SHADOWS
-    float visible = shadowVisibility(i, p, ng);
+    float visible = behind ? 1.0 : shadowVisibility(i, p, ng);
     if (visible == 0.0) continue;
 #else
     float visible = 1.0;
@@ -409,7 +425,8 @@ vec3 shade(vec3 p, vec3 ng, vec3 ns, vec2 uv) {
     float d = length(toLight);
     if (!(d > 0.0)) continue;
     vec3 l = toLight / d;
-    if (dot(l, ng) <= 0.0 || dot(l, ns) <= 0.0) continue;
+    if (dot(l, ns) <= 0.0) continue;
+    behindTriangle(l, ng);
     vec3 a = texelFetch(uAreaPoints, at + ivec2(2, 0), 0).rgb;
     addPhong(result, texelFetch(uAreaPoints, at + ivec2(1, 0), 0).rgb / (a.x + a.y * d + a.z * d * d), c, ns, l,
              toViewer);

@@ -20,7 +20,7 @@ namespace {
 // 8-bit encoding of a scene that names none (the scenes in scenes/ name
 // linear and keep their bytes); 10: image textures' wrap modes, and glTF
 // samplers' wrap modes and magnification filter.
-constexpr int kTracerVersion = 10;
+constexpr int kTracerVersion = 11;
 
 // FNV-1a: the flags only need a short, stable fingerprint.
 std::uint64_t fingerprint(const char* text) {

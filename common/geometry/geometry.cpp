@@ -97,16 +97,15 @@ std::uint32_t Geometry::materialOf(std::uint32_t prim) const {
   return models_[triangles_[prim].model].material;
 }
 
-std::optional<Hit> Geometry::intersect(std::uint32_t prim, const Ray& ray, const WatertightRay& w,
-                                       float tMax) const {
+std::optional<Hit> Geometry::intersect(std::uint32_t prim, const Ray& ray, const WatertightRay& w, float tMax) const {
   if (isSphere(prim)) {
     const std::optional<float> t = intersectSphere(spheres_[prim - triangles_.size()], ray, tMax);
     if (!t) return std::nullopt;
     return Hit{*t, prim, 0.0f, 0.0f, 0.0f};
   }
   const Triangle& tri = triangles_[prim];
-  const std::optional<TriangleHit> h = intersectTriangle(ray, w, positions_[tri.v[0]],
-                                                         positions_[tri.v[1]], positions_[tri.v[2]], tMax);
+  const std::optional<TriangleHit> h =
+      intersectTriangle(ray, w, positions_[tri.v[0]], positions_[tri.v[1]], positions_[tri.v[2]], tMax);
   if (!h) return std::nullopt;
   return Hit{h->t, prim, h->b0, h->b1, h->b2};
 }
@@ -144,8 +143,7 @@ SurfaceHit Geometry::surface(const Ray& ray, const Hit& hit, bool withUv, bool w
   const glm::vec3 absSum = glm::abs(hit.b0 * a) + glm::abs(hit.b1 * b) + glm::abs(hit.b2 * c);
   s.error = gamma(7) * std::max({absSum.x, absSum.y, absSum.z});
   s.ng = faceForward(faceNormals_[hit.prim], ray.d);
-  const glm::vec3 n = hit.b0 * normals_[tri.v[0]] + hit.b1 * normals_[tri.v[1]] +
-                      hit.b2 * normals_[tri.v[2]];
+  const glm::vec3 n = hit.b0 * normals_[tri.v[0]] + hit.b1 * normals_[tri.v[1]] + hit.b2 * normals_[tri.v[2]];
   const float len = glm::length(n);
   s.ns = len > 0.0f && std::isfinite(len) ? n / len : s.ng;
   if (glm::dot(s.ns, s.ng) < 0.0f) s.ns = -s.ns;
@@ -154,6 +152,29 @@ SurfaceHit Geometry::surface(const Ray& ray, const Hit& hit, bool withUv, bool w
     s.color = hit.b0 * colors_[tri.v[0]] + hit.b1 * colors_[tri.v[1]] + hit.b2 * colors_[tri.v[2]];
   }
   return s;
+}
+
+Geometry::LiftedPoint Geometry::lifted(const Hit& hit, const SurfaceHit& s) const {
+  if (isSphere(hit.prim)) return {s.p, s.error};
+  const Triangle& tri = triangles_[hit.prim];
+  const std::array<float, 3> b = {hit.b0, hit.b1, hit.b2};
+  const glm::vec3 n = b[0] * normals_[tri.v[0]] + b[1] * normals_[tri.v[1]] + b[2] * normals_[tri.v[2]];
+  const float side = glm::dot(n, s.ns) < 0.0f ? -1.0f : 1.0f;
+  glm::vec3 lift(0.0f);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const glm::vec3& corner = normals_[tri.v[i]];
+    const float len = glm::length(corner);
+    if (!(len > 0.0f)) continue;
+    const glm::vec3 ni = (side / len) * corner;
+    const float below = glm::dot(s.p - positions_[tri.v[i]], ni);
+    if (below < 0.0f) lift -= b[i] * below * ni;
+  }
+  // Lifting can only move the point off the triangle's outer side.
+  if (!allFinite(lift) || !(glm::dot(lift, s.ng) > 0.0f)) return {s.p, s.error};
+  const glm::vec3 p = s.p + lift;
+  // The sum rounds each coordinate by half an ulp of its magnitude.
+  const glm::vec3 m = glm::abs(p);
+  return {p, s.error + gamma(2) * std::max({m.x, m.y, m.z})};
 }
 
 }  // namespace glint

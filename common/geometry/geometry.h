@@ -95,6 +95,20 @@ class Geometry {
   // withColor false the vertex colours (white): no work for a lookup that a
   // plain-coloured material never makes, or for colours no mesh has.
   SurfaceHit surface(const Ray& ray, const Hit& hit, bool withUv = true, bool withColor = true) const;
+  // Where the shadow rays of a hit leave from (Hanika, "Hacking the Shadow
+  // Terminator", Ray Tracing Gems II, 2021): s.p moved onto the curved
+  // surface the triangle's vertex normals describe, so that the flat
+  // triangles of a smooth mesh do not shadow the light their shading normals
+  // catch. Each corner's tangent plane (its position, its unit normal turned
+  // to s.ns's side) lifts the point onto it where the point lies below it;
+  // the lifts are blended by the hit's barycentric weights. A flat triangle,
+  // a saddle or concave corner and a sphere leave p where it is. `error`
+  // bounds the moved point's rounding as SurfaceHit::error bounds p's.
+  struct LiftedPoint {
+    glm::vec3 p;
+    float error;
+  };
+  LiftedPoint lifted(const Hit& hit, const SurfaceHit& s) const;
   std::uint32_t materialOf(std::uint32_t prim) const;
 
   const std::vector<Triangle>& triangles() const { return triangles_; }

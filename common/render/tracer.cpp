@@ -60,6 +60,11 @@ glm::vec3 Tracer::emitted(const Material& m, const glm::vec2& uv) const {
   return m.emissionTexture >= 0 ? m.emission * scene_.textures[m.emissionTexture].evaluate(uv) : m.emission;
 }
 
+glm::vec3 Tracer::liftedOrigin(const Hit& hit, const SurfaceHit& s) const {
+  const Geometry::LiftedPoint p = scene_.geometry.lifted(hit, s);
+  return offsetRayOrigin(p.p, p.error, s.ng);
+}
+
 inline std::optional<Tracer::Direction> Tracer::towards(const ShadingPoint& at, const glm::vec3& position) const {
   const glm::vec3 toLight = position - at.s.p;
   const float distance = glm::length(toLight);
@@ -68,8 +73,10 @@ inline std::optional<Tracer::Direction> Tracer::towards(const ShadingPoint& at, 
 }
 
 inline std::optional<Tracer::Direction> Tracer::facing(const ShadingPoint& at, const Direction& d) const {
-  // A light behind the geometric surface or the shading normal adds nothing.
-  if (glm::dot(d.l, at.s.ng) <= 0.0f || glm::dot(d.l, at.s.ns) <= 0.0f) return std::nullopt;
+  // A light behind the shading normal adds nothing. One behind the flat
+  // triangle but before its smooth normal (a smooth mesh's terminator) is
+  // left to the shadow ray from the lifted point.
+  if (glm::dot(d.l, at.s.ns) <= 0.0f) return std::nullopt;
   return d;
 }
 
@@ -100,11 +107,12 @@ inline bool Tracer::blocked(const ShadingPoint& at, const Light& l, Path& path) 
   ++path.stats.shadow;
   bool hit = false;
   if (l.type == LightType::kDirectional) {
-    hit = bvh_.occluded(Ray(at.outside, -l.direction), kInfinity);
+    hit = bvh_.occluded(Ray(at.shadowFrom(-l.direction), -l.direction), kInfinity);
   } else {
-    const glm::vec3 fromOrigin = l.position - at.outside;
+    const glm::vec3& from = at.shadowFrom(l.position - at.outside);
+    const glm::vec3 fromOrigin = l.position - from;
     const float shadowDistance = glm::length(fromOrigin);
-    hit = bvh_.occluded(Ray(at.outside, fromOrigin / shadowDistance), shadowDistance);
+    hit = bvh_.occluded(Ray(from, fromOrigin / shadowDistance), shadowDistance);
   }
   if (hit) ++path.stats.shadowBlocked;
   return hit;
@@ -125,7 +133,7 @@ void Tracer::addAreaLight(const ShadingPoint& at, const Surface& f, int light, P
   }
   const auto target = [&](int k, const glm::vec2& u) -> std::optional<Direction> {
     const glm::vec3 q = a.jittered(k, u);
-    const glm::vec3 fromOrigin = q - at.outside;
+    const glm::vec3 fromOrigin = q - at.shadowFrom(q - at.outside);
     const float distance = glm::length(fromOrigin);
     if (!(distance > 0.0f) || !a.lights(q, at.s.p)) return std::nullopt;
     return Direction{fromOrigin / distance, distance};
@@ -144,7 +152,7 @@ void Tracer::addSphereLight(const ShadingPoint& at, const Surface& f, int light,
   addPhong(at, f, *d, lightIntensity(l.color, l.attenuation, d->distance), lit);
   if (lit == glm::vec3(0.0f)) return;
   // A point in the ball sees no cone: the centre's light stands.
-  const std::optional<SphereLightView> view = SphereLightView::from(l.position, l.radius, at.outside);
+  const std::optional<SphereLightView> view = SphereLightView::from(l.position, l.radius, at.shadowFrom(l.position - at.outside));
   if (!plan_.shadows || !view) {
     result += lit;
     return;
@@ -170,11 +178,11 @@ float Tracer::visibleShare(const ShadingPoint& at, int light, int count, Path& p
         target(k, glm::vec2(path.key.uniform(first + 2 * k), path.key.uniform(first + 2 * k + 1)));
     if (!d) continue;
     const float cosine = glm::dot(d->l, at.s.ns);
-    if (glm::dot(d->l, at.s.ng) <= 0.0f || cosine <= 0.0f) continue;
+    if (cosine <= 0.0f) continue;
     const float w = weight(cosine, d->distance);
     total += w;
     ++path.stats.shadow;
-    if (bvh_.occluded(Ray(at.outside, d->l), d->distance)) {
+    if (bvh_.occluded(Ray(at.shadowFrom(d->l), d->l), d->distance)) {
       ++path.stats.shadowBlocked;
     } else {
       open += w;
@@ -217,7 +225,7 @@ glm::vec3 Tracer::trace(const Ray& ray, int depth, float weight, bool inside, Pa
   const MaterialEffects& e = plan_.materials[material];
   const SurfaceHit s = scene_.geometry.surface(ray, *hit, e.textured, plan_.vertexColors);
   const glm::vec3 outside = offsetRayOrigin(s.p, s.error, s.ng);
-  const ShadingPoint at{s, outside, -ray.d, depth};
+  const ShadingPoint at{s, outside, plan_.shadows && e.direct ? liftedOrigin(*hit, s) : outside, -ray.d, depth};
   glm::vec3 color = shade(at, m, e, path);
   if (depth >= tracing_.maxDepth || !(e.reflects || e.refracts)) return color;
 

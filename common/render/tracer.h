@@ -1,5 +1,6 @@
 #pragma once
 
+#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 #include <optional>
@@ -43,12 +44,19 @@ class Tracer {
     RayStats& stats;
   };
   // Where a ray leaves a hit: the surface, the origin of rays on the side of
-  // its geometric normal (shadow and reflected rays), the way to the viewer.
+  // its geometric normal (shadow and reflected rays), that origin lifted
+  // onto the smooth surface (Geometry::lifted), the way to the viewer.
   struct ShadingPoint {
     const SurfaceHit& s;
     glm::vec3 outside;
+    glm::vec3 lifted;
     glm::vec3 toViewer;
     int depth;
+    // The origin of a shadow ray along `d` (from `outside`): `outside` where
+    // d leaves the triangle's outer side; where d passes behind the flat
+    // triangle (a light its smooth normal still faces), the lifted point,
+    // so that the triangles around do not shadow it.
+    const glm::vec3& shadowFrom(const glm::vec3& d) const { return glm::dot(d, s.ng) > 0.0f ? outside : lifted; }
   };
   // A material's colour and terms at a point.
   struct Surface {
@@ -57,6 +65,8 @@ class Tracer {
     const MaterialEffects& e;
   };
   glm::vec3 trace(const Ray& ray, int depth, float weight, bool inside, Path& path) const;
+  // ShadingPoint::lifted of a hit.
+  glm::vec3 liftedOrigin(const Hit& hit, const SurfaceHit& s) const;
   glm::vec3 shade(const ShadingPoint& at, const Material& m, const MaterialEffects& e, Path& path) const;
   // A light at `position` seen from the point: the unit direction and the
   // distance; none when it is behind the surface.

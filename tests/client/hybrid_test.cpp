@@ -1071,6 +1071,47 @@ TEST(Hybrid, TextureWrapModesAreTheTracers) {
   }
 }
 
+// A smooth mesh's terminator: where a triangle's plane turns from a light
+// its vertex normals still catch, OpenGL cannot tell whether the triangles
+// around block it (the tracer decides, from the point lifted onto the smooth
+// surface: ShadowTerminator proves its terminator the analytic sphere's), nor
+// read the shadow map from behind the triangle. Those pixels are traced, so
+// the hybrid frame is the full trace's within 2/255 where a ball's shadow
+// crosses the terminator (left to GL, unshadowed, 30-odd pixels of it were
+// lit), for a point light's cube map and a directional light's layer.
+TEST(Hybrid, ASmoothMeshsTerminatorIsTheTracers) {
+  const MeshInput mesh = test::icosphere(2, glm::vec3(0.0f, 1.0f, 0.0f), 1.0f);
+  nlohmann::json positions = nlohmann::json::array(), normals = nlohmann::json::array();
+  for (const glm::vec3& p : mesh.positions) {
+    const glm::vec3 n = glm::normalize(p - glm::vec3(0.0f, 1.0f, 0.0f));
+    positions.insert(positions.end(), {p.x, p.y, p.z});
+    normals.insert(normals.end(), {n.x, n.y, n.z});
+  }
+  for (const char* light : {R"({"type": "point", "position": [5, 3, -1]})",
+                            R"({"type": "directional", "direction": [-1, -0.3, 0.25]})"}) {
+    nlohmann::json scene = nlohmann::json::parse(R"({"glint": 1, "image": {"width": 160, "height": 120},
+      "camera": {"eye": [0, 1.5, 4.5], "look_at": [0, 0.8, 0], "fov_y": 40},
+      "materials": {"m": {"color": [0.9, 0.9, 0.9], "ambient": 0.1, "diffuse": 0.9}},
+      "objects": [{"type": "quad", "corners": [[-4, 0, 4], [4, 0, 4], [4, 0, -4], [-4, 0, -4]], "material": "m"},
+                  {"type": "sphere", "center": [1.6, 1.65, 0.4], "radius": 0.25, "material": "m"}]})");
+    scene["lights"] = {nlohmann::json::parse(light)};
+    scene["objects"].push_back(
+        {{"type", "mesh"}, {"positions", positions}, {"normals", normals}, {"indices", mesh.indices}, {"material", "m"}});
+    const Scene loaded = test::sceneFromJson(scene.dump());
+    const PreparedScene prepared(loaded, BvhSettings{});
+    ThreadPool pool(2);
+    LocalTileService service(prepared, pool);
+    const FrameImage full = renderFrame(service, loaded.frame, {}).image;
+    const HybridResult h = hybrid(prepared.scene(), service, loaded.frame, rule(MaskRule::kAuto, 1024));
+    int unlike = 0;
+    for (std::size_t i = 0; i < h.mask.size(); ++i) unlike += channelDifference(h.image, full, i) > 2 ? 1 : 0;
+    std::printf("%s: %zu pixels traced for their shadows, %d more than 2/255 from the full trace\n", light,
+                h.shadowEdgePixels, unlike);
+    EXPECT_GT(h.shadowEdgePixels, 100u) << light;
+    EXPECT_EQ(unlike, 0) << light;
+  }
+}
+
 // The raster and the tracer encode the background alike: an empty scene's
 // hybrid frame is the full trace's, byte for byte (a background of 0.3 was
 // 76 rasterized and 77 traced), linear and sRGB with an exposure.
