@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <numeric>
+#include <thread>
 
 #include "common/base/error.h"
 
@@ -87,10 +88,17 @@ bool DistributedTileService::uploaded() const { return servers_.anyUploaded(); }
 
 int DistributedTileService::parallelism() const { return std::max(1, servers_.threadsUp()); }
 
-// No server serves the frame and none is still on its way: one line each.
-void DistributedTileService::throwIfHopeless() const {
+// No server serves the frame and none is still on its way: a server that
+// answered Busy is tried again when its backoff ends, within the scene
+// timeout of its first Busy; failing that, the frame fails, one line each.
+void DistributedTileService::throwIfHopeless() {
   if (servers_.anyConnecting() || (frame_ ? frame_->dispatcher.liveServers() > 0 : serversUp() > 0)) return;
-  throw InputError("no glintd can serve this frame:" + servers_.states());
+  const auto retry = servers_.nextBusyRetry(settings_.timeouts.scene);
+  if (!retry) throw InputError("no glintd can serve this frame:" + servers_.states());
+  const double seconds = std::chrono::duration<double>(*retry - std::chrono::steady_clock::now()).count();
+  std::fprintf(stderr, "glint: every glintd is busy; trying again in %.0f s\n", std::max(0.0, seconds));
+  std::this_thread::sleep_until(*retry);
+  servers_.retryLost();
 }
 
 void DistributedTileService::linkReady(ServerLink& link) {

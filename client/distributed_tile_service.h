@@ -89,7 +89,7 @@ class DistributedTileService : public TileService, private LinkListener {
   // Runs the I/O context for a moment, then loses stalled servers and sends
   // what the dispatcher assigns.
   void step();
-  void throwIfHopeless() const;
+  void throwIfHopeless();
   void deliverFrame(Frame& frame);
   void startRows();
   void startReport(Frame& frame);

@@ -148,6 +148,7 @@ void ServerConversation::onError(const wire::Error& error) {
     case wire::ErrorCode::BadScene:
       return fail(LinkFailure::Kind::kSceneError, text);
     case wire::ErrorCode::Busy:
+      return fail(state_ == State::kReady ? LinkFailure::Kind::kServerError : LinkFailure::Kind::kBusy, text);
     case wire::ErrorCode::Version:
     case wire::ErrorCode::ShuttingDown:
       return fail(state_ == State::kReady ? LinkFailure::Kind::kServerError : LinkFailure::Kind::kRefused, text);

@@ -18,7 +18,8 @@ namespace glint {
 struct LinkFailure {
   enum class Kind {
     kUnreachable,  // cannot connect, or no answer in time
-    kRefused,      // answered, but will not or must not serve us (busy, version, another build)
+    kBusy,         // answered Busy before serving us (full of clients, or of scenes being built): tried again
+    kRefused,      // answered, but will not or must not serve us (version, another build)
     kClosed,       // closed the connection
     kBadBytes,     // sent something that is not a valid answer
     kServerError,  // sent an Error about something other than the scene

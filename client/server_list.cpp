@@ -7,6 +7,7 @@
 #include <asio.hpp>
 
 #include "common/base/error.h"
+#include "common/base/printable.h"
 
 namespace glint {
 namespace {
@@ -23,8 +24,9 @@ std::optional<std::pair<std::string, std::string>> parseHostPort(const std::stri
   return std::pair{host, port};
 }
 
+// Entries come from a file too: their text reaches the terminal escaped.
 std::string notHostPort(const std::string& value) {
-  return value + ": expected HOST:PORT, e.g. 127.0.0.1:7878 (several: A:P,B:P)";
+  return printable(value) + ": expected HOST:PORT, e.g. 127.0.0.1:7878 (several: A:P,B:P)";
 }
 
 // "HOST:PORT" -> host and port, or InputError naming where it came from.
@@ -43,7 +45,10 @@ std::vector<ServerAddress> resolveOne(asio::ip::tcp::resolver& resolver, const s
   asio::error_code error;
   auto results = resolver.resolve(asio::ip::tcp::v4(), host, port, error);
   if (error) results = resolver.resolve(host, port, error);
-  if (error) throw InputError(origin + " " + value + ": cannot resolve '" + host + "' (" + error.message() + ")");
+  if (error) {
+    throw InputError(origin + " " + printable(value) + ": cannot resolve '" + printable(host) + "' (" +
+                     error.message() + ")");
+  }
   std::vector<ServerAddress> out;
   for (const auto& entry : results) out.push_back({value, host, entry.endpoint()});
   if (out.size() > 1) {

@@ -85,6 +85,7 @@ void ServerPool::ready(std::size_t index) {
   Server& s = servers_[index];
   s.everReady = true;
   s.failures = 0;
+  s.busySince.reset();
   s.report.state = ServerState::kOk;
   s.report.why.clear();
 }
@@ -95,8 +96,24 @@ void ServerPool::failed(std::size_t index, const LinkFailure& failure) {
   s.report.state = s.everReady ? ServerState::kLost : ServerState::kUnreachable;
   s.report.why = failure.what;
   ++s.failures;
+  const auto now = std::chrono::steady_clock::now();
   const auto backoff = std::min<std::chrono::seconds>(kFirstRetry * (1 << std::min(s.failures - 1, 5)), kLongestRetry);
-  s.retryAt = std::chrono::steady_clock::now() + backoff;
+  s.retryAt = now + backoff;
+  if (failure.kind != LinkFailure::Kind::kBusy) {
+    s.busySince.reset();
+  } else if (!s.busySince) {
+    s.busySince = now;
+  }
+}
+
+std::optional<std::chrono::steady_clock::time_point> ServerPool::nextBusyRetry(
+    std::chrono::milliseconds patience) const {
+  std::optional<std::chrono::steady_clock::time_point> next;
+  for (const Server& s : servers_) {
+    if (!s.member || !s.busySince || !s.link->failed() || s.retryAt > *s.busySince + patience) continue;
+    if (!next || s.retryAt < *next) next = s.retryAt;
+  }
+  return next;
 }
 
 std::size_t ServerPool::members() const {

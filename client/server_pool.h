@@ -34,6 +34,8 @@ class ServerPool {
     bool everReady = false;  // in this link's life
     int failures = 0;        // in a row, for the backoff
     std::chrono::steady_clock::time_point retryAt;
+    // When it first answered Busy in this run of failures (none: it did not).
+    std::optional<std::chrono::steady_clock::time_point> busySince;
     ServerReport report;  // this frame's
     bool member = true;   // false once it left the farm
     int joinedFrame = 0;  // the report (frame) that says it joined; 0: one of the first
@@ -55,6 +57,10 @@ class ServerPool {
   bool adopt(const std::vector<ServerAddress>& wanted, int frame);
   // Servers lost earlier whose backoff has ended are connected again.
   void retryLost();
+  // The earliest retry of a server that answered Busy, if it comes within
+  // `patience` of its first Busy (a busy server is worth waiting for that
+  // long: --scene-timeout).
+  std::optional<std::chrono::steady_clock::time_point> nextBusyRetry(std::chrono::milliseconds patience) const;
   void ready(std::size_t index);
   void failed(std::size_t index, const LinkFailure& failure);
 

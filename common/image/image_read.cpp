@@ -84,7 +84,9 @@ ImageFile readImageFile(const std::filesystem::path& path) {
   const LoadLimits limits;
   const std::string place = path.string();
   const std::string bytes = readBytes(path, limits.maxFileBytes);
-  const auto admit = [&](int width, int height) { admitSize(place, width, height, limits.maxTexturePixels); };
+  const auto admit = [&](int width, int height, std::size_t) {
+    admitSize(place, width, height, limits.maxTexturePixels);
+  };
   if (looksLikeExr(bytes)) {
     FloatPixels pixels = decodeExrLinear(bytes, place, admit);
     return {{pixels.width, pixels.height, std::move(pixels.rgb)}, false};

@@ -112,8 +112,7 @@ Material toMaterial(const aiMaterial& m) {
     out.color = {c.r, c.g, c.b};
   }
   aiColor3D e;
-  if (m.Get(AI_MATKEY_COLOR_EMISSIVE, e) == AI_SUCCESS)
-    out.emission = glm::max(glm::vec3(e.r, e.g, e.b), glm::vec3(0.0f));
+  if (m.Get(AI_MATKEY_COLOR_EMISSIVE, e) == AI_SUCCESS) out.emission = {e.r, e.g, e.b};  // checkImportedModel
   float opacity = 1.0f, metallic = 0.0f, roughness = 1.0f;
   m.Get(AI_MATKEY_OPACITY, opacity);
   out.transparency = std::clamp(1.0f - opacity, 0.0f, 1.0f);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <type_traits>
 #include <vector>
 
 #include <Imath/half.h>
@@ -89,40 +90,72 @@ std::vector<std::string> colourChannels(const ExrReader& reader) {
   reader.fail("has no R, G and B channels (nor Y)");
 }
 
-// Calls `decode(chunk, x, y)` on each chunk of the first level, scanline
-// blocks or tiles, with the chunk's first pixel relative to the data
-// window's corner (OpenEXR 3.1 gives a tile's start in tiles, not pixels).
-// Their offset table (8 bytes a chunk) must fit in the file, so that a
-// small file cannot ask for millions of reads.
-template <typename Decode>
-void forEachChunk(const ExrReader& reader, const exr_attr_box2i_t& window, std::size_t fileBytes, Decode decode) {
+// The bytes one pixel's samples take in the file, over all its channels
+// (half: 2, float and unsigned int: 4).
+std::size_t sampleBytes(const ExrReader& reader) {
+  const exr_attr_chlist_t* list = nullptr;
+  reader.check(exr_get_channels(reader.context(), 0, &list));
+  std::size_t bytes = 0;
+  for (int i = 0; i < list->num_channels; ++i) bytes += list->entries[i].pixel_type == EXR_PIXEL_HALF ? 2 : 4;
+  return bytes;
+}
+
+// How the first level's pixels are cut into chunks, scanline blocks or
+// tiles: checked against the file before anything is allocated. Their
+// offset table (8 bytes a chunk) must fit in the file, so that a small file
+// cannot ask for millions of reads.
+struct ChunkGrid {
+  bool tiled = false;
+  int32_t lines = 0;  // scanlines a chunk
+  int32_t tileW = 0, tileH = 0;
+  std::size_t largestPixels = 0;  // the most pixels one chunk holds
+};
+
+ChunkGrid chunkGrid(const ExrReader& reader, int64_t width, int64_t height, std::size_t fileBytes) {
   int32_t count = 0;
   reader.check(exr_get_chunk_count(reader.context(), 0, &count));
   if (count <= 0 || static_cast<std::size_t>(count) > fileBytes / 8) reader.fail("has more chunks than bytes");
   exr_storage_t storage{};
   reader.check(exr_get_storage(reader.context(), 0, &storage));
-  exr_chunk_info_t chunk{};
+  ChunkGrid grid;
   if (storage == EXR_STORAGE_SCANLINE) {
-    int32_t lines = 0;
-    reader.check(exr_get_scanlines_per_chunk(reader.context(), 0, &lines));
-    if (lines <= 0) reader.fail("has no scanlines per chunk");
-    for (int64_t y = window.min.y; y <= window.max.y; y += lines) {
+    reader.check(exr_get_scanlines_per_chunk(reader.context(), 0, &grid.lines));
+    if (grid.lines <= 0) reader.fail("has no scanlines per chunk");
+    grid.largestPixels =
+        static_cast<std::size_t>(width) * static_cast<std::size_t>(std::min<int64_t>(grid.lines, height));
+    return grid;
+  }
+  if (storage != EXR_STORAGE_TILED) reader.fail("holds deep data; save it as a flat image");
+  grid.tiled = true;
+  reader.check(exr_get_tile_sizes(reader.context(), 0, 0, 0, &grid.tileW, &grid.tileH));
+  if (grid.tileW <= 0 || grid.tileH <= 0) reader.fail("has empty tiles");
+  if ((width + grid.tileW - 1) / grid.tileW * ((height + grid.tileH - 1) / grid.tileH) > count) {
+    reader.fail("has more tiles than chunks");
+  }
+  grid.largestPixels = static_cast<std::size_t>(std::min<int64_t>(grid.tileW, width)) *
+                       static_cast<std::size_t>(std::min<int64_t>(grid.tileH, height));
+  return grid;
+}
+
+// Calls `decode(chunk, x, y)` on each chunk of the grid, with the chunk's
+// first pixel relative to the data window's corner (OpenEXR 3.1 gives a
+// tile's start in tiles, not pixels).
+template <typename Decode>
+void forEachChunk(const ExrReader& reader, const exr_attr_box2i_t& window, const ChunkGrid& grid, Decode decode) {
+  exr_chunk_info_t chunk{};
+  if (!grid.tiled) {
+    for (int64_t y = window.min.y; y <= window.max.y; y += grid.lines) {
       reader.check(exr_read_scanline_chunk_info(reader.context(), 0, static_cast<int>(y), &chunk));
       decode(chunk, 0, y - window.min.y);
     }
     return;
   }
-  if (storage != EXR_STORAGE_TILED) reader.fail("holds deep data; save it as a flat image");
-  int32_t tileW = 0, tileH = 0;
-  reader.check(exr_get_tile_sizes(reader.context(), 0, 0, 0, &tileW, &tileH));
-  if (tileW <= 0 || tileH <= 0) reader.fail("has empty tiles");
   const int64_t width = int64_t{window.max.x} - window.min.x + 1, height = int64_t{window.max.y} - window.min.y + 1;
-  if ((width + tileW - 1) / tileW * ((height + tileH - 1) / tileH) > count) reader.fail("has more tiles than chunks");
-  for (int64_t ty = 0; ty * tileH < height; ++ty) {
-    for (int64_t tx = 0; tx * tileW < width; ++tx) {
+  for (int64_t ty = 0; ty * grid.tileH < height; ++ty) {
+    for (int64_t tx = 0; tx * grid.tileW < width; ++tx) {
       reader.check(
           exr_read_tile_chunk_info(reader.context(), 0, static_cast<int>(tx), static_cast<int>(ty), 0, 0, &chunk));
-      decode(chunk, tx * tileW, ty * tileH);
+      decode(chunk, tx * grid.tileW, ty * grid.tileH);
     }
   }
 }
@@ -142,13 +175,24 @@ float sampleAt(const std::uint8_t* at, std::uint16_t type) {
   return value;
 }
 
-// Decodes one chunk into the float RGB image of the data window (its origin
+// A sample as the decoded image keeps it: the float, or a texture's byte.
+template <typename Texel>
+Texel texel(float sample) {
+  if constexpr (std::is_same_v<Texel, float>) {
+    return sample;
+  } else {
+    return linearTexelByte(sample);
+  }
+}
+
+// Decodes one chunk into the RGB image of the data window (its origin
 // at the window's corner). OpenEXR only reads and decompresses; the samples
 // are taken from its buffer here (line by line, each channel's samples in
 // turn): OpenEXR 3.1's half-to-float routines crashed writing into
 // per-channel planes.
+template <typename Texel>
 void decodeChunk(const ExrReader& reader, const exr_chunk_info_t& chunk, int64_t x0, int64_t y0, int64_t width,
-                 int64_t height, const std::vector<std::string>& channels, std::vector<float>& rgb,
+                 int64_t height, const std::vector<std::string>& channels, std::vector<Texel>& rgb,
                  exr_decode_pipeline_t& pipeline, bool& started) {
   if (chunk.width < 0 || chunk.height < 0 || x0 + chunk.width > width || y0 + chunk.height > height) {
     reader.fail("has a chunk outside its data window");
@@ -175,7 +219,7 @@ void decodeChunk(const ExrReader& reader, const exr_chunk_info_t& chunk, int64_t
         if (channels[k] != info.channel_name) continue;
         for (int64_t x = 0; x < chunk.width; ++x) {
           rgb[static_cast<std::size_t>(((y0 + y) * width + x0 + x) * 3) + k] =
-              sampleAt(data + x * info.bytes_per_element, info.data_type);
+              texel<Texel>(sampleAt(data + x * info.bytes_per_element, info.data_type));
         }
       }
       data += static_cast<std::size_t>(chunk.width) * static_cast<std::size_t>(info.bytes_per_element);
@@ -183,14 +227,9 @@ void decodeChunk(const ExrReader& reader, const exr_chunk_info_t& chunk, int64_t
   }
 }
 
-}  // namespace
-
-bool looksLikeExr(std::string_view bytes) {
-  return bytes.starts_with("\x76\x2f\x31\x01");
-}
-
-FloatPixels decodeExrLinear(std::string_view bytes, const std::string& place,
-                            const std::function<void(int, int)>& admit) {
+template <typename Texel>
+std::vector<Texel> decodeExrTexels(std::string_view bytes, const std::string& place, const DecodeAdmit& admit, int& w,
+                                   int& h) {
   const ExrReader reader(bytes, place);
   int parts = 0;
   reader.check(exr_get_count(reader.context(), &parts));
@@ -199,28 +238,42 @@ FloatPixels decodeExrLinear(std::string_view bytes, const std::string& place,
   reader.check(exr_get_data_window(reader.context(), 0, &window));
   const int64_t width = int64_t{window.max.x} - window.min.x + 1, height = int64_t{window.max.y} - window.min.y + 1;
   if (width <= 0 || height <= 0 || width > INT32_MAX || height > INT32_MAX) reader.fail("has an empty data window");
-  admit(static_cast<int>(width), static_cast<int>(height));
   const std::vector<std::string> channels = colourChannels(reader);
-  FloatPixels pixels{static_cast<int>(width), static_cast<int>(height),
-                     std::vector<float>(static_cast<std::size_t>(width * height * 3), 0.0f)};
+  const ChunkGrid grid = chunkGrid(reader, width, height, bytes.size());
+  // OpenEXR holds a chunk's packed and its unpacked samples while decoding it.
+  admit(static_cast<int>(width), static_cast<int>(height), 2 * grid.largestPixels * sampleBytes(reader));
+  std::vector<Texel> rgb(static_cast<std::size_t>(width * height * 3), Texel{});
   exr_decode_pipeline_t pipeline{};
   bool started = false;
   try {
-    forEachChunk(reader, window, bytes.size(), [&](const exr_chunk_info_t& chunk, int64_t x, int64_t y) {
-      decodeChunk(reader, chunk, x, y, width, height, channels, pixels.rgb, pipeline, started);
+    forEachChunk(reader, window, grid, [&](const exr_chunk_info_t& chunk, int64_t x, int64_t y) {
+      decodeChunk(reader, chunk, x, y, width, height, channels, rgb, pipeline, started);
     });
   } catch (...) {
     if (started) exr_decoding_destroy(reader.context(), &pipeline);
     throw;
   }
   if (started) exr_decoding_destroy(reader.context(), &pipeline);
+  w = static_cast<int>(width);
+  h = static_cast<int>(height);
+  return rgb;
+}
+
+}  // namespace
+
+bool looksLikeExr(std::string_view bytes) {
+  return bytes.starts_with("\x76\x2f\x31\x01");
+}
+
+FloatPixels decodeExrLinear(std::string_view bytes, const std::string& place, const DecodeAdmit& admit) {
+  FloatPixels pixels;
+  pixels.rgb = decodeExrTexels<float>(bytes, place, admit, pixels.width, pixels.height);
   return pixels;
 }
 
-Image decodeExr(std::string_view bytes, const std::string& place, const std::function<void(int, int)>& admit) {
-  const FloatPixels pixels = decodeExrLinear(bytes, place, admit);
-  Image image{pixels.width, pixels.height, std::vector<std::uint8_t>(pixels.rgb.size())};
-  std::transform(pixels.rgb.begin(), pixels.rgb.end(), image.rgb.begin(), linearTexelByte);
+Image decodeExr(std::string_view bytes, const std::string& place, const DecodeAdmit& admit) {
+  Image image;
+  image.rgb = decodeExrTexels<std::uint8_t>(bytes, place, admit, image.width, image.height);
   return image;
 }
 

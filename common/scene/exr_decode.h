@@ -1,10 +1,10 @@
 #pragma once
 
-#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "common/scene/decode_admit.h"
 #include "common/scene/texture.h"
 
 namespace glint {
@@ -23,14 +23,15 @@ struct FloatPixels {
 // scanlines or its tiles' first level, into its linear R, G and B (or Y for
 // all three) as floats.
 // OpenEXR's core library reads it (the C library written to face hostile
-// files, with its own size checks); `admit(width, height)` sees the data
-// window's size before any pixel is read and throws to refuse it. Corrupt
+// files, with its own size checks); `admit` sees the data window's size and
+// the largest chunk's buffers once the chunks are checked against the file,
+// before any pixel is read or the image allocated. Corrupt
 // data, missing colour channels or subsampled channels are an InputError
 // starting with `place`.
-FloatPixels decodeExrLinear(std::string_view bytes, const std::string& place,
-                            const std::function<void(int, int)>& admit);
+FloatPixels decodeExrLinear(std::string_view bytes, const std::string& place, const DecodeAdmit& admit);
 
-// The same image as 8-bit texels, clamped to [0, 1] as every texture reads.
-Image decodeExr(std::string_view bytes, const std::string& place, const std::function<void(int, int)>& admit);
+// The same image as 8-bit texels, clamped to [0, 1] as every texture reads
+// (each sample converted as it is read: no float image is held).
+Image decodeExr(std::string_view bytes, const std::string& place, const DecodeAdmit& admit);
 
 }  // namespace glint

@@ -1,12 +1,15 @@
 #include "common/scene/gltf_lights.h"
 
 #include <cmath>
+#include <limits>
 
 #include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
 #include <nlohmann/json.hpp>
 
 #include "common/base/error.h"
 #include "common/math/circular.h"
+#include "common/math/finite.h"
 #include "common/scene/gltf_json.h"
 #include "common/scene/gltf_nodes.h"
 
@@ -25,10 +28,15 @@ const json& member(const json& j, const char* key) {
   return it == j.end() ? kNone : *it;
 }
 
+// A number as the renderer holds it: a float (a double beyond float's
+// range would become infinite).
 float finite(const json& value, float fallback, const std::string& what) {
   if (value.is_null()) return fallback;
   if (!value.is_number() || !std::isfinite(value.get<double>())) throw InputError(what + " is not a number");
-  return value.get<float>();
+  if (std::abs(value.get<double>()) > std::numeric_limits<float>::max()) {
+    throw InputError(what + " is beyond a float's range (3.4e38)");
+  }
+  return static_cast<float>(value.get<double>());
 }
 
 // The light of entry `light` as placed by `world`.
@@ -44,10 +52,17 @@ Light fromEntry(const json& entry, const glm::mat4& world, const std::string& pl
   for (std::size_t k = 0; k < 3; ++k) {
     light.color[static_cast<int>(k)] = (color.is_null() ? 1.0f : finite(color[k], 1.0f, place + ": color")) * intensity;
   }
+  if (!(intensity >= 0.0f) || glm::any(glm::lessThan(light.color, glm::vec3(0.0f)))) {
+    throw InputError(place + ": its color and intensity must not be negative");
+  }
+  if (!allFinite(light.color)) throw InputError(place + ": its color times its intensity is beyond a float's range");
   light.position = glm::vec3(world * glm::vec4(0, 0, 0, 1));
   const glm::vec3 axis(world * glm::vec4(0, 0, -1, 0));
+  if (!allFinite(light.position) || !allFinite(axis)) {
+    throw InputError(place + ": its node's transform is beyond a float's range");
+  }
   if (!(glm::length(axis) > 0.0f)) throw InputError(place + ": its node's transform has no direction");
-  light.direction = glm::normalize(axis);
+  light.direction = glm::vec3(glm::normalize(glm::dvec3(axis)));  // in double: the axis may be 1e38 long
   light.attenuation = {0.0f, 0.0f, 1.0f};
   if (type == "point") {
     light.type = LightType::kPoint;

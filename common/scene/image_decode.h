@@ -12,9 +12,11 @@ namespace glint {
 // Decodes a PNG, BMP, JPEG, TGA, Radiance HDR or OpenEXR image held in
 // memory into 8-bit RGB texels (an HDR or EXR image's linear values clamped
 // to [0, 1]). The size its header gives is checked against the texture
-// limit and charged to the budget before anything is decoded. Images wider or taller than their data,
-// corrupt, or over a limit are rejected with an InputError that starts with
-// `place`.
+// limit, and the file's structure against that size (image_checks.h), before
+// anything is decoded; the budget is charged then with the texels the image
+// keeps and the decoder's working buffers, which it holds until the decode
+// returns. Images wider or taller than their data, corrupt, or over a limit
+// are rejected with an InputError that starts with `place`.
 Image decodeImage(std::string_view bytes, const std::string& place, SceneBudget& budget);
 
 // Whether the bytes start as a Radiance HDR file does.

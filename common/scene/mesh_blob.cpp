@@ -264,6 +264,7 @@ MeshModel decodeMeshBlob(std::string_view bytes, const std::string& place, Scene
   if (lights > r.remaining()) r.fail("announces more lights than it holds");
   for (std::uint32_t i = 0; i < lights; ++i) model.lights.push_back(readLight(r));
   if (r.remaining() != 0) r.fail("has bytes after its last mesh");
+  checkImportedModel(model, place);
   return model;
 }
 

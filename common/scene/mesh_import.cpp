@@ -39,6 +39,7 @@ MeshModel importMeshFile(FileSource& files, const std::string& path, const std::
       model.camera = gltfCamera(bytes, place + ": '" + path + "'");
       model.lights = gltfLights(bytes, place + ": '" + path + "'");
     }
+    checkImportedModel(model, place + ": '" + path + "'");  // as decodeMeshBlob does on a server
     files.keepImported(path, encodeMeshBlob(model));  // always with its materials, whoever asks next
   }
   if (!withMaterials) {

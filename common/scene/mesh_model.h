@@ -25,4 +25,11 @@ struct MeshModel {
   std::vector<Light> lights;          // a glTF file's KHR_lights_punctual lights
 };
 
+// Refuses, with an InputError starting with `place`, what the renderer
+// cannot take from an imported file, whether an importer read it (glint) or
+// it arrived as a blob (glintd), so that both give one verdict: a material's
+// colour or emission not finite or negative, a vertex colour not finite, a
+// light's colour not finite or negative or its position not finite.
+void checkImportedModel(const MeshModel& model, const std::string& place);
+
 }  // namespace glint

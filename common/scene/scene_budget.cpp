@@ -51,10 +51,10 @@ SceneBudget::~SceneBudget() {
   if (shared_) shared_->give(used_);
 }
 
-void SceneBudget::charge(std::size_t bytes, const std::string& place) {
+void SceneBudget::charge(std::size_t bytes, const std::string& place, const char* when) {
   const std::size_t total = used_ + bytes;
   if (bytes > limits_.maxSceneBytes || total > limits_.maxSceneBytes) {
-    throw InputError(place + ": the scene would hold " + mib(total) + " once built, " +
+    throw InputError(place + ": the scene would hold " + mib(total) + " " + when + ", " +
                      mib(total - limits_.maxSceneBytes) + " over " + limitName_ + " of " +
                      mib(limits_.maxSceneBytes));
   }

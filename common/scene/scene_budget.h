@@ -66,7 +66,8 @@ class SceneBudget {
   const LoadLimits& limits() const { return limits_; }
   std::size_t used() const { return used_; }
 
-  void charge(std::size_t bytes, const std::string& place);
+  // `when` the scene would hold the bytes, in its error.
+  void charge(std::size_t bytes, const std::string& place, const char* when = "once built");
   void chargeImage(int width, int height, const std::string& place, std::size_t bytesPerTexel = kBytesPerTexel);
   void chargeMesh(std::size_t vertices, std::size_t triangles, const std::string& place);
   void chargeSphere(const std::string& place);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <map>
+#include <sstream>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -344,9 +345,19 @@ class SceneLoader {
   static void readArea(const JsonReader& l, Light& light) {
     light.u = l["u"].vec3();
     light.v = l["v"].vec3();
+    // The squared area in double says whether the edges are parallel; in
+    // float, the renderer's type, whether it can be computed at all.
+    const glm::dvec3 exact = glm::cross(glm::dvec3(light.u), glm::dvec3(light.v));
+    const double area = std::sqrt(glm::dot(exact, exact));
+    if (!(area > 0.0)) l["v"].fail("must not be parallel to u (the light needs an area)");
     const glm::vec3 normal = glm::cross(light.u, light.v);
-    const float area2 = glm::dot(normal, normal);  // the squared area
-    if (!(area2 > 0.0f) || !std::isfinite(area2)) l["v"].fail("must not be parallel to u (the light needs an area)");
+    const float area2 = glm::dot(normal, normal);
+    if (!(area2 > 0.0f) || !std::isfinite(area2)) {
+      std::ostringstream why;
+      why << "with u spans an area of " << area << ", " << (area > 1.0 ? "above" : "below")
+          << " what a float holds squared (1e-19 to 1e19): scale the light and the scene";
+      l["v"].fail(why.str());
+    }
     readSamples(l, light);
   }
 

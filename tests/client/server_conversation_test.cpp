@@ -168,7 +168,7 @@ TEST_F(ServerConversationTest, ErrorsSayWhetherTheSceneOrTheServerFailed) {
   const proto::Decoded d =
       proto::decodeFrame(proto::encodeError(wire::ErrorCode::Busy, "full"), proto::kDefaultMaxMessageBytes, aligned_);
   busy.handle(*d.message);
-  EXPECT_EQ(busyHost.failures.at(0).kind, LinkFailure::Kind::kRefused);
+  EXPECT_EQ(busyHost.failures.at(0).kind, LinkFailure::Kind::kBusy);
 }
 
 TEST_F(ServerConversationTest, AWaitThatRunsOutNamesWhatItWaitedFor) {

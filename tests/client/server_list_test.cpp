@@ -46,6 +46,28 @@ TEST(ServerList, WhatCannotBeAServerIsNamed) {
   EXPECT_NE(errorOf({","}).find("--server: no address given"), std::string::npos);
 }
 
+// A server file's lines reach the terminal in the warnings only escaped:
+// an ESC sequence in a line cannot recolour or rewrite the user's terminal.
+TEST(ServerList, ALinesControlBytesAreEscapedInItsError) {
+  const auto entries = parseServerFile("\x1b[2J\x1b[31mevil.invalid:7878\n", "farm.txt");
+  ASSERT_EQ(entries.size(), 1u);
+  std::string error = "(no error)";
+  try {
+    resolveEntries(entries);
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  EXPECT_EQ(error.find('\x1b'), std::string::npos) << error;
+  EXPECT_NE(error.find("farm.txt:1 \\x1b[2J\\x1b[31mevil.invalid:7878: cannot resolve"), std::string::npos) << error;
+  try {
+    resolveEntries(parseServerFile("\x1b]0;title\x07:99999\n", "farm.txt"));
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  EXPECT_EQ(error.find('\x1b'), std::string::npos) << error;
+  EXPECT_NE(error.find("\\x1b]0;title\\x07:99999: expected HOST:PORT"), std::string::npos) << error;
+}
+
 TEST(ServerList, AServerFileIsOneEntryALineNamedByItsLine) {
   const auto entries = parseServerFile("# farm\n\n a:1 \nb:2,c:3 # rack 2\r\n#d:4\n", "farm.txt");
   ASSERT_EQ(entries.size(), 2u);

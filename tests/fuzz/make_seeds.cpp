@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -23,6 +24,7 @@
 #include "tests/fuzz/fuzz_files.h"
 #include "tests/fuzz/server_link_script.h"
 #include "tests/support/hostile_frames.h"
+#include "tests/support/hostile_images.h"
 
 namespace {
 
@@ -173,6 +175,7 @@ void exrSeeds() {
     out.writeTiles(0, out.numXTiles() - 1, 0, out.numYTiles() - 1);
   }
   write("image", "small-tiled.exr", readFile(path));
+  write("image", "large-window-few-chunks.exr", test::exrWithLargeWindow(readFile(path)));
   fs::remove(path);
 }
 
@@ -196,6 +199,8 @@ void objAndImageSeeds() {
   sun.type = LightType::kDirectional;
   lit.lights = {Light{}, spot, sun};
   write("mesh_blob", "cube-with-lights", encodeMeshBlob(lit));
+  lit.materials.at(0).emission.x = std::numeric_limits<float>::infinity();  // refused: checkImportedModel
+  write("mesh_blob", "cube-emitting-infinity", encodeMeshBlob(lit));
   FrameImage image{4, 3, Bytes(36)};
   for (std::size_t i = 0; i < image.rgb.size(); ++i) image.rgb[i] = static_cast<std::uint8_t>(i * 7);
   const fs::path png = fs::temp_directory_path() / "glint-seed.png";
@@ -215,6 +220,9 @@ void objAndImageSeeds() {
   write("image", "small.jpg", jpeg);
   write("image", "small.tga", tga);
   write("image", "small.hdr", hdr);
+  // Files that claim more than their bytes are worth (tests/support/hostile_images.h).
+  write("image", "truncated-8192.hdr", test::truncatedRadiance());
+  write("image", "progressive-190-scans.jpg", test::progressiveJpeg(16, 2));
   exrSeeds();
 }
 

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "common/base/error.h"
+#include "tests/support/hostile_images.h"
 #include "tests/support/test_support.h"
 
 namespace glint {
@@ -139,6 +140,36 @@ TEST(ExrDecode, AnImageOverTheTextureLimitIsRefusedBeforeDecoding) {
   const std::string error = decodeError(tiledExr(), budget);
   EXPECT_NE(error.find("image of 37x21 pixels is over the limit"), std::string::npos) << error;
   EXPECT_EQ(budget.used(), 0u);
+}
+
+
+// A tiled file whose data window says 8192 x 8192 in 16 x 8 tiles (524,288
+// chunks) with the offsets of 9 after it: the chunk count is checked against
+// the file before the image is admitted or allocated (786 MiB of floats were
+// allocated before the check).
+TEST(ExrDecode, MoreChunksThanTheFileHoldsAreRefusedBeforeAnythingIsAllocated) {
+  const std::string bytes = test::exrWithLargeWindow(tiledExr());
+  ASSERT_NE(bytes, tiledExr());
+  SceneBudget budget;
+  const std::string error = decodeError(bytes, budget);
+  EXPECT_NE(error.find("t.exr: OpenEXR image has more chunks than bytes"), std::string::npos) << error;
+  EXPECT_EQ(budget.used(), 0u);
+}
+
+// OpenEXR's buffers for a chunk (packed and unpacked) count against the
+// scene's limit while the file decodes, beside the texels the image keeps;
+// the texture is decoded straight to its bytes, with no float image held.
+TEST(ExrDecode, TheChunksBuffersAreChargedWhileItDecodes) {
+  const std::size_t texels = std::size_t{kWidth} * kHeight * SceneBudget::kBytesPerTexel;
+  LoadLimits tight;
+  tight.maxSceneBytes = texels;
+  SceneBudget budget(tight);
+  const std::string error = decodeError(tiledExr(), budget);
+  EXPECT_NE(error.find("t.exr: the scene would hold"), std::string::npos) << error;
+  EXPECT_NE(error.find("while it decodes"), std::string::npos) << error;
+  SceneBudget roomy;
+  expectTexels(decodeImage(tiledExr(), "t.exr", roomy));
+  EXPECT_EQ(roomy.used(), texels);
 }
 
 }  // namespace

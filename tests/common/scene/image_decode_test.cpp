@@ -14,6 +14,8 @@
 #include <stb_image_write.h>
 
 #include "common/base/error.h"
+#include "common/scene/jpeg_decode.h"
+#include "tests/support/hostile_images.h"
 #include "tests/support/test_support.h"
 
 namespace glint {
@@ -158,6 +160,78 @@ TEST(ImageDecode, BmpShorterThanItsRowsIsRefusedBeforeDecoding) {
 TEST(ImageDecode, BmpCutInsideItsHeaderIsRefused) {
   const std::string cut = test::bmp(1, 1, true).substr(0, 27);
   EXPECT_NE(decodeError(cut).find("BMP header of 27 bytes (truncated)"), std::string::npos) << decodeError(cut);
+}
+
+
+// A Radiance header announcing 8192 x 8192 pixels, one run-length row after
+// it: stb_image allocated 768 MiB of floats and filled the missing rows
+// black. Rows are now walked as stb_image reads them, before it runs: a
+// file written whole decodes (run-length rows here, flat rows in
+// JpegTgaAndHdrDecodeToTheTexelsWritten's narrower image), one cut short
+// anywhere is refused.
+TEST(ImageDecode, ARadianceFileShorterThanItsRowsIsRefusedBeforeDecoding) {
+  const std::string bomb = test::truncatedRadiance();
+  const long before = peakVirtualKb();
+  const std::string error = decodeError(bomb);
+  EXPECT_NE(error.find("Radiance HDR image of 8192x8192 holds 1 of its rows"), std::string::npos) << error;
+  EXPECT_LT(peakVirtualKb() - before, 16 * 1024);
+
+  std::vector<float> linear(64 * 5 * 3, 0.5f);
+  std::string hdr;
+  ASSERT_NE(stbi_write_hdr_to_func(appendTo, &hdr, 64, 5, 3, linear.data()), 0);
+  SceneBudget budget;
+  EXPECT_EQ(decodeImage(hdr, "t.hdr", budget).rgb.size(), linear.size());
+  for (const std::size_t cut : {std::size_t{1}, std::size_t{5}, std::size_t{30}}) {  // of 60 bytes of pixels
+    const std::string error = decodeError(hdr.substr(0, hdr.size() - cut));
+    EXPECT_NE(error.find("Radiance HDR image of 64x5 holds"), std::string::npos) << cut << ": " << error;
+  }
+}
+
+// Each scan passes over the whole component: a file of 2,082 scans kept
+// glintd's build busy for half a minute at 8192 x 8192. Up to kMaxJpegScans
+// scans decode; one more is refused.
+TEST(ImageDecode, AJpegOfTooManyScansIsRefused) {
+  SceneBudget budget;
+  const Image fine = decodeImage(test::progressiveJpeg(64, 0), "t.jpg", budget);  // 64 scans
+  EXPECT_EQ(fine.rgb.size(), 64u * 64u * 3u);
+  const std::string bomb = test::progressiveJpeg(64, 2);  // 190 scans
+  const std::string error = decodeError(bomb);
+  EXPECT_NE(error.find("t.png: not a readable JPEG image (more than " + std::to_string(kMaxJpegScans) + " scans)"),
+            std::string::npos)
+      << error;
+}
+
+// What each decoder holds while it decodes counts against the scene's limit
+// before it is allocated, beside what the image keeps (3 bytes a texel),
+// and is given back when it is done: stb_image's buffers (PNG, HDR's
+// floats), libjpeg's coefficients of a progressive file. With room for the
+// texels alone each is refused while it would decode; with room for both,
+// the texels alone stay charged.
+TEST(ImageDecode, DecodersBuffersAreChargedWhileTheyDecode) {
+  constexpr int kSide = 64;
+  std::vector<std::uint8_t> rgb(kSide * kSide * 3, 90);
+  std::vector<float> linear(rgb.size(), 0.3f);
+  std::string png, hdr;
+  ASSERT_NE(stbi_write_png_to_func(appendTo, &png, kSide, kSide, 3, rgb.data(), kSide * 3), 0);
+  ASSERT_NE(stbi_write_hdr_to_func(appendTo, &hdr, kSide, kSide, 3, linear.data()), 0);
+  const std::size_t texels = std::size_t{kSide} * kSide * SceneBudget::kBytesPerTexel;
+  for (const auto& [name, bytes] : {std::pair<const char*, std::string>{"png", png}, {"hdr", hdr},
+                                    {"progressive jpeg", test::progressiveJpeg(kSide, 0)}}) {
+    LoadLimits tight;
+    tight.maxSceneBytes = texels;
+    SceneBudget budget(tight);
+    std::string error;
+    try {
+      decodeImage(bytes, "t", budget);
+    } catch (const InputError& e) {
+      error = e.what();
+    }
+    EXPECT_NE(error.find("t: the scene would hold"), std::string::npos) << name << ": " << error;
+    EXPECT_NE(error.find("while it decodes"), std::string::npos) << name << ": " << error;
+    SceneBudget roomy;
+    EXPECT_EQ(decodeImage(bytes, "t", roomy).rgb.size(), rgb.size()) << name;
+    EXPECT_EQ(roomy.used(), texels) << name;
+  }
 }
 
 }  // namespace

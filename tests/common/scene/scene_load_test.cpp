@@ -220,6 +220,16 @@ TEST(SceneLoad, BadScenesNameThePlace) {
          j["lights"][0] = {{"type", "area"}, {"position", {0, 3, 0}}, {"u", {1, 0, 0}}, {"v", {2, 0, 0}}};
        },
        "lights[0].v: must not be parallel to u"},
+      {"area light too large for a float",
+       [](json& j) {
+         j["lights"][0] = {{"type", "area"}, {"position", {0, 3, 0}}, {"u", {1e38, 0, 0}}, {"v", {0, 0, 1e38}}};
+       },
+       "lights[0].v: with u spans an area of 1e+76, above what a float holds squared"},
+      {"area light too small for a float",
+       [](json& j) {
+         j["lights"][0] = {{"type", "area"}, {"position", {0, 3, 0}}, {"u", {1e-30, 0, 0}}, {"v", {0, 0, 1e-30}}};
+       },
+       "lights[0].v: with u spans an area of 1e-60, below what a float holds squared"},
       {"area light samples", [](json& j) {
          j["lights"][0] = {{"type", "area"}, {"position", {0, 3, 0}}, {"u", {1, 0, 0}}, {"v", {0, 0, 1}},
                            {"samples", 0}};
@@ -375,9 +385,12 @@ TEST(SceneLoad, SceneBudgetCountsEveryTextureMeshAndSphere) {
     files.add(name + ".bmp", test::bmp(1024, 1024, true));  // 3 MiB of texels each
     j["textures"][name] = {{"type", "image"}, {"file", name + ".bmp"}};
   }
+  // Each decode holds stb_image's 3 MiB of pixels and 3 MiB of RGB beside
+  // the texels kept: three fit, the fourth does not while it decodes.
   LoadLimits limits;
-  limits.maxSceneBytes = std::size_t{10} << 20;  // three fit, the fourth does not
-  EXPECT_NE(loadError(j.dump(), files, limits).find("textures.d.file: the scene would hold 12.0 MiB once built, 2.0 MiB over"),
+  limits.maxSceneBytes = std::size_t{16} << 20;
+  EXPECT_NE(loadError(j.dump(), files, limits)
+                .find("textures.d.file: the scene would hold 18.0 MiB while it decodes, 2.0 MiB over"),
             std::string::npos)
       << loadError(j.dump(), files, limits);
   // One file named by all four textures is decoded, and counted, once.
