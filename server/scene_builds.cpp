@@ -1,17 +1,21 @@
 #include "server/scene_builds.h"
 
+#include <algorithm>
+
 namespace glint::server {
 
-SceneBuilds::SceneBuilds(std::size_t maxSceneBytes, MemoryGauge& buildMemory)
-    : maxSceneBytes_(maxSceneBytes), buildMemory_(buildMemory), thread_([this] { run(); }) {}
+SceneBuilds::SceneBuilds(std::size_t maxSceneBytes, MemoryGauge& buildMemory, int threads)
+    : maxSceneBytes_(maxSceneBytes), buildMemory_(buildMemory) {
+  for (int i = 0; i < std::max(threads, 1); ++i) threads_.emplace_back([this] { run(); });
+}
 
 SceneBuilds::~SceneBuilds() {
   {
     std::lock_guard lock(mutex_);
     stopping_ = true;
   }
-  wake_.notify_one();
-  thread_.join();
+  wake_.notify_all();
+  for (std::thread& t : threads_) t.join();
 }
 
 std::size_t SceneBuilds::built() const {

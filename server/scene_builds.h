@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <condition_variable>
 #include <cstddef>
 #include <deque>
@@ -14,22 +15,30 @@
 
 namespace glint::server {
 
-// glintd's scene builds, on a thread of their own so that a long or hostile
+// glintd's scene builds, on threads of their own so that a long or hostile
 // build never holds a tracing thread: tiles of every client go on while a
-// scene is parsed and its BVH built. A scene whose build is queued or running
-// is built once for every client that uploads it meanwhile; a scene refused
-// for what it is (not for memory that other builds held at the time, nor
-// for bytes that were not its hash's) is refused again at once when it
-// comes back, without a second parse.
+// scene is parsed and its BVH built; several builds run at once, so that
+// one long build does not hold every new scene back (a client has at most
+// one build queued or running: Session). A scene whose build is queued or
+// running is built once for every client that uploads it meanwhile; a
+// scene refused for what it is (not for memory that other builds held at
+// the time, nor for bytes that were not its hash's) is refused again at
+// once when it comes back, without a second parse.
 class SceneBuilds {
  public:
   // Told on the builder thread; post to the I/O thread from there.
   using Done = std::function<void(const BuiltScene&)>;
   // Refusals remembered, the most recent.
   static constexpr std::size_t kRefusalsRemembered = 64;
+  // The builds glintd runs at once beside `tracing` tracing threads: one for
+  // every two, at least one, at most kMaxThreads (each may hold up to
+  // --max-scene-mb of the builds' memory).
+  static constexpr int kMaxThreads = 4;
+  static int threadsBeside(int tracing) { return std::clamp(tracing / 2, 1, kMaxThreads); }
 
-  SceneBuilds(std::size_t maxSceneBytes, MemoryGauge& buildMemory);
-  // Finishes the build running; the ones queued are dropped untold.
+  // `threads` builds run at once (at least one), drawing on buildMemory.
+  SceneBuilds(std::size_t maxSceneBytes, MemoryGauge& buildMemory, int threads = 1);
+  // Finishes the builds running; the ones queued are dropped untold.
   ~SceneBuilds();
   SceneBuilds(const SceneBuilds&) = delete;
   SceneBuilds& operator=(const SceneBuilds&) = delete;
@@ -53,7 +62,7 @@ class SceneBuilds {
   std::deque<proto::SceneHash> refusedOrder_;  // oldest first
   std::size_t built_ = 0;
   bool stopping_ = false;
-  std::thread thread_;  // last: starts once the rest is made
+  std::vector<std::thread> threads_;  // last: they start once the rest is made
 };
 
 }  // namespace glint::server

@@ -33,7 +33,7 @@ struct ServerContext {
 
 // glintd: accepts clients, holds the scene cache and the tile scheduler.
 // All socket I/O runs on the thread that calls run(); tracing runs on the
-// scheduler's pool, scene builds on a thread of their own (SceneBuilds).
+// scheduler's pool, scene builds on threads of their own (SceneBuilds).
 class Server {
  public:
   // Checks the options and binds the listening socket; throws InputError

@@ -21,6 +21,7 @@
 #include "server/log.h"
 #include "tests/support/test_support.h"
 #include "tests/support/hostile_frames.h"
+#include "tests/support/hostile_images.h"
 #include "tests/support/glintd_process.h"
 #include "tests/server/raw_client.h"
 
@@ -257,6 +258,51 @@ TEST(HostileClient, TheCostliestSceneJsonStaysUnderAGigabyte) {
   const long heldKb = glintd.residentKb() - before;
   std::printf("held after: %ld MiB above the start\n", heldKb / 1024);
   EXPECT_LT(heldKb, 256 * 1024);
+}
+
+// Images whose headers claim far more than their bytes hold, uploaded as
+// textures under glintd's memory limits (the limits of the probe that found
+// them): each is refused within seconds, glintd's peak grows by a fraction
+// of what the claim would have cost (a 575-byte Radiance file announcing
+// 8192 x 8192 grew it by 1.57 GB; a progressive JPEG's coefficients were not
+// counted: 8192 x 8192 grew it by 590 MB), and a good client is served after
+// each.
+TEST(HostileClient, ImagesClaimingMoreThanTheyHoldCostLittle) {
+  GlintdProcess glintd({"--threads", "2", "--max-scene-mb", "256", "--cache-mb", "256", "--max-memory-mb", "768"});
+  struct Upload {
+    const char* file;
+    std::string bytes;
+    const char* says;
+  };
+  const Upload uploads[] = {
+      {"big.hdr", glint::test::truncatedRadiance(), "Radiance HDR image of 8192x8192 holds 1 of its rows"},
+      // 8192 x 8192: 192 MiB of texels and 128 MiB of coefficients
+      {"big.jpg", glint::test::progressiveJpeg(8192, 0), "the scene would hold 320.3 MiB while it decodes"},
+      {"many.jpg", glint::test::progressiveJpeg(64, 2), "more than 128 scans"},
+  };
+  for (const Upload& u : uploads) {
+    const proto::SceneBundle bundle{R"({"glint": 1, "image": {"width": 4, "height": 4},
+        "camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0]},
+        "textures": {"t": {"type": "image", "file": ")" + std::string(u.file) + R"("}},
+        "materials": {"m": {"texture": "t"}},
+        "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})",
+                                    {{u.file, u.bytes}}};
+    const long before = glintd.peakResidentKb();
+    const auto start = std::chrono::steady_clock::now();
+    RawClient c(glintd.port(), 30s);
+    ASSERT_TRUE(c.hello());
+    for (const auto& frame : proto::encodeFullUpload(bundle)) c.write(frame);
+    const auto [code, text] = c.readError();
+    EXPECT_EQ(code, wire::ErrorCode::BadScene) << u.file;
+    EXPECT_NE(text.find(u.says), std::string::npos) << text;
+    EXPECT_LT(std::chrono::steady_clock::now() - start, 10s) << u.file;
+    const long grownKb = glintd.peakResidentKb() - before;
+    std::printf("%s: refused, glintd's peak grew by %ld KiB\n", u.file, grownKb);
+    // The JPEG's 14 MB arrive and are kept (read buffer, bundle, file
+    // store): 72 MiB; its decode would have taken 320 MiB more.
+    EXPECT_LT(grownKb, 128 * 1024) << u.file;
+    EXPECT_EQ(renderRoom(glintd.address()).width, 48) << u.file;
+  }
 }
 
 // One image named by 64 textures is decoded and counted once: the scene

@@ -61,6 +61,26 @@ TEST_F(SceneBuildsTest, UploadsOfOneSceneWhileItIsQueuedAreBuiltOnce) {
   EXPECT_FALSE(first.future.get().error.empty());
 }
 
+// With two threads a long build does not hold a second one back.
+TEST(SceneBuildsThreads, TwoThreadsBuildTwoScenesAtOnce) {
+  MemoryGauge gauge{std::size_t{1} << 30, "the test gauge"};
+  SceneBuilds two{std::size_t{1} << 30, gauge, 2};
+  std::promise<void> release;
+  std::shared_future<void> released = release.get_future().share();
+  Outcome held, other;
+  two.build(job(proto::SceneBundle{"{}", {}}), [&, released](const BuiltScene& built) {
+    released.wait();
+    held.promise.set_value(built);
+  });
+  two.build(job(room()), other.done());
+  EXPECT_EQ(other.future.wait_for(std::chrono::seconds(30)), std::future_status::ready);  // while the first is held
+  release.set_value();
+  held.future.get();
+  EXPECT_EQ(SceneBuilds::threadsBeside(2), 1);
+  EXPECT_EQ(SceneBuilds::threadsBeside(8), 4);
+  EXPECT_EQ(SceneBuilds::threadsBeside(64), SceneBuilds::kMaxThreads);
+}
+
 TEST_F(SceneBuildsTest, ASceneRefusedForWhatItIsIsRefusedAgainWithoutABuild) {
   const proto::SceneBundle bad{R"({"glint": 1, "objects": [{"type": "sphere", "radius": -1}]})", {}};
   Outcome once, again;

@@ -2,13 +2,15 @@
 
 // Image files that claim more work or memory than their bytes are worth,
 // for the decoders' tests and the image fuzzer's seeds.
-#include <jpeglib.h>
-
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
+#include <cstdio>  // jpeglib.h needs FILE and size_t declared first
 #include <cstdlib>
 #include <string>
 #include <vector>
+
+#include <jpeglib.h>
 
 namespace glint::test {
 
