@@ -41,8 +41,7 @@ glm::vec3 Tracer::reflectedDirection(const Ray& ray, const ShadingPoint& at, con
                                      const MaterialEffects& e, const Path& path) const {
   if (!e.glossy) return mirrorDirection(ray.d, at.s.ns, at.s.ng);
   const int first = lobeDimension(at.depth);
-  return glossyDirection(ray.d, at.s.ns, at.s.ng, m.roughness,
-                         {path.key.uniform(first), path.key.uniform(first + 1)});
+  return glossyDirection(ray.d, at.s.ns, at.s.ng, m.roughness, {path.key.uniform(first), path.key.uniform(first + 1)});
 }
 
 glm::vec3 Tracer::radiance(const Ray& ray, const SampleKey& key, RayStats& stats) const {
@@ -60,9 +59,13 @@ glm::vec3 Tracer::emitted(const Material& m, const glm::vec2& uv) const {
   return m.emissionTexture >= 0 ? m.emission * scene_.textures[m.emissionTexture].evaluate(uv) : m.emission;
 }
 
-glm::vec3 Tracer::liftedOrigin(const Hit& hit, const SurfaceHit& s) const {
-  const Geometry::LiftedPoint p = scene_.geometry.lifted(hit, s);
-  return offsetRayOrigin(p.p, p.error, s.ng);
+inline const glm::vec3& Tracer::shadowFrom(const ShadingPoint& at, const glm::vec3& d) const {
+  if (glm::dot(d, at.s.ng) > 0.0f) return at.outside;
+  if (!at.lifted) {
+    const Geometry::LiftedPoint p = scene_.geometry.lifted(at.hit, at.s);
+    at.lifted = offsetRayOrigin(p.p, p.error, at.s.ng);
+  }
+  return *at.lifted;
 }
 
 inline std::optional<Tracer::Direction> Tracer::towards(const ShadingPoint& at, const glm::vec3& position) const {
@@ -107,9 +110,9 @@ inline bool Tracer::blocked(const ShadingPoint& at, const Light& l, Path& path) 
   ++path.stats.shadow;
   bool hit = false;
   if (l.type == LightType::kDirectional) {
-    hit = bvh_.occluded(Ray(at.shadowFrom(-l.direction), -l.direction), kInfinity);
+    hit = bvh_.occluded(Ray(shadowFrom(at, -l.direction), -l.direction), kInfinity);
   } else {
-    const glm::vec3& from = at.shadowFrom(l.position - at.outside);
+    const glm::vec3& from = shadowFrom(at, l.position - at.outside);
     const glm::vec3 fromOrigin = l.position - from;
     const float shadowDistance = glm::length(fromOrigin);
     hit = bvh_.occluded(Ray(from, fromOrigin / shadowDistance), shadowDistance);
@@ -133,7 +136,7 @@ void Tracer::addAreaLight(const ShadingPoint& at, const Surface& f, int light, P
   }
   const auto target = [&](int k, const glm::vec2& u) -> std::optional<Direction> {
     const glm::vec3 q = a.jittered(k, u);
-    const glm::vec3 fromOrigin = q - at.shadowFrom(q - at.outside);
+    const glm::vec3 fromOrigin = q - shadowFrom(at, q - at.outside);
     const float distance = glm::length(fromOrigin);
     if (!(distance > 0.0f) || !a.lights(q, at.s.p)) return std::nullopt;
     return Direction{fromOrigin / distance, distance};
@@ -152,7 +155,8 @@ void Tracer::addSphereLight(const ShadingPoint& at, const Surface& f, int light,
   addPhong(at, f, *d, lightIntensity(l.color, l.attenuation, d->distance), lit);
   if (lit == glm::vec3(0.0f)) return;
   // A point in the ball sees no cone: the centre's light stands.
-  const std::optional<SphereLightView> view = SphereLightView::from(l.position, l.radius, at.shadowFrom(l.position - at.outside));
+  const std::optional<SphereLightView> view =
+      SphereLightView::from(l.position, l.radius, shadowFrom(at, l.position - at.outside));
   if (!plan_.shadows || !view) {
     result += lit;
     return;
@@ -182,7 +186,7 @@ float Tracer::visibleShare(const ShadingPoint& at, int light, int count, Path& p
     const float w = weight(cosine, d->distance);
     total += w;
     ++path.stats.shadow;
-    if (bvh_.occluded(Ray(at.shadowFrom(d->l), d->l), d->distance)) {
+    if (bvh_.occluded(Ray(shadowFrom(at, d->l), d->l), d->distance)) {
       ++path.stats.shadowBlocked;
     } else {
       open += w;
@@ -198,8 +202,7 @@ glm::vec3 Tracer::shade(const ShadingPoint& at, const Material& m, const Materia
   // a textured material's colour is 1 unless given, and 1 x t is t exactly).
   // A mesh's vertex colours multiply both (glTF's COLOR_0).
   const SurfaceHit& s = at.s;
-  const glm::vec3 base =
-      e.textured && m.texture >= 0 ? m.color * scene_.textures[m.texture].evaluate(s.uv) : m.color;
+  const glm::vec3 base = e.textured && m.texture >= 0 ? m.color * scene_.textures[m.texture].evaluate(s.uv) : m.color;
   const Surface f{plan_.vertexColors ? base * s.color : base, m, e};
   glm::vec3 result = phongAmbient(f.color, m.ambient);
   if (e.emits) result += emitted(m, s.uv);
@@ -225,7 +228,7 @@ glm::vec3 Tracer::trace(const Ray& ray, int depth, float weight, bool inside, Pa
   const MaterialEffects& e = plan_.materials[material];
   const SurfaceHit s = scene_.geometry.surface(ray, *hit, e.textured, plan_.vertexColors);
   const glm::vec3 outside = offsetRayOrigin(s.p, s.error, s.ng);
-  const ShadingPoint at{s, outside, plan_.shadows && e.direct ? liftedOrigin(*hit, s) : outside, -ray.d, depth};
+  const ShadingPoint at{s, *hit, outside, std::nullopt, -ray.d, depth};
   glm::vec3 color = shade(at, m, e, path);
   if (depth >= tracing_.maxDepth || !(e.reflects || e.refracts)) return color;
 

@@ -1,6 +1,5 @@
 #pragma once
 
-#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 #include <optional>
@@ -43,20 +42,17 @@ class Tracer {
     SampleKey key;
     RayStats& stats;
   };
-  // Where a ray leaves a hit: the surface, the origin of rays on the side of
-  // its geometric normal (shadow and reflected rays), that origin lifted
-  // onto the smooth surface (Geometry::lifted), the way to the viewer.
+  // Where a ray leaves a hit: the surface and the hit it came from, the
+  // origin of rays on the side of its geometric normal (shadow and reflected
+  // rays), that origin lifted onto the smooth surface once a shadow ray
+  // needs it (shadowFrom), the way to the viewer.
   struct ShadingPoint {
     const SurfaceHit& s;
+    const Hit& hit;
     glm::vec3 outside;
-    glm::vec3 lifted;
+    mutable std::optional<glm::vec3> lifted;
     glm::vec3 toViewer;
     int depth;
-    // The origin of a shadow ray along `d` (from `outside`): `outside` where
-    // d leaves the triangle's outer side; where d passes behind the flat
-    // triangle (a light its smooth normal still faces), the lifted point,
-    // so that the triangles around do not shadow it.
-    const glm::vec3& shadowFrom(const glm::vec3& d) const { return glm::dot(d, s.ng) > 0.0f ? outside : lifted; }
   };
   // A material's colour and terms at a point.
   struct Surface {
@@ -65,8 +61,12 @@ class Tracer {
     const MaterialEffects& e;
   };
   glm::vec3 trace(const Ray& ray, int depth, float weight, bool inside, Path& path) const;
-  // ShadingPoint::lifted of a hit.
-  glm::vec3 liftedOrigin(const Hit& hit, const SurfaceHit& s) const;
+  // The origin of a shadow ray along `d` (from at.outside): at.outside where
+  // d leaves the triangle's outer side; where d passes behind the flat
+  // triangle (a light its smooth normal still faces), the point lifted onto
+  // the smooth surface (Geometry::lifted, computed once a point), so that
+  // the triangles around do not shadow it.
+  const glm::vec3& shadowFrom(const ShadingPoint& at, const glm::vec3& d) const;
   glm::vec3 shade(const ShadingPoint& at, const Material& m, const MaterialEffects& e, Path& path) const;
   // A light at `position` seen from the point: the unit direction and the
   // distance; none when it is behind the surface.
@@ -118,10 +118,10 @@ class Tracer {
   const Bvh& bvh_;
   TracingSettings tracing_;
   const EffectPlan& plan_;
-  const Environment* environment_;  // what escaping rays see; none: the background
+  const Environment* environment_;                     // what escaping rays see; none: the background
   std::vector<std::optional<AreaLightPoints>> areas_;  // per light: an area light's points
   std::vector<std::vector<Stratum>> sphereStrata_;     // per light: a sphere light's strata
-  std::vector<int> lightDimensions_;  // per light: its first dimension in a depth's block
+  std::vector<int> lightDimensions_;                   // per light: its first dimension in a depth's block
   int lightDimensionsPerDepth_ = 0;
 };
 

@@ -43,17 +43,16 @@ void onProgress(j_common_ptr info) {
 std::size_t coefficientBytes(const jpeg_decompress_struct& info) {
   if (!info.progressive_mode && info.comps_in_scan >= info.num_components) return 0;
   std::size_t bytes = 0;
+  // Blocks of a component along an edge of `size` pixels, sampled `samp`
+  // times where the most sampled component is `maxSamp` times, and one MCU more.
+  const auto blocks = [](std::size_t size, int samp, int maxSamp) {
+    const auto s = static_cast<std::size_t>(samp), m = static_cast<std::size_t>(maxSamp);
+    return (size * s + DCTSIZE * m - 1) / (DCTSIZE * m) + s;
+  };
   for (int c = 0; c < info.num_components; ++c) {
     const jpeg_component_info& component = info.comp_info[c];
-    const std::size_t across = (info.image_width * static_cast<std::size_t>(component.h_samp_factor) +
-                                8 * static_cast<std::size_t>(info.max_h_samp_factor) - 1) /
-                                   (8 * static_cast<std::size_t>(info.max_h_samp_factor)) +
-                               static_cast<std::size_t>(component.h_samp_factor);
-    const std::size_t down = (info.image_height * static_cast<std::size_t>(component.v_samp_factor) +
-                              8 * static_cast<std::size_t>(info.max_v_samp_factor) - 1) /
-                                 (8 * static_cast<std::size_t>(info.max_v_samp_factor)) +
-                             static_cast<std::size_t>(component.v_samp_factor);
-    bytes += across * down * DCTSIZE2 * sizeof(JCOEF);
+    bytes += blocks(info.image_width, component.h_samp_factor, info.max_h_samp_factor) *
+             blocks(info.image_height, component.v_samp_factor, info.max_v_samp_factor) * DCTSIZE2 * sizeof(JCOEF);
   }
   return bytes;
 }
