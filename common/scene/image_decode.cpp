@@ -55,11 +55,18 @@ Image decode8Bit(const stbi_uc* data, int size, const std::string& place) {
   return {w, h, std::vector<std::uint8_t>(rgb, rgb + static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3)};
 }
 
+// Radiance HDR's float RGB as stb_image decodes it (w x h x 3).
+StbPixels stbFloats(const stbi_uc* data, int size, const std::string& place, int& w, int& h) {
+  int channels = 0;
+  StbPixels pixels(stbi_loadf_from_memory(data, size, &w, &h, &channels, 3), stbi_image_free);
+  if (!pixels) throw InputError(place + ": cannot decode image (" + stbi_failure_reason() + ")");
+  return pixels;
+}
+
 // Radiance HDR's linear floats as the file holds them.
 FloatPixels hdrFloats(const stbi_uc* data, int size, const std::string& place) {
-  int w = 0, h = 0, channels = 0;
-  const StbPixels pixels(stbi_loadf_from_memory(data, size, &w, &h, &channels, 3), stbi_image_free);
-  if (!pixels) throw InputError(place + ": cannot decode image (" + stbi_failure_reason() + ")");
+  int w = 0, h = 0;
+  const StbPixels pixels = stbFloats(data, size, place, w, h);
   const auto* linear = static_cast<const float*>(pixels.get());
   return {w, h, std::vector<float>(linear, linear + static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3)};
 }
@@ -67,9 +74,8 @@ FloatPixels hdrFloats(const stbi_uc* data, int size, const std::string& place) {
 // The same as 8-bit texels (byte / 255, as every texture reads): values
 // above 1 are clamped, since textures are 8-bit.
 Image decodeHdr(const stbi_uc* data, int size, const std::string& place) {
-  int w = 0, h = 0, channels = 0;
-  const StbPixels pixels(stbi_loadf_from_memory(data, size, &w, &h, &channels, 3), stbi_image_free);
-  if (!pixels) throw InputError(place + ": cannot decode image (" + stbi_failure_reason() + ")");
+  int w = 0, h = 0;
+  const StbPixels pixels = stbFloats(data, size, place, w, h);
   const auto* linear = static_cast<const float*>(pixels.get());
   Image image{w, h, std::vector<std::uint8_t>(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3)};
   std::transform(linear, linear + image.rgb.size(), image.rgb.begin(), linearTexelByte);
