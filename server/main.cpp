@@ -92,6 +92,8 @@ void declareOptions(CLI::App& app, glint::server::ServerOptions& o, bool& quiet)
   addSeconds(app, "--handshake-timeout", o.handshakeTimeout, "Seconds a new connection has to say Hello");
   addSeconds(app, "--idle-timeout", o.idleTimeout, "Seconds a connection may sit with nothing to do");
   addSeconds(app, "--read-timeout", o.readTimeout, "Seconds to finish a message, or to read results");
+  addSeconds(app, "--build-timeout", o.buildTimeout,
+             "Seconds a scene's build may take (its files decoded, its BVH built); past it the scene is refused");
   app.add_option("--tls-cert", o.tls.cert, "This server's certificate (PEM) for TLS 1.3; with --tls-key and "
                  "--tls-client-ca every connection is TLS")
       ->envname("GLINTD_TLS_CERT");

@@ -17,7 +17,7 @@ void cut(std::string& text) {
 
 }  // namespace
 
-BuiltScene buildScene(const SceneJob& job, std::size_t maxSceneBytes, MemoryGauge& buildMemory) {
+BuiltScene buildScene(const SceneJob& job, const BuildLimits& buildLimits, MemoryGauge& buildMemory) {
   const auto start = Clock::now();
   BuiltScene built;
   built.hash = job.hash;
@@ -25,9 +25,13 @@ BuiltScene buildScene(const SceneJob& job, std::size_t maxSceneBytes, MemoryGaug
   try {
     if (!ofTheHash) throw InputError("the scene's bytes do not match its hash");
     LoadLimits limits;
-    limits.maxSceneBytes = maxSceneBytes;
+    limits.maxSceneBytes = buildLimits.maxSceneBytes;
+    const Deadline deadline(buildLimits.timeout, "the scene's build", "glintd --build-timeout");
     SceneBudget budget(limits, "glintd --max-scene-mb", &buildMemory);
-    built.prepared = std::make_shared<const PreparedScene>(proto::loadBundle(*job.bundle, budget), BvhSettings{});
+    budget.keepTo(deadline);
+    Scene scene = proto::loadBundle(*job.bundle, budget);
+    budget.checkTime("the scene's BVH");
+    built.prepared = std::make_shared<const PreparedScene>(std::move(scene), BvhSettings{});
   } catch (const BusyError& e) {
     built.error = e.what();
   } catch (const InputError& e) {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <chrono>
 #include <memory>
 #include <string>
 
@@ -28,14 +29,23 @@ struct BuiltScene {
   double ms = 0.0;
 };
 
+// What one build may take: the memory the scene holds once built (also
+// counted against the server's gauge of builds), and the time (zero: no
+// limit), checked before each image, mesh and sphere is taken and before
+// the BVH is built.
+struct BuildLimits {
+  std::size_t maxSceneBytes = LoadLimits{}.maxSceneBytes;
+  std::chrono::milliseconds timeout{0};
+};
+
 // A refusal's text is cut to this many bytes (a JSON key it quotes may be
 // megabytes long).
 constexpr std::size_t kMaxErrorBytes = 4096;
 
 // Loads a bundle from memory and builds its BVH: checks that the bytes match
-// the hash, and counts what the scene will hold against maxSceneBytes and the
+// the hash, and counts what the scene will hold against `limits` and the
 // server's gauge of scenes being built (held until the build is done).
 // Never throws for bad input: errors come back in BuiltScene::error.
-BuiltScene buildScene(const SceneJob& job, std::size_t maxSceneBytes, MemoryGauge& buildMemory);
+BuiltScene buildScene(const SceneJob& job, const BuildLimits& limits, MemoryGauge& buildMemory);
 
 }  // namespace glint::server

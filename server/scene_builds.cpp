@@ -4,8 +4,8 @@
 
 namespace glint::server {
 
-SceneBuilds::SceneBuilds(std::size_t maxSceneBytes, MemoryGauge& buildMemory, int threads)
-    : maxSceneBytes_(maxSceneBytes), buildMemory_(buildMemory) {
+SceneBuilds::SceneBuilds(const BuildLimits& limits, MemoryGauge& buildMemory, int threads)
+    : limits_(limits), buildMemory_(buildMemory) {
   for (int i = 0; i < std::max(threads, 1); ++i) threads_.emplace_back([this] { run(); });
 }
 
@@ -49,7 +49,7 @@ void SceneBuilds::run() {
     const SceneJob job = std::move(queue_.front());
     queue_.pop_front();
     lock.unlock();
-    const BuiltScene built = buildScene(job, maxSceneBytes_, buildMemory_);
+    const BuiltScene built = buildScene(job, limits_, buildMemory_);
     lock.lock();
     ++built_;
     if (!built.prepared && built.lasting) remember(built);

@@ -30,14 +30,16 @@ class SceneBuilds {
   using Done = std::function<void(const BuiltScene&)>;
   // Refusals remembered, the most recent.
   static constexpr std::size_t kRefusalsRemembered = 64;
-  // The builds glintd runs at once beside `tracing` tracing threads: one for
-  // every two, at least one, at most kMaxThreads (each may hold up to
-  // --max-scene-mb of the builds' memory).
+  // The builds glintd runs at once beside `tracing` tracing threads: as many,
+  // at most kMaxThreads (each may hold up to --max-scene-mb of the builds'
+  // memory). Builds come seldom and tiles wait for them; the costliest
+  // image a client may send decodes for about 3 s, and four such uploads
+  // queued before a new scene delayed it by 11 s on one build thread.
   static constexpr int kMaxThreads = 4;
-  static int threadsBeside(int tracing) { return std::clamp(tracing / 2, 1, kMaxThreads); }
+  static int threadsBeside(int tracing) { return std::clamp(tracing, 1, kMaxThreads); }
 
   // `threads` builds run at once (at least one), drawing on buildMemory.
-  SceneBuilds(std::size_t maxSceneBytes, MemoryGauge& buildMemory, int threads = 1);
+  SceneBuilds(const BuildLimits& limits, MemoryGauge& buildMemory, int threads = 1);
   // Finishes the builds running; the ones queued are dropped untold.
   ~SceneBuilds();
   SceneBuilds(const SceneBuilds&) = delete;
@@ -52,7 +54,7 @@ class SceneBuilds {
   void run();
   void remember(const BuiltScene& built);
 
-  std::size_t maxSceneBytes_;
+  BuildLimits limits_;
   MemoryGauge& buildMemory_;
   mutable std::mutex mutex_;
   std::condition_variable wake_;

@@ -57,7 +57,7 @@ Server::Server(const ServerOptions& options)
       registry_(static_cast<std::size_t>(options.maxClients), static_cast<std::size_t>(options.maxWaiting)),
       buildMemory_(options.maxMemoryBytes - options.cacheBytes - options.maxSceneBytes,
                    "glintd --max-memory-mb less --cache-mb and the files kept (--max-scene-mb)"),
-      builds_(options.maxSceneBytes, buildMemory_, SceneBuilds::threadsBeside(resolveThreadCount(options.threads))),
+      builds_({options.maxSceneBytes, options.buildTimeout}, buildMemory_, SceneBuilds::threadsBeside(resolveThreadCount(options.threads))),
       context_{io_, scheduler_, cache_, files_, registry_, buildMemory_, builds_, options_},
       acceptor_(io_),
       acceptRetry_(io_),

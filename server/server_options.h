@@ -31,6 +31,8 @@ struct ServerOptions {
   // finished within readTimeout.
   std::chrono::milliseconds handshakeTimeout{5'000};
   std::chrono::milliseconds readTimeout{30'000};
+  // A scene's build (its files decoded, the BVH built) past this is refused.
+  std::chrono::milliseconds buildTimeout{30'000};
   // A connection with nothing to read, write or compute is closed after this.
   std::chrono::milliseconds idleTimeout{300'000};
   // Results a client leaves unread beyond this many bytes close its connection.

@@ -52,6 +52,7 @@ SceneBudget::~SceneBudget() {
 }
 
 void SceneBudget::charge(std::size_t bytes, const std::string& place, const char* when) {
+  checkTime(place);
   const std::size_t total = used_ + bytes;
   if (bytes > limits_.maxSceneBytes || total > limits_.maxSceneBytes) {
     throw InputError(place + ": the scene would hold " + mib(total) + " " + when + ", " +

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <string>
 
+#include "common/base/deadline.h"
 #include "common/scene/load_limits.h"
 
 namespace glint {
@@ -65,6 +66,12 @@ class SceneBudget {
 
   const LoadLimits& limits() const { return limits_; }
   std::size_t used() const { return used_; }
+  // The build's time limit, checked at every charge (before each image,
+  // mesh and sphere is taken) and by checkTime(); it outlives the budget.
+  void keepTo(const Deadline& deadline) { deadline_ = &deadline; }
+  void checkTime(const std::string& place) const {
+    if (deadline_) deadline_->check(place);
+  }
 
   // `when` the scene would hold the bytes, in its error.
   void charge(std::size_t bytes, const std::string& place, const char* when = "once built");
@@ -80,6 +87,7 @@ class SceneBudget {
   LoadLimits limits_;
   std::string limitName_;
   MemoryGauge* shared_;
+  const Deadline* deadline_ = nullptr;
   std::size_t used_ = 0;
 };
 

@@ -338,5 +338,59 @@ TEST(HostileClient, MemoryOptionsThatCannotHoldTheirScenesAreRefused) {
                std::runtime_error);
 }
 
+// A build that runs past --build-timeout is abandoned at its next step (here
+// the second of three textures that decode for about 0.7 s each) and the
+// scene refused, naming the option; a good client is served after.
+TEST(HostileClient, ABuildPastItsTimeoutIsRefusedNamingTheOption) {
+  GlintdProcess glintd({"--build-timeout", "0.5"});
+  const std::string slow = glint::test::progressiveJpeg(4096, 1);
+  const proto::SceneBundle bundle{R"({"glint": 1, "image": {"width": 4, "height": 4},
+      "camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0]},
+      "textures": {"a": {"type": "image", "file": "a.jpg"}, "b": {"type": "image", "file": "b.jpg"},
+                   "c": {"type": "image", "file": "c.jpg"}},
+      "materials": {"a": {"texture": "a"}, "b": {"texture": "b"}, "c": {"texture": "c"}},
+      "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "a"},
+                  {"type": "sphere", "center": [2, 0, 0], "radius": 1, "material": "b"},
+                  {"type": "sphere", "center": [4, 0, 0], "radius": 1, "material": "c"}]})",
+                                  {{"a.jpg", slow}, {"b.jpg", slow}, {"c.jpg", slow}}};
+  RawClient c(glintd.port(), 30s);
+  ASSERT_TRUE(c.hello());
+  const auto start = std::chrono::steady_clock::now();
+  for (const auto& frame : proto::encodeFullUpload(bundle)) c.write(frame);
+  const auto [code, text] = c.readError();
+  EXPECT_EQ(code, wire::ErrorCode::BadScene);
+  EXPECT_NE(text.find("the scene's build has taken"), std::string::npos) << text;
+  EXPECT_NE(text.find("s, over glintd --build-timeout of 0.5 s"), std::string::npos) << text;
+  EXPECT_LT(std::chrono::steady_clock::now() - start, 3s) << text;
+  std::printf("refused: %s\n", text.c_str());
+  EXPECT_EQ(renderRoom(glintd.address()).width, 48);
+}
+
+// Four clients upload a 127-scan 8192 x 8192 JPEG each (the costliest JPEG
+// the decoder takes); a fifth asks for a new scene.
+TEST(HostileClient, ANewSceneIsServedWhileFourScanBombsAreBuilt) {
+  GlintdProcess glintd({"--threads", "2"});
+  const std::string bomb = glint::test::progressiveJpeg(8192, 1);  // 1 + 63 x 2 = 127 scans
+  std::vector<std::unique_ptr<RawClient>> attackers;
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < 4; ++i) {
+    const proto::SceneBundle bundle{R"({"glint": 1, "image": {"width": )" + std::to_string(4 + i) + R"(, "height": 4},
+        "camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0]},
+        "textures": {"t": {"type": "image", "file": "bomb.jpg"}},
+        "materials": {"m": {"texture": "t"}},
+        "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})",
+                                    {{"bomb.jpg", bomb}}};
+    attackers.push_back(std::make_unique<RawClient>(glintd.port(), 60s));
+    ASSERT_TRUE(attackers.back()->hello());
+    for (const auto& frame : proto::encodeFullUpload(bundle)) attackers.back()->write(frame);
+  }
+  const auto queued = std::chrono::steady_clock::now();
+  EXPECT_EQ(renderRoom(glintd.address()).width, 48);
+  const auto served = std::chrono::steady_clock::now();
+  std::printf("bombs %zu bytes, queued in %.1f s, new scene served %.1f s later\n", bomb.size(),
+              std::chrono::duration<double>(queued - start).count(), std::chrono::duration<double>(served - queued).count());
+  EXPECT_LT(served - queued, 10s);
+}
+
 }  // namespace
 }  // namespace glint::server

@@ -31,13 +31,13 @@ class InlineHost : public SessionHost {
     if (deferBuilds) {
       deferred_.push_back(std::move(job));
     } else {
-      session_->sceneBuilt(buildScene(job, maxSceneBytes_, buildMemory_));
+      session_->sceneBuilt(buildScene(job, {maxSceneBytes_}, buildMemory_));
     }
   }
   // With deferBuilds, builds wait for this (as on glintd's build thread).
   void finishBuilds() {
     std::vector<SceneJob> jobs = std::move(deferred_);
-    for (const SceneJob& job : jobs) session_->sceneBuilt(buildScene(job, maxSceneBytes_, buildMemory_));
+    for (const SceneJob& job : jobs) session_->sceneBuilt(buildScene(job, {maxSceneBytes_}, buildMemory_));
   }
   void trace(TileWork work) override {
     ++tiles;
