@@ -366,30 +366,47 @@ TEST(HostileClient, ABuildPastItsTimeoutIsRefusedNamingTheOption) {
   EXPECT_EQ(renderRoom(glintd.address()).width, 48);
 }
 
-// Four clients upload a 127-scan 8192 x 8192 JPEG each (the costliest JPEG
-// the decoder takes); a fifth asks for a new scene.
+// A scene whose one texture is the costliest JPEG the decoder takes: a
+// 127-scan 8192 x 8192 progressive file (14 MB); `width` tells scenes apart.
+proto::SceneBundle bombScene(const std::string& bomb, int width) {
+  return {R"({"glint": 1, "image": {"width": )" + std::to_string(width) + R"(, "height": 4},
+      "camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0]},
+      "textures": {"t": {"type": "image", "file": "bomb.jpg"}},
+      "materials": {"m": {"texture": "t"}},
+      "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})",
+          {{"bomb.jpg", bomb}}};
+}
+
+// Four clients upload such a scene each; a fifth asks for a new scene. On
+// a glintd of two tracing threads two builds run at once, so the new scene
+// waits for two builds' time, not four (11.2 s on one build thread; 5.3-6.0
+// s on two, measured alone: within the 10 s the probe asks for). The bound
+// is on the time of one bomb's build measured here, which grows as much as
+// the bombs' do when other work shares the cores.
 TEST(HostileClient, ANewSceneIsServedWhileFourScanBombsAreBuilt) {
   GlintdProcess glintd({"--threads", "2"});
   const std::string bomb = glint::test::progressiveJpeg(8192, 1);  // 1 + 63 x 2 = 127 scans
+  const auto alone = std::chrono::steady_clock::now();
+  {
+    RawClient c(glintd.port(), 60s);
+    ASSERT_TRUE(c.hello());
+    for (const auto& frame : proto::encodeFullUpload(bombScene(bomb, 3))) c.write(frame);
+    ASSERT_NE(c.read(), nullptr);  // SceneReady: the file is a valid JPEG
+  }
+  const auto one = std::chrono::steady_clock::now() - alone;
   std::vector<std::unique_ptr<RawClient>> attackers;
-  const auto start = std::chrono::steady_clock::now();
   for (int i = 0; i < 4; ++i) {
-    const proto::SceneBundle bundle{R"({"glint": 1, "image": {"width": )" + std::to_string(4 + i) + R"(, "height": 4},
-        "camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0]},
-        "textures": {"t": {"type": "image", "file": "bomb.jpg"}},
-        "materials": {"m": {"texture": "t"}},
-        "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})",
-                                    {{"bomb.jpg", bomb}}};
     attackers.push_back(std::make_unique<RawClient>(glintd.port(), 60s));
     ASSERT_TRUE(attackers.back()->hello());
-    for (const auto& frame : proto::encodeFullUpload(bundle)) attackers.back()->write(frame);
+    for (const auto& frame : proto::encodeFullUpload(bombScene(bomb, 4 + i))) attackers.back()->write(frame);
   }
   const auto queued = std::chrono::steady_clock::now();
   EXPECT_EQ(renderRoom(glintd.address()).width, 48);
-  const auto served = std::chrono::steady_clock::now();
-  std::printf("bombs %zu bytes, queued in %.1f s, new scene served %.1f s later\n", bomb.size(),
-              std::chrono::duration<double>(queued - start).count(), std::chrono::duration<double>(served - queued).count());
-  EXPECT_LT(served - queued, 10s);
+  const auto served = std::chrono::steady_clock::now() - queued;
+  const auto seconds = [](auto d) { return std::chrono::duration<double>(d).count(); };
+  std::printf("one bomb's upload and build %.1f s; with four queued a new scene served in %.1f s\n", seconds(one),
+              seconds(served));
+  EXPECT_LT(served, 2.5 * one + 1s);  // one build thread: about 4 x
 }
 
 }  // namespace
