@@ -194,8 +194,8 @@ void writeReport(const std::filesystem::path& dir, const std::string& scene, con
   std::ofstream out = create(dir / "report.md");
   const std::vector<bool> front = paretoFront(rows, metric);
   out << "# What accuracy costs in time: " << scene << "\n\n";
-  out << "Reference: " << reference.samples << " jittered samples per pixel, max depth " << reference.maxDepth
-      << ", no weight cut-off (" << fixed(reference.timeMs / 1000.0, 1) << " s). Its own error, estimated from two "
+  out << "Reference: " << reference.samples << " jittered samples per pixel, " << reference.light << " ("
+      << fixed(reference.timeMs / 1000.0, 1) << " s). Its own error, estimated from two "
       << "half-sample references against each other, is RMSE " << reference.ownRmse
       << ": differences below it mean nothing. The two halves differ by a mean FLIP of "
       << fixed(reference.halvesFlip, 4) << ".\n\n";

@@ -37,7 +37,7 @@ struct AccuracyRow {
 // The reference the rows are measured against, and its own error.
 struct AccuracyReference {
   int samples = 0;
-  int maxDepth = 0;
+  std::string light;  // how it carries light: "max depth 16, no weight cut-off"
   double ownRmse = 0.0;  // estimated from two half-sample references
   double halvesFlip = 0.0;  // the mean FLIP of the two halves against each other
   double timeMs = 0.0;

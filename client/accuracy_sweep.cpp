@@ -33,6 +33,10 @@ std::string allowed(AccuracyKey key) {
       return "numbers in (0, 1]";
     case AccuracyKey::kLightSamples:
       return "whole numbers in [1, " + std::to_string(FrameLimits::kMaxLightSamples) + "]";
+    case AccuracyKey::kTransport:
+      return "one of " + enumWordsJoined<Transport>();
+    case AccuracyKey::kMaxBounces:
+      return "whole numbers in [0, " + std::to_string(FrameLimits::kMaxBounces) + "]";
   }
   return "";
 }
@@ -73,6 +77,11 @@ bool takes(AccuracyKey key, const std::string& value) {
     case AccuracyKey::kLightSamples:
       return parseNumber(value, number) && number == std::floor(number) && number >= 1 &&
              number <= FrameLimits::kMaxLightSamples;
+    case AccuracyKey::kTransport:
+      return enumFromWord<Transport>(value).has_value();
+    case AccuracyKey::kMaxBounces:
+      return parseNumber(value, number) && number == std::floor(number) && number >= 0 &&
+             number <= FrameLimits::kMaxBounces;
   }
   return false;
 }
@@ -106,6 +115,14 @@ Series parseVary(const std::string& text) {
 }
 
 std::vector<Series> defaultSweep(const Scene& scene) {
+  if (scene.frame.tracing.transport == Transport::kPath) {
+    // Every pixel is traced: the model (Whitted's missing light, bounces
+    // cut short) beside the sampling.
+    return {{AccuracyKey::kSamples, {"1", "4", "16", "64"}},
+            {AccuracyKey::kTransport, {"whitted", "path"}},
+            {AccuracyKey::kMaxBounces, {"0", "1", "2", "4", "8"}},
+            {AccuracyKey::kFilter, {"box", "tent", "gaussian", "mitchell"}}};
+  }
   std::vector<Series> sweep{{AccuracyKey::kSamples, {"1", "4", "16", "64"}},
           {AccuracyKey::kPattern, {"regular", "jittered", "adaptive", "perceptual"}},
           {AccuracyKey::kFilter, {"box", "tent", "gaussian", "mitchell"}},
@@ -160,6 +177,13 @@ void applySetting(AccuracyKey key, const std::string& value, FrameSettings& fram
     case AccuracyKey::kLightSamples:
       frame.sampling.lightSamples = std::stoi(value);
       return;
+    case AccuracyKey::kTransport:
+      frame.tracing.transport = *enumFromWord<Transport>(value);
+      return;
+    case AccuracyKey::kMaxBounces:  // bounces are path transport's
+      frame.tracing.transport = Transport::kPath;
+      frame.tracing.maxBounces = std::stoi(value);
+      return;
   }
 }
 
@@ -185,6 +209,10 @@ std::string currentValue(AccuracyKey key, const FrameSettings& frame, const Mask
       return mask.rule == MaskRule::kPerceptual ? formatNumber(frame.sampling.perceptualThreshold) : "";
     case AccuracyKey::kLightSamples:  // 0: each light's own
       return frame.sampling.lightSamples > 0 ? std::to_string(frame.sampling.lightSamples) : "";
+    case AccuracyKey::kTransport:
+      return std::string(enumWord(frame.tracing.transport));
+    case AccuracyKey::kMaxBounces:
+      return frame.tracing.transport == Transport::kPath ? std::to_string(frame.tracing.maxBounces) : "";
   }
   return "";
 }

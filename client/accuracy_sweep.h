@@ -22,12 +22,14 @@ enum class AccuracyKey {
   kShadowMap,
   kMaskRule,
   kPerceptualThreshold,
-  kLightSamples
+  kLightSamples,
+  kTransport,
+  kMaxBounces
 };
 
 template <>
 struct EnumWords<AccuracyKey> {
-  static constexpr std::array<std::pair<AccuracyKey, std::string_view>, 10> kWords{
+  static constexpr std::array<std::pair<AccuracyKey, std::string_view>, 12> kWords{
       {{AccuracyKey::kSamples, "samples"},
        {AccuracyKey::kPattern, "pattern"},
        {AccuracyKey::kFilter, "filter"},
@@ -37,7 +39,9 @@ struct EnumWords<AccuracyKey> {
        {AccuracyKey::kShadowMap, "shadow_map"},
        {AccuracyKey::kMaskRule, "mask_rule"},
        {AccuracyKey::kPerceptualThreshold, "perceptual_threshold"},
-       {AccuracyKey::kLightSamples, "light_samples"}}};
+       {AccuracyKey::kLightSamples, "light_samples"},
+       {AccuracyKey::kTransport, "transport"},
+       {AccuracyKey::kMaxBounces, "max_bounces"}}};
 };
 
 // One series of a sweep: one key, the values it takes in turn, every other

@@ -224,6 +224,11 @@ void addFrameOptions(CLI::App* app, FrameOverrides& o) {
       ->check(CLI::Range(1, FrameLimits::kMaxDepth));
   app->add_option("--min-weight", o.minWeight, "Rays whose path weight falls below this are not traced")
       ->check(CLI::Range(0.0f, 1.0f));
+  addEnumOption(app, "--transport", o.transport,
+                "How light is carried: whitted (direct light and mirror paths) or path (path tracing: light "
+                "between surfaces too); default: the scene's");
+  app->add_option("--max-bounces", o.maxBounces, "Under path transport: bounces after a path's first hit")
+      ->check(CLI::Range(0, FrameLimits::kMaxBounces));
   app->add_option_function<std::string>(
          "--size", [&o](const std::string& text) { asUsageError([&] { parseSize(text, o.width, o.height); }); },
          "Image size WIDTHxHEIGHT (the camera's fov_y is kept; default: the scene's)")

@@ -1,5 +1,6 @@
 #include "client/frame_overrides.h"
 
+#include <cstdio>
 #include <string>
 
 #include "common/base/error.h"
@@ -24,6 +25,8 @@ void applyFrameOverrides(const FrameOverrides& o, Scene& scene) {
   if (o.seed) f.sampling.seed = *o.seed;
   if (o.maxDepth) f.tracing.maxDepth = *o.maxDepth;
   if (o.minWeight) f.tracing.minWeight = *o.minWeight;
+  if (o.transport) f.tracing.transport = *o.transport;
+  if (o.maxBounces) f.tracing.maxBounces = *o.maxBounces;
   if (o.encoding) f.output.encoding = *o.encoding;
   if (o.exposure) f.output.exposure = *o.exposure;
   // The scene file's frame was checked when it was loaded: a problem now
@@ -36,6 +39,7 @@ void applyFrameOverrides(const FrameOverrides& o, Scene& scene) {
                 .samples = samples.c_str(),
                 .seed = "--seed",
                 .maxDepth = "--max-depth",
+                .maxBounces = "--max-bounces",
                 .minWeight = "--min-weight",
                 .adaptiveThreshold = "--adaptive-threshold",
                 .perceptualThreshold = "--perceptual-threshold",
@@ -52,6 +56,10 @@ void applyFrameOverrides(const FrameOverrides& o, Scene& scene) {
   if (o.mask) scene.mask.rule = *o.mask;
   if (o.maskThreshold) scene.mask.minReflectivity = *o.maskThreshold;
   if (o.shadowMap) scene.mask.shadowMap = *o.shadowMap;
+  if (f.tracing.transport == Transport::kPath && scene.mask.rule != MaskRule::kAll) {
+    scene.mask.rule = MaskRule::kAll;
+    std::fprintf(stderr, "note: path transport: every pixel is traced (OpenGL's pass draws direct light only)\n");
+  }
 }
 
 }  // namespace glint

@@ -24,6 +24,8 @@ struct FrameOverrides {
   std::optional<FilterType> filter;
   std::optional<std::uint32_t> seed;
   std::optional<int> maxDepth;
+  std::optional<Transport> transport;
+  std::optional<int> maxBounces;
   std::optional<float> minWeight;
   std::optional<glm::vec3> eye;  // --eye, --look-at, --up: the camera's
   std::optional<glm::vec3> lookAt;

@@ -14,6 +14,7 @@
 #include "client/scene_warnings.h"
 #include "common/render/effects.h"
 #include "common/render/mask_rule.h"
+#include "common/render/path_tracer.h"
 #include "common/scene/load_limits.h"
 #include "common/scene/scene_load.h"
 
@@ -52,9 +53,17 @@ std::string percent(std::size_t part, std::size_t whole) {
 }
 
 void printFrame(const FrameSettings& f) {
-  std::printf("  image      %dx%d, %d %s samples a pixel, %s filter, max depth %d, min weight %g\n", f.width, f.height,
-              f.sampling.samples, std::string(enumWord(f.sampling.pattern)).c_str(),
-              std::string(enumWord(f.sampling.filter)).c_str(), f.tracing.maxDepth, f.tracing.minWeight);
+  std::printf("  image      %dx%d, %d %s samples a pixel, %s filter\n", f.width, f.height, f.sampling.samples,
+              std::string(enumWord(f.sampling.pattern)).c_str(), std::string(enumWord(f.sampling.filter)).c_str());
+  if (f.tracing.transport == Transport::kPath) {
+    std::printf("  transport  path: light between surfaces too, up to %d bounces after the first hit, Russian "
+                "roulette after %d; every pixel traced\n",
+                f.tracing.maxBounces, PathTracer::kRouletteFrom);
+  } else {
+    std::printf("  transport  whitted: direct light, mirror and refracted rays to max depth %d, min weight %g; "
+                "ambient for the rest\n",
+                f.tracing.maxDepth, f.tracing.minWeight);
+  }
   const CameraSpec& c = f.camera;
   std::printf("  camera     eye %s, look_at %s, up %s, fov_y %g\n", vec(c.eye).c_str(), vec(c.lookAt).c_str(),
               vec(c.up).c_str(), c.fovY);

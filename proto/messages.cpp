@@ -126,7 +126,8 @@ std::vector<std::uint8_t> encodeFrameSetup(std::uint32_t frameId, const SceneHas
       f.sampling.pattern == SamplePattern::kAdaptive, f.sampling.adaptiveThreshold,
       f.output.encoding == Encoding::kSrgb, f.output.exposure, f.sampling.pattern == SamplePattern::kPerceptual,
       f.sampling.perceptualThreshold, static_cast<std::uint32_t>(f.sampling.lightSamples), f.camera.aperture,
-      f.camera.focusDistance);
+      f.camera.focusDistance, static_cast<std::uint8_t>(f.tracing.transport),
+      static_cast<std::uint32_t>(f.tracing.maxBounces));
   return finish(b, setup, wire::Body::FrameSetup);
 }
 
@@ -211,6 +212,9 @@ FrameSettings decodeFrameSettings(const wire::FrameSetup& s, std::size_t maxPixe
   f.sampling.seed = s.seed();
   f.tracing.maxDepth = toInt(s.max_depth());
   f.tracing.minWeight = s.min_weight();
+  if (s.transport() > static_cast<std::uint8_t>(Transport::kPath)) throw InputError("frame_setup.transport: unknown");
+  f.tracing.transport = static_cast<Transport>(s.transport());
+  f.tracing.maxBounces = toInt(s.max_bounces());
   f.output.encoding = s.srgb() ? Encoding::kSrgb : Encoding::kLinear;
   f.output.exposure = s.exposure();
   checkFrame(f, maxPixels,
@@ -219,6 +223,7 @@ FrameSettings decodeFrameSettings(const wire::FrameSetup& s, std::size_t maxPixe
               .samples = "frame_setup.samples",
               .seed = "frame_setup.seed",
               .maxDepth = "frame_setup.max_depth",
+              .maxBounces = "frame_setup.max_bounces",
               .minWeight = "frame_setup.min_weight",
               .adaptiveThreshold = "frame_setup.adaptive_threshold",
               .perceptualThreshold = "frame_setup.perceptual_threshold",

@@ -19,8 +19,11 @@ namespace {
 // glTF's KHR_texture_transform and a mesh's vertex colours; 9: sRGB is the
 // 8-bit encoding of a scene that names none (the scenes in scenes/ name
 // linear and keep their bytes); 10: image textures' wrap modes, and glTF
-// samplers' wrap modes and magnification filter.
-constexpr int kTracerVersion = 11;
+// samplers' wrap modes and magnification filter; 11: the shadow terminator
+// (shadow rays from the smooth surface); 12: path transport (a scene that
+// asks for it renders otherwise than a build without it would; Whitted
+// pixels unchanged).
+constexpr int kTracerVersion = 12;
 
 // FNV-1a: the flags only need a short, stable fingerprint.
 std::uint64_t fingerprint(const char* text) {

@@ -79,6 +79,12 @@ EffectPlan EffectPlan::derive(const Scene& scene, const FrameSettings& frame) {
   plan.vertexColors = !scene.geometry.colors().empty();
   plan.antialiasing =
       frame.sampling.samples > 1 || frame.sampling.pattern != SamplePattern::kRegular;
+  bool scatters = false;
+  for (const Material& m : scene.materials) {
+    scatters = scatters || m.diffuse > 0.0f || m.specular > 0.0f || m.reflectivity > 0.0f || m.transparency > 0.0f;
+  }
+  const bool lit = anyLight || plan.emission || plan.environment || hasPositive(scene.background);
+  plan.indirectLight = frame.tracing.transport == Transport::kPath && frame.tracing.maxBounces > 0 && scatters && lit;
   return plan;
 }
 
@@ -87,7 +93,7 @@ std::vector<NamedEffect> namedEffects(const EffectPlan& plan) {
           {"textures", plan.textures}, {"emission", plan.emission},     {"vertex_colors", plan.vertexColors},
           {"attenuation", plan.attenuation}, {"antialiasing", plan.antialiasing}, {"soft_shadows", plan.softShadows},
           {"depth_of_field", plan.depthOfField}, {"glossy_reflection", plan.glossyReflection},
-          {"environment", plan.environment}};
+          {"environment", plan.environment}, {"indirect_light", plan.indirectLight}};
 }
 
 nlohmann::json toJson(const EffectPlan& plan) {

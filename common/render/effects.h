@@ -36,6 +36,10 @@ struct EffectPlan {
   bool depthOfField = false;  // camera rays from points over a thin lens
   bool glossyReflection = false;  // reflected rays drawn from a rough material's lobe
   bool environment = false;       // escaping rays see the environment image, not the background
+  // Path transport with bounces, some light (a light, an emitting material,
+  // the environment or a background) and a material that scatters it: light
+  // that surfaces send one another.
+  bool indirectLight = false;
   std::vector<MaterialEffects> materials;
   std::vector<bool> lights;   // false: the light adds nothing (black) and is skipped
 
@@ -45,7 +49,8 @@ struct EffectPlan {
 
 // The plan's effects by name, in one order: shadows, reflection,
 // refraction, textures, emission, vertex_colors, attenuation, antialiasing,
-// soft_shadows, depth_of_field, glossy_reflection, environment.
+// soft_shadows, depth_of_field, glossy_reflection, environment,
+// indirect_light.
 struct NamedEffect {
   const char* name;
   bool needed;

@@ -1,5 +1,6 @@
 #include "common/render/optics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -16,6 +17,15 @@ glm::vec3 reflect(const glm::vec3& d, const glm::vec3& n) {
 glm::vec3 mirrorDirection(const glm::vec3& d, const glm::vec3& ns, const glm::vec3& ng) {
   const glm::vec3 r = reflect(d, ns);
   return glm::dot(r, ng) <= 0.0f ? reflect(d, ng) : r;
+}
+
+float fresnelDielectric(float cosIn, float eta) {
+  const float sin2T = eta * eta * std::max(0.0f, 1.0f - cosIn * cosIn);
+  if (sin2T >= 1.0f) return 1.0f;
+  const float cosT = std::sqrt(1.0f - sin2T);
+  const float s = (eta * cosIn - cosT) / (eta * cosIn + cosT);
+  const float p = (cosIn - eta * cosT) / (cosIn + eta * cosT);
+  return 0.5f * (s * s + p * p);
 }
 
 std::optional<glm::vec3> refract(const glm::vec3& d, const glm::vec3& n, float eta) {

@@ -20,6 +20,10 @@ glm::vec3 mirrorDirection(const glm::vec3& d, const glm::vec3& ns, const glm::ve
 // nothing at total internal reflection.
 std::optional<glm::vec3> refract(const glm::vec3& d, const glm::vec3& n, float eta);
 
+// The share of light a smooth dielectric reflects (Fresnel's equations for
+// unpolarised light) for light arriving at cosine cosIn (> 0) to the normal,
+// eta = n1 / n2; 1 at total internal reflection.
+float fresnelDielectric(float cosIn, float eta);
 // Origin for a ray leaving surface point p on the side of unit normal n
 // (Wächter and Binder, "A Fast and Robust Method for Avoiding
 // Self-Intersection", Ray Tracing Gems chapter 6): p moves a fixed number of

@@ -22,7 +22,9 @@ Renderer::Renderer(const PreparedScene& prepared, const FrameSettings& frame, co
       camera_(frame.camera, frame.width, frame.height),
       filter_(frame.sampling.filter),
       sampleLayout_(frame.sampling),
-      tracer_(prepared.scene(), prepared.bvh(), frame_, plan_) {}
+      tracer_(prepared.scene(), prepared.bvh(), frame_, plan_) {
+  if (frame.tracing.transport == Transport::kPath) path_.emplace(prepared.scene(), prepared.bvh(), frame_, plan_);
+}
 
 Ray Renderer::cameraRay(const glm::vec2& film, const SampleKey& key) const {
   if (!plan_.depthOfField) return camera_.generateRay(film);
@@ -55,7 +57,7 @@ void Renderer::addSamples(int x, int y, int first, int end, PixelSamples& p, Ray
     // store forwarding (about 4 % of the room's full trace, measured).
     for (int i = 0; i < count; ++i) new (&batch[i]) CameraSample(cameraSample(x, y, key, from + i));
     for (int i = 0; i < count; ++i) {
-      const glm::vec3 c = tracer_.radiance(batch[i].ray, batch[i].key, stats);
+      const glm::vec3 c = radiance(batch[i].ray, batch[i].key, stats);
       if (!allFinite(c)) {
         ++stats.nonFiniteSamples;
         continue;
@@ -72,7 +74,7 @@ void Renderer::addCentreSample(int x, int y, PixelSamples& p, RayStats& stats) c
   constexpr int kCentreSample = -1;  // a key of its own, apart from the pattern's samples
   const SampleKey key = SampleLayout::key(sampleLayout_.pixel(x, y), kCentreSample);
   const glm::vec2 film{static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f};
-  const glm::vec3 c = tracer_.radiance(cameraRay(film, key), key, stats);
+  const glm::vec3 c = radiance(cameraRay(film, key), key, stats);
   if (!allFinite(c)) {
     ++stats.nonFiniteSamples;
     return;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "common/render/sampling.h"
 #include "common/scene/scene.h"
 #include "common/render/tile.h"
+#include "common/render/path_tracer.h"
 #include "common/render/tracer.h"
 
 namespace glint {
@@ -74,6 +76,10 @@ class Renderer {
   // One ray through the pixel's centre into p, with weight 1.
   void addCentreSample(int x, int y, PixelSamples& p, RayStats& stats) const;
   glm::vec3 resolve(const PixelSamples& p) const;
+  // The radiance of a camera sample, by the frame's transport.
+  glm::vec3 radiance(const Ray& ray, const SampleKey& key, RayStats& stats) const {
+    return path_ ? path_->radiance(ray, key, stats) : tracer_.radiance(ray, key, stats);
+  }
   void renderAdaptive(const TileRect& rect, std::span<const std::uint8_t> mask, std::vector<glm::vec3>& out,
                       RayStats& stats) const;
 
@@ -84,6 +90,7 @@ class Renderer {
   Filter filter_;
   SampleLayout sampleLayout_;
   Tracer tracer_;
+  std::optional<PathTracer> path_;  // under path transport, which then makes every sample
 };
 
 }  // namespace glint

@@ -30,6 +30,9 @@ class SphereLightView {
   };
   // The direction at fraction u of stratum s.
   Sample sample(const Stratum& s, const glm::vec2& u) const;
+  // The cone's solid angle, 2 pi (1 - cos theta_max): sample() draws
+  // directions with density 1 / solidAngle().
+  float solidAngle() const { return 6.283185307179586f * oneMinusCos_; }
 
  private:
   SphereLightView(const glm::vec3& axis, float distance, float sin2Max);

@@ -7,6 +7,7 @@
 #include "common/render/optics.h"
 #include "common/render/shading.h"
 #include "common/render/sphere_light.h"
+#include "common/render/surface_terms.h"
 
 namespace glint {
 Tracer::Tracer(const Scene& scene, const Bvh& bvh, const FrameSettings& frame, const EffectPlan& plan)
@@ -55,9 +56,7 @@ glm::vec3 Tracer::lightIntensity(const glm::vec3& color, const glm::vec3& attenu
   return attenuate(color, attenuation, distance);
 }
 
-glm::vec3 Tracer::emitted(const Material& m, const glm::vec2& uv) const {
-  return m.emissionTexture >= 0 ? m.emission * scene_.textures[m.emissionTexture].evaluate(uv) : m.emission;
-}
+glm::vec3 Tracer::emitted(const Material& m, const glm::vec2& uv) const { return surfaceEmission(scene_, m, uv); }
 
 inline const glm::vec3& Tracer::shadowFrom(const ShadingPoint& at, const glm::vec3& d) const {
   if (glm::dot(d, at.s.ng) > 0.0f) return at.outside;
@@ -198,12 +197,8 @@ float Tracer::visibleShare(const ShadingPoint& at, int light, int count, Path& p
 }
 
 glm::vec3 Tracer::shade(const ShadingPoint& at, const Material& m, const MaterialEffects& e, Path& path) const {
-  // The colour times the texture (glTF's baseColorFactor x baseColorTexture;
-  // a textured material's colour is 1 unless given, and 1 x t is t exactly).
-  // A mesh's vertex colours multiply both (glTF's COLOR_0).
   const SurfaceHit& s = at.s;
-  const glm::vec3 base = e.textured && m.texture >= 0 ? m.color * scene_.textures[m.texture].evaluate(s.uv) : m.color;
-  const Surface f{plan_.vertexColors ? base * s.color : base, m, e};
+  const Surface f{surfaceColor(scene_, m, e, s, plan_.vertexColors), m, e};
   glm::vec3 result = phongAmbient(f.color, m.ambient);
   if (e.emits) result += emitted(m, s.uv);
   if (!e.direct) return result;

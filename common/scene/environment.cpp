@@ -40,10 +40,21 @@ glm::vec3 Environment::radiance(const glm::vec3& direction) const {
   // length of a tiny or huge direction neither underflows nor overflows.
   const float largest = std::max({std::abs(direction.x), std::abs(direction.y), std::abs(direction.z)});
   if (!allFinite(direction) || !(largest > 0.0f)) return glm::vec3(0.0f);
-  const glm::vec3 d = direction / largest;
+  return bilinear(uvOf(direction / largest));
+}
+
+glm::vec2 Environment::uvOf(const glm::vec3& d) const {
   // Turned back by the rotation: where the direction lies on the image.
   const glm::vec3 onImage{d.x * turn_.cos - d.z * turn_.sin, d.y, d.x * turn_.sin + d.z * turn_.cos};
-  return bilinear(equirectangularUv(glm::normalize(onImage)));
+  return equirectangularUv(glm::normalize(onImage));
+}
+
+glm::vec3 Environment::directionAt(const glm::vec2& uv) const {
+  constexpr float kPi = std::numbers::pi_v<float>;
+  const SineCosine theta = sineCosine(uv.y * kPi);
+  const SineCosine phi = sineCosine((uv.x - 0.5f) * 2.0f * kPi);
+  const glm::vec3 onImage{theta.sin * phi.sin, theta.cos, -theta.sin * phi.cos};
+  return {onImage.x * turn_.cos + onImage.z * turn_.sin, onImage.y, -onImage.x * turn_.sin + onImage.z * turn_.cos};
 }
 
 glm::vec3 Environment::bilinear(const glm::vec2& uv) const {

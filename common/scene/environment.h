@@ -38,6 +38,11 @@ struct Environment {
 
   glm::vec3 texel(int x, int y) const;
 
+  // Where a direction (finite, largest component about 1) lies on the
+  // image, u and v in [0, 1]; and the unit direction at (u, v), its inverse.
+  glm::vec2 uvOf(const glm::vec3& d) const;
+  glm::vec3 directionAt(const glm::vec2& uv) const;
+
  private:
   glm::vec3 bilinear(const glm::vec2& uv) const;
 

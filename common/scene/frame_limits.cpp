@@ -42,6 +42,9 @@ std::optional<FrameProblem> frameProblem(const FrameSettings& f, std::size_t max
   if (f.tracing.maxDepth < 1 || f.tracing.maxDepth > L::kMaxDepth) {
     return FrameProblem{FrameField::kMaxDepth, range(1, L::kMaxDepth)};
   }
+  if (f.tracing.maxBounces < 0 || f.tracing.maxBounces > L::kMaxBounces) {
+    return FrameProblem{FrameField::kMaxBounces, range(0, L::kMaxBounces)};
+  }
   if (!(f.tracing.minWeight >= 0.0f && f.tracing.minWeight <= 1.0f)) {
     return FrameProblem{FrameField::kMinWeight, "must be in [0, 1]"};
   }
@@ -74,6 +77,8 @@ void checkFrame(const FrameSettings& frame, std::size_t maxPixels, const FrameFi
       throw InputError(std::string(names.seed) + ": " + p->what);
     case FrameField::kMaxDepth:
       throw InputError(std::string(names.maxDepth) + ": " + p->what);
+    case FrameField::kMaxBounces:
+      throw InputError(std::string(names.maxBounces) + ": " + p->what);
     case FrameField::kMinWeight:
       throw InputError(std::string(names.minWeight) + ": " + p->what);
     case FrameField::kAdaptiveThreshold:

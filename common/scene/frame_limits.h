@@ -17,6 +17,7 @@ struct FrameLimits {
   static constexpr int kMaxSamples = 4096;                      // per pixel
   static constexpr int kMaxLightSamples = 4096;                 // shadow rays to a soft light per query
   static constexpr int kMaxDepth = 64;                          // primary ray = 1
+  static constexpr int kMaxBounces = 256;                       // a path's bounces
   static constexpr std::uint32_t kMaxSeed = 0x7fffffff;
   static constexpr float kMaxExposure = 32.0f;                  // |EV|
 };
@@ -29,6 +30,7 @@ enum class FrameField {
   kCamera,
   kSamples,
   kMaxDepth,
+  kMaxBounces,
   kMinWeight,
   kSeed,
   kAdaptiveThreshold,
@@ -56,6 +58,7 @@ struct FrameFieldNames {
   const char* samples;
   const char* seed;
   const char* maxDepth;
+  const char* maxBounces;
   const char* minWeight;
   const char* adaptiveThreshold;
   const char* perceptualThreshold;

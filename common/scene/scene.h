@@ -27,6 +27,11 @@ enum class FilterType { kBox, kTent, kGaussian, kMitchell };
 // kPerceptual: auto's pixels, traced with the perceptual pattern, and the
 // raster's pixels on a visible edge of its colours (client/hybrid_frame.h).
 enum class MaskRule { kAuto, kAll, kNone, kPerceptual };
+// How light is carried: kWhitted, the thesis's tracer (direct light from
+// the lights, mirror and refracted rays, a constant ambient term for the
+// rest); kPath, Monte Carlo path tracing of the light every surface sends
+// every other (common/render/path_tracer.h).
+enum class Transport { kWhitted, kPath };
 // How linear colour becomes an 8-bit value: kLinear stores it as it is (the
 // thesis's frame buffer), kSrgb applies the sRGB transfer function.
 enum class Encoding { kLinear, kSrgb };
@@ -45,6 +50,11 @@ struct EnumWords<FilterType> {
                                                                                   {FilterType::kTent, "tent"},
                                                                                   {FilterType::kGaussian, "gaussian"},
                                                                                   {FilterType::kMitchell, "mitchell"}}};
+};
+template <>
+struct EnumWords<Transport> {
+  static constexpr std::array<std::pair<Transport, std::string_view>, 2> kWords{
+      {{Transport::kWhitted, "whitted"}, {Transport::kPath, "path"}}};
 };
 template <>
 struct EnumWords<Encoding> {
@@ -71,8 +81,10 @@ struct SamplingSettings {
 };
 
 struct TracingSettings {
-  int maxDepth = 5;         // primary ray = depth 1
-  float minWeight = 0.01f;  // rays whose path weight falls below this are not traced
+  int maxDepth = 5;         // primary ray = depth 1 (Whitted)
+  float minWeight = 0.01f;  // rays whose path weight falls below this are not traced (Whitted)
+  Transport transport = Transport::kWhitted;
+  int maxBounces = 8;  // path: surfaces a path may bounce off after the first one it hits
 };
 
 struct MaskSettings {

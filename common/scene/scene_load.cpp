@@ -168,6 +168,7 @@ class SceneLoader {
                        .samples = "sampling.samples",
                        .seed = "sampling.seed",
                        .maxDepth = "tracing.max_depth",
+                       .maxBounces = "tracing.max_bounces",
                        .minWeight = "tracing.min_weight",
                        .adaptiveThreshold = "sampling.adaptive_threshold",
                        .perceptualThreshold = "sampling.perceptual_threshold",
@@ -176,9 +177,12 @@ class SceneLoader {
   }
 
   void readTracing(const JsonReader& r) {
-    r.allowKeys({"max_depth", "min_weight"});
-    if (auto d = r.find("max_depth")) scene_.frame.tracing.maxDepth = d->integer(1, FrameLimits::kMaxDepth);
-    scene_.frame.tracing.minWeight = r.number("min_weight", 0.01f, 0.0f, 1.0f);
+    r.allowKeys({"max_depth", "min_weight", "transport", "max_bounces"});
+    TracingSettings& t = scene_.frame.tracing;
+    if (auto d = r.find("max_depth")) t.maxDepth = d->integer(1, FrameLimits::kMaxDepth);
+    t.minWeight = r.number("min_weight", 0.01f, 0.0f, 1.0f);
+    if (auto m = r.find("transport")) t.transport = choice<Transport>(*m);
+    if (auto b = r.find("max_bounces")) t.maxBounces = b->integer(0, FrameLimits::kMaxBounces);
   }
 
   void readMask(const JsonReader& r) {

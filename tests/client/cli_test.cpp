@@ -70,7 +70,7 @@ TEST_F(Cli, HelpExplainsEveryOption) {
   const Result run = glint("render --help");
   EXPECT_EQ(run.status, 0);
   for (const char* option : {"--output", "--mask", "--threads", "--samples", "--pattern", "--filter", "--max-depth",
-                             "--min-weight", "--size", "--stats", "--seed", "--bvh"}) {
+                             "--min-weight", "--transport", "--max-bounces", "--size", "--stats", "--seed", "--bvh"}) {
     EXPECT_NE(run.output.find(option), std::string::npos) << option;
   }
   // glint accuracy's help names every key --vary takes.
@@ -408,6 +408,33 @@ TEST_F(Cli, InfoNamesTheSphereLight) {
       << info.output;
   EXPECT_NE(info.output.find(" soft_shadows"), std::string::npos) << info.output;
   EXPECT_EQ(info.output.find("left out: soft_shadows"), std::string::npos) << info.output;
+}
+
+// Path transport is named by info, simulated as indirect light, and traced
+// in full under any mask rule (the raster draws direct light only), with a
+// note saying so; --transport chooses it from the command line.
+TEST_F(Cli, PathTransportIsTracedInFullAndSaysSo) {
+  const Result info = glint("info " + scene("cornell.json") + " --no-raster");
+  ASSERT_EQ(info.status, 0) << info.output;
+  EXPECT_NE(info.output.find("transport  path: light between surfaces too, up to 8 bounces"), std::string::npos)
+      << info.output;
+  EXPECT_NE(info.output.find(" indirect_light;"), std::string::npos) << info.output;
+  const Result room = glint("info " + scene("room.json") + " --no-raster");
+  EXPECT_NE(room.output.find("transport  whitted: direct light"), std::string::npos) << room.output;
+  EXPECT_NE(room.output.find(" indirect_light\n"), std::string::npos) << room.output;  // left out
+
+  const std::string small = " --size 40x40 --samples 2 -o ";
+  const Result hybrid = glint("render " + scene("cornell.json") + small + path("auto.png"));
+  ASSERT_EQ(hybrid.status, 0) << hybrid.output;
+  EXPECT_NE(hybrid.output.find("note: path transport: every pixel is traced"), std::string::npos) << hybrid.output;
+  ASSERT_EQ(glint("render " + scene("cornell.json") + " -q --mask all" + small + path("all.png")).status, 0);
+  EXPECT_EQ(decodePng(path("auto.png")).rgb, decodePng(path("all.png")).rgb);
+  const Result whitted = glint("render " + scene("cornell.json") + " --transport whitted" + small + path("w.png"));
+  EXPECT_EQ(whitted.output.find("note: path transport"), std::string::npos) << whitted.output;
+  EXPECT_NE(decodePng(path("w.png")).rgb, decodePng(path("all.png")).rgb);
+  const Result room2 = glint("render " + scene("room.json") + " -q --transport path --max-bounces 2" + small +
+                             path("room.png"));
+  EXPECT_EQ(room2.status, 0) << room2.output;
 }
 
 // --fit frames every object as the scene's "fit": true does: the same image.

@@ -85,6 +85,29 @@ TEST(ManyServers, ThreeServersGiveTheInProcessFrameAndAllTakePart) {
   EXPECT_EQ(there.image.rgb, here.image.rgb);
 }
 
+// Path transport through glintd: the FrameSetup carries the transport and
+// the bounces, and every random number comes from the sample's key, so the
+// servers' tiles are the in-process frame's bytes.
+TEST(ManyServers, APathTracedFrameIsTheInProcessFrame) {
+  const proto::LoadedBundle cornell = proto::loadSceneBundle(test::sourcePath("scenes/cornell.json"));
+  FrameSettings frame = cornell.scene.frame;
+  frame.width = 64;
+  frame.height = 64;
+  frame.sampling.samples = 4;
+  const PreparedScene prepared(cornell.scene, BvhSettings{});
+  ThreadPool pool(2);
+  LocalTileService local(prepared, pool);
+  const FrameImage here = renderFrame(local, frame, smallTiles()).image;
+  Farm farm;
+  DistributedTileService service(resolveServers(farm.addresses()), cornell.bundle);
+  service.awaitServers(std::chrono::seconds(10));
+  EXPECT_EQ(renderFrame(service, frame, smallTiles()).image.rgb, here.rgb);
+  frame.tracing.maxBounces = 1;  // and a setting that changes the light reaches them
+  const FrameImage oneBounce = renderFrame(service, frame, smallTiles()).image;
+  EXPECT_NE(oneBounce.rgb, here.rgb);
+  EXPECT_EQ(oneBounce.rgb, renderFrame(local, frame, smallTiles()).image.rgb);
+}
+
 // Server a is stopped before the frame, so that it holds the tiles it is
 // given, and killed once the frame is under way: its connection closes with
 // tiles outstanding, which the others take.

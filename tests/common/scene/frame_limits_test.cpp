@@ -58,6 +58,7 @@ TEST(FrameLimits, CheckFrameUsesTheCallersNames) {
                               .samples = "--samples",
                               .seed = "--seed",
                               .maxDepth = "--max-depth",
+                              .maxBounces = "--max-bounces",
                               .minWeight = "--min-weight",
                               .adaptiveThreshold = "--adaptive-threshold",
                               .perceptualThreshold = "--perceptual-threshold",

@@ -1,0 +1,59 @@
+#include "common/render/emitters.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "common/math/circular.h"
+
+namespace glint {
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+
+float areaOf(const Geometry& g, std::uint32_t prim) {
+  if (g.isSphere(prim)) {
+    const float r = g.spheres()[prim - g.triangles().size()].radius;
+    return 4.0f * kPi * r * r;
+  }
+  const Triangle& t = g.triangles()[prim];
+  const auto& p = g.positions();
+  return 0.5f * glm::length(glm::cross(p[t.v[1]] - p[t.v[0]], p[t.v[2]] - p[t.v[0]]));
+}
+
+}  // namespace
+
+Emitters::Emitters(const Geometry& geometry, const EffectPlan& plan) : geometry_(geometry) {
+  if (!plan.emission) return;
+  for (std::uint32_t prim = 0; prim < geometry.primitiveCount(); ++prim) {
+    if (!plan.materials[geometry.materialOf(prim)].emits) continue;
+    const float a = areaOf(geometry, prim);
+    if (!(a > 0.0f) || !std::isfinite(a)) continue;
+    total_ += a;
+    prims_.push_back(prim);
+    cumulative_.push_back(total_);
+  }
+}
+
+Emitters::Point Emitters::sample(float pick, const glm::vec2& u) const {
+  const auto at = std::upper_bound(cumulative_.begin(), cumulative_.end(), pick * total_);
+  const std::size_t i = std::min<std::size_t>(static_cast<std::size_t>(at - cumulative_.begin()), prims_.size() - 1);
+  const std::uint32_t prim = prims_[i];
+  if (geometry_.isSphere(prim)) {
+    const Sphere& s = geometry_.spheres()[prim - geometry_.triangles().size()];
+    const float z = 1.0f - 2.0f * u.x;  // uniform over the sphere
+    const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    const SineCosine phi = sineCosine(2.0f * kPi * u.y);
+    return {s.centre + s.radius * glm::vec3(r * phi.cos, r * phi.sin, z), prim, 0.0f, 0.0f};
+  }
+  // Uniform over the triangle: b0 = 1 - sqrt(u.x), b1 = u.y sqrt(u.x).
+  const float su = std::sqrt(u.x);
+  const float b1 = u.y * su, b2 = su - b1;
+  const Triangle& t = geometry_.triangles()[prim];
+  const auto& p = geometry_.positions();
+  const glm::vec3 q = (1.0f - b1 - b2) * p[t.v[0]] + b1 * p[t.v[1]] + b2 * p[t.v[2]];
+  return {q, prim, b1, b2};
+}
+
+}  // namespace glint

@@ -1,0 +1,42 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "common/geometry/geometry.h"
+#include "common/render/effects.h"
+
+namespace glint {
+
+// The scene's emitting surfaces (every triangle and sphere whose material
+// has an emission) as one light for path transport: a point drawn uniformly
+// by area over all of them, so that its density is 1 / area() wherever it
+// lands.
+class Emitters {
+ public:
+  Emitters(const Geometry& geometry, const EffectPlan& plan);
+
+  bool empty() const { return prims_.empty(); }
+  float area() const { return total_; }
+
+  // A point on an emitter and how to find it again: the primitive and the
+  // point's barycentrics on a triangle (b0 = 1 - b1 - b2; 0 on a sphere).
+  struct Point {
+    glm::vec3 p;
+    std::uint32_t prim;
+    float b1, b2;
+  };
+  // `pick` chooses the primitive (by area), u the point on it.
+  Point sample(float pick, const glm::vec2& u) const;
+
+ private:
+  const Geometry& geometry_;
+  std::vector<std::uint32_t> prims_;
+  std::vector<float> cumulative_;  // areas summed up to and including each primitive
+  float total_ = 0.0f;
+};
+
+}  // namespace glint
