@@ -11,7 +11,7 @@ DEPS := cmake g++ make pkg-config libglm-dev nlohmann-json3-dev libtinyobjloader
         libopenexr-dev libassimp-dev libjpeg-dev assimp-testmodels \
         gnuplot-nox
 # The benchmark also compares against POV-Ray 3.7 and Embree 3.
-BENCH_DEPS := povray libembree-dev
+BENCH_DEPS := povray libembree-dev blender
 # The fuzzers are built with clang and its libFuzzer.
 FUZZ_DEPS := clang libclang-rt-14-dev
 FUZZ_BUILD ?= build-fuzz

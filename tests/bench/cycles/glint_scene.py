@@ -1,0 +1,130 @@
+"""Builds a Glint scene in Blender and renders it with Cycles, for the bench's
+light-transport comparison (tests/bench/cycles/compare.sh).
+
+    blender -b --factory-startup --python glint_scene.py -- SCENE.json OUT.exr SAMPLES BOUNCES
+
+Takes what a path-transport scene of quads and triangles with diffuse and
+emitting materials holds (scenes/cornell.json): the camera (eye, look_at,
+up, fov_y), the image size, each material as a diffuse BSDF of albedo
+color x diffuse plus an emission of radiance `emission`, a black world.
+Glint's y-up scene is turned into Blender's z-up one by a rotation of 90
+degrees about x (a proper rotation: the image is not mirrored). The film
+is linear (view transform Standard, EXR), its pixel filter a box one pixel
+wide, no sample clamping, Cycles' light tree off, as Glint samples.
+"""
+import json
+import math
+import sys
+import time
+
+import bpy
+from mathutils import Vector
+
+
+def turned(p):
+    """Glint (x, y, z), y up, as Blender's (x, -z, y), z up."""
+    return Vector((p[0], -p[2], p[1]))
+
+
+def material(name, m):
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    nodes = mat.node_tree.nodes
+    nodes.clear()
+    out = nodes.new("ShaderNodeOutputMaterial")
+    diffuse = nodes.new("ShaderNodeBsdfDiffuse")
+    albedo = [c * m.get("diffuse", 1.0) for c in m.get("color", [1, 1, 1])]
+    diffuse.inputs["Color"].default_value = (*albedo, 1.0)
+    emission = m.get("emission")
+    if emission:
+        light = nodes.new("ShaderNodeEmission")
+        light.inputs["Color"].default_value = (*emission, 1.0)
+        light.inputs["Strength"].default_value = 1.0
+        add = nodes.new("ShaderNodeAddShader")
+        mat.node_tree.links.new(diffuse.outputs[0], add.inputs[0])
+        mat.node_tree.links.new(light.outputs[0], add.inputs[1])
+        mat.node_tree.links.new(add.outputs[0], out.inputs["Surface"])
+    else:
+        mat.node_tree.links.new(diffuse.outputs[0], out.inputs["Surface"])
+    return mat
+
+
+def build(scene_file):
+    with open(scene_file) as f:
+        scene = json.load(f)
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    mats = {name: material(name, m) for name, m in scene["materials"].items()}
+    verts, faces, face_mats = [], [], []
+    names = list(mats)
+    for o in scene["objects"]:
+        corners = o["corners"] if o["type"] == "quad" else o["vertices"]
+        first = len(verts)
+        verts += [turned(p) for p in corners]
+        faces.append(tuple(range(first, first + len(corners))))
+        face_mats.append(names.index(o["material"]))
+    mesh = bpy.data.meshes.new("scene")
+    mesh.from_pydata(verts, [], faces)
+    for m in names:
+        mesh.materials.append(mats[m])
+    for poly, index in zip(mesh.polygons, face_mats):
+        poly.material_index = index
+    obj = bpy.data.objects.new("scene", mesh)
+    bpy.context.scene.collection.objects.link(obj)
+
+    cam = scene["camera"]
+    camera = bpy.data.cameras.new("camera")
+    camera.sensor_fit = "VERTICAL"
+    camera.angle = math.radians(cam.get("fov_y", 60))
+    cam_obj = bpy.data.objects.new("camera", camera)
+    eye, target = turned(cam["eye"]), turned(cam["look_at"])
+    cam_obj.location = eye
+    # Looking along its -Z with its Y toward Blender's +z: Glint's up, +y
+    # (the scenes this script takes keep the default up).
+    cam_obj.rotation_euler = (target - eye).to_track_quat("-Z", "Y").to_euler()
+    bpy.context.scene.collection.objects.link(cam_obj)
+    bpy.context.scene.camera = cam_obj
+
+    world = bpy.data.worlds.new("world")
+    world.use_nodes = True
+    world.node_tree.nodes["Background"].inputs["Color"].default_value = (0, 0, 0, 1)
+    bpy.context.scene.world = world
+    return scene
+
+
+def settings(scene, samples, bounces):
+    s = bpy.context.scene
+    s.render.engine = "CYCLES"
+    s.cycles.device = "CPU"
+    s.cycles.samples = samples
+    s.cycles.use_adaptive_sampling = False
+    s.cycles.use_denoising = False
+    s.cycles.max_bounces = bounces
+    s.cycles.diffuse_bounces = bounces
+    s.cycles.glossy_bounces = bounces
+    s.cycles.transmission_bounces = bounces
+    s.cycles.sample_clamp_direct = 0.0
+    s.cycles.sample_clamp_indirect = 0.0
+    s.cycles.filter_width = 0.01  # a box of (about) one pixel: the pixel's own samples
+    s.cycles.pixel_filter_type = "BOX"
+    if hasattr(s.cycles, "use_light_tree"):
+        s.cycles.use_light_tree = False
+    s.render.resolution_x = scene["image"]["width"]
+    s.render.resolution_y = scene["image"]["height"]
+    s.render.resolution_percentage = 100
+    s.view_settings.view_transform = "Standard"
+    s.render.image_settings.file_format = "OPEN_EXR"
+    s.render.image_settings.color_depth = "32"
+
+
+def main():
+    args = sys.argv[sys.argv.index("--") + 1:]
+    scene_file, out, samples, bounces = args[0], args[1], int(args[2]), int(args[3])
+    scene = build(scene_file)
+    settings(scene, samples, bounces)
+    bpy.context.scene.render.filepath = out
+    start = time.time()
+    bpy.ops.render.render(write_still=True)
+    print("cycles: %d samples, %d bounces, %.1f s" % (samples, bounces, time.time() - start))
+
+
+main()
