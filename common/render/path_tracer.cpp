@@ -69,10 +69,13 @@ glm::vec3 PathTracer::escaped(const glm::vec3& d, float bsdfPdf) const {
   return radiance * powerHeuristic(bsdfPdf, sky_->pdf(d));
 }
 
-glm::vec3 PathTracer::shadowFrom(const Vertex& v, const glm::vec3& d) const {
+const glm::vec3& PathTracer::shadowFrom(const Vertex& v, const glm::vec3& d) const {
   if (glm::dot(d, v.s.ng) > 0.0f) return v.outside;
-  const Geometry::LiftedPoint p = scene_.geometry.lifted(v.hit, v.s);
-  return offsetRayOrigin(p.p, p.error, v.s.ng);
+  if (!v.lifted) {
+    const Geometry::LiftedPoint p = scene_.geometry.lifted(v.hit, v.s);
+    v.lifted = offsetRayOrigin(p.p, p.error, v.s.ng);
+  }
+  return *v.lifted;
 }
 
 std::optional<PathTracer::LightSample> PathTracer::sampleLight(const Vertex& v, int light, const glm::vec2& u) const {
@@ -224,7 +227,7 @@ glm::vec3 PathTracer::radiance(const Ray& cameraRay, const SampleKey& key, RaySt
     const Bsdf bsdf(m, surfaceColor(scene_, m, e, s, plan_.vertexColors), s.ns, s.ng, -ray.d,
                     inside ? m.ior : 1.0f / m.ior);
     if (bsdf.black()) break;
-    const Vertex v{s, *hit, offsetRayOrigin(s.p, s.error, s.ng)};
+    const Vertex v{s, *hit, offsetRayOrigin(s.p, s.error, s.ng), std::nullopt};
     const bool last = bounce >= maxBounces_;
     if (bsdf.smooth()) sum += throughput * directLight(v, bsdf, key, bounce, last, stats);
     if (last) break;

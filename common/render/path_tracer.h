@@ -57,6 +57,7 @@ class PathTracer {
     const SurfaceHit& s;
     const Hit& hit;
     glm::vec3 outside;  // origin of rays leaving on the viewer's side
+    mutable std::optional<glm::vec3> lifted;  // shadowFrom's, once a shadow ray needs it
   };
   // The light sampled toward one light: direction, distance, what arrives
   // (the radiance, or for a delta light pi times its intensity at the
@@ -85,8 +86,8 @@ class PathTracer {
   glm::vec3 escaped(const glm::vec3& d, float bsdfPdf) const;
   // The origin of a shadow ray along d: the outside offset, or where d
   // passes behind the flat triangle, the point lifted onto the smooth
-  // surface (the shadow terminator, as Tracer does).
-  glm::vec3 shadowFrom(const Vertex& v, const glm::vec3& d) const;
+  // surface (the shadow terminator, as Tracer does), computed once a vertex.
+  const glm::vec3& shadowFrom(const Vertex& v, const glm::vec3& d) const;
   int dimension(int bounce, int offset) const { return SampleKey::kFirstLightDimension + bounce * perBounce_ + offset; }
 
   const Scene& scene_;
