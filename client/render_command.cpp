@@ -129,6 +129,11 @@ void printSummary(const RenderOptions& options, const FrameSettings& frame, cons
                options.scene.c_str(), frame.width, frame.height, frame.sampling.samples, where.c_str(),
                frameTimes.back().traceMs, frameTimes.back().totalMs, static_cast<double>(rays.total()) / 1e6,
                options.output.c_str());
+  if (rays.paths > 0) {
+    std::fprintf(stderr, "paths: %.2f bounces a path, %llu the longest, %.2f M light samples\n",
+                 static_cast<double>(rays.reflection + rays.refraction) / static_cast<double>(rays.paths),
+                 static_cast<unsigned long long>(rays.longestPath), static_cast<double>(rays.lightSamples) / 1e6);
+  }
   if (options.frames > 1) printTimingTable(frameTimes, hybrid);
   if (rays.nonFiniteSamples > 0) {
     std::fprintf(stderr, "warning: %llu samples were not finite and were discarded\n",

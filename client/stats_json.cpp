@@ -53,6 +53,13 @@ nlohmann::json toJson(const FrameRecord& r) {
   j["traced_share"] = pixels > 0 ? static_cast<double>(r.maskedPixels) / pixels : 0.0;
   j["primary_share"] = pixels > 0 ? static_cast<double>(r.rays.primary) / (pixels * r.samples) : 0.0;
   if (r.plan) j["effects"] = toJson(*r.plan);
+  if (r.rays.paths > 0) {
+    const auto bounces = static_cast<double>(r.rays.reflection + r.rays.refraction);
+    j["paths"] = {{"count", r.rays.paths},
+                  {"bounces_mean", bounces / static_cast<double>(r.rays.paths)},
+                  {"bounces_max", r.rays.longestPath},
+                  {"light_samples", r.rays.lightSamples}};
+  }
   if (r.hybrid) {
     j["raster_ms"] = r.hybrid->rasterMs;
     j["shadow_map_ms"] = r.hybrid->shadowMapMs;

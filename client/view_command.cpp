@@ -22,7 +22,9 @@
 #include "client/scene_warnings.h"
 #include "client/tile_backend.h"
 #include "common/base/error.h"
+#include "common/base/timing.h"
 #include "common/image/image_write.h"
+#include "common/render/progressive_frame.h"
 #include "proto/scene_bundle.h"
 
 namespace glint {
@@ -48,6 +50,14 @@ struct Controls {
 FrameSettings previewOf(FrameSettings frame) {
   frame.sampling.samples = 1;
   frame.sampling.pattern = SamplePattern::kRegular;
+  return frame;
+}
+
+// The scene's frame at the window's size, seen by the controls' camera.
+FrameSettings viewFrame(GLFWwindow* window, const Scene& scene, const Controls& controls) {
+  FrameSettings frame = scene.frame;
+  glfwGetFramebufferSize(window, &frame.width, &frame.height);
+  frame.camera = controls.camera;
   return frame;
 }
 
@@ -198,9 +208,7 @@ enum class Shown { kFrame, kMissingTiles, kAbandoned };
 Shown showFrame(GLFWwindow* window, const gl::Api& api, gl::RasterScene& raster, TileBackend& backend,
                 Controls& controls, int tileSize, bool preview, HybridResult& last, std::string& reported,
                 Title& title) {
-  FrameSettings frame = backend.scene().frame;
-  glfwGetFramebufferSize(window, &frame.width, &frame.height);
-  frame.camera = controls.camera;
+  FrameSettings frame = viewFrame(window, backend.scene(), controls);
   if (preview) frame = previewOf(frame);
   MaskSettings mask = backend.scene().mask;
   mask.rule = controls.rule;
@@ -243,6 +251,56 @@ Shown showFrame(GLFWwindow* window, const gl::Api& api, gl::RasterScene& raster,
   title = {text, whereLabel(backend, missing)};
   title.show(window);
   return missing ? Shown::kMissingTiles : Shown::kFrame;
+}
+
+// The resting camera's frame summed in passes (in process, every pixel
+// traced): 1, 2, 4, ... samples a pixel, each pass shown, until the frame
+// is glint render's.
+struct Accumulation {
+  Accumulation(const PreparedScene& prepared, const FrameSettings& frame, int tileSize)
+      : renderer(prepared, frame), frame(renderer, tileSize) {}
+  Renderer renderer;
+  ProgressiveFrame frame;
+  double ms = 0.0;  // spent on its passes so far
+};
+
+// Whether the view sums its frames in passes: every pixel traced in
+// process with a pattern whose samples add up in any number of passes (the
+// hybrid rules' raster, the servers' 8-bit tiles and the adaptive patterns
+// cannot).
+bool summable(TileBackend& backend, const Controls& controls) {
+  const SamplingSettings& s = backend.scene().frame.sampling;
+  return backend.prepared() && controls.rule == MaskRule::kAll && s.samples > 1 &&
+         (s.pattern == SamplePattern::kRegular || s.pattern == SamplePattern::kJittered);
+}
+
+// The next pass of the resting camera's frame, made anew after the camera
+// moved: its samples added (the first pass at once, a later one abandoned,
+// and the frame dropped, when the camera moves meanwhile), then shown.
+bool showPass(GLFWwindow* window, const gl::Api& api, TileBackend& backend, Controls& controls, int tileSize,
+              std::unique_ptr<Accumulation>& acc, HybridResult& last, Title& title) {
+  if (!acc) acc = std::make_unique<Accumulation>(*backend.prepared(), viewFrame(window, backend.scene(), controls), tileSize);
+  const CancelCheck cameraMoved = [&] {
+    glfwPollEvents();
+    return controls.changed;
+  };
+  const Clock::time_point start = Clock::now();
+  if (!acc->frame.addPass(*backend.pool(), acc->frame.samples() == 0 ? CancelCheck{} : cameraMoved)) {
+    acc.reset();
+    return false;
+  }
+  acc->ms += msSince(start);
+  last.image = acc->frame.image();
+  last.mask.assign(last.image.rgb.size() / 3, 1);
+  drawImage(api, controls.overlay ? maskOverlay(last) : last.image.rgb, last.image.width, last.image.height);
+  glfwSwapBuffers(window);
+  const FrameSettings& frame = acc->renderer.frame();
+  char text[256];
+  std::snprintf(text, sizeof text, "mask all%s  |  %d of %d spp, %.0f ms", controls.overlay ? " (shown)" : "",
+                acc->frame.samples(), frame.sampling.samples, acc->ms);
+  title = {text, whereLabel(backend, false)};
+  title.show(window);
+  return true;
 }
 
 // Between frames: servers that joined connect and upload, servers that left
@@ -301,9 +359,19 @@ void runView(const ViewOptions& options) {
   HybridResult last;    // the latest frame; reused by the next
   std::string reported;
   Title title;
+  std::unique_ptr<Accumulation> accumulating;  // the frame summed in passes, when summable()
   while (!glfwWindowShouldClose(window)) {
     const bool moved = controls.changed;
-    if (moved || refine || options.frames > 0 || (retryAt > 0.0 && glfwGetTime() >= retryAt)) {
+    if (summable(backend, controls)) {
+      if (moved) accumulating.reset();
+      refine = !accumulating || !accumulating->frame.complete();
+      if (!refine && options.frames > 0) break;  // nothing more to show
+      controls.changed = false;
+      if (refine && showPass(window, api, backend, controls, options.frame.tileSize, accumulating, last, title) &&
+          options.frames > 0 && ++frames >= options.frames) {
+        break;
+      }
+    } else if (moved || refine || options.frames > 0 || (retryAt > 0.0 && glfwGetTime() >= retryAt)) {
       controls.changed = false;
       const bool preview = progressive && moved;
       const Shown shown =

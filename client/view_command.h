@@ -26,7 +26,9 @@ struct ViewOptions {
 // right drag pans, the wheel zooms; M cycles the mask rule (auto,
 // perceptual, all, none), O shows the mask over the image, Q or Escape closes. While the
 // camera moves each frame is a one-sample preview; when it rests, the frame
-// with the scene's samples follows (equal to glint render's). The window may
+// with the scene's samples follows (equal to glint render's): whole, or,
+// when every pixel is traced in process, summed in passes of 1, 2, 4, ...
+// samples a pixel, each shown (common/render/progressive_frame.h). The window may
 // be resized; the frame follows its size. The title shows the frame time and
 // its steps. Throws InputError for bad input.
 void runView(const ViewOptions& options);

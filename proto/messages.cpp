@@ -146,7 +146,8 @@ std::vector<std::uint8_t> encodeTileResult(std::uint32_t frameId, std::uint32_t 
                                            std::uint32_t computeMicros) {
   FlatBufferBuilder b(rgb.size() + 128);
   const auto rgbVector = b.CreateVector(rgb.data(), rgb.size());
-  const wire::RayCounts rays(r.primary, r.shadow, r.shadowBlocked, r.reflection, r.refraction, r.nonFiniteSamples);
+  const wire::RayCounts rays(r.primary, r.shadow, r.shadowBlocked, r.reflection, r.refraction, r.nonFiniteSamples,
+                              r.paths, r.longestPath, r.lightSamples);
   return finish(b, wire::CreateTileResult(b, frameId, tileId, rgbVector, &rays, computeMicros),
                 wire::Body::TileResult);
 }
@@ -160,6 +161,9 @@ RayStats decodeRays(const wire::RayCounts* r) {
   s.reflection = r->reflection();
   s.refraction = r->refraction();
   s.nonFiniteSamples = r->nonfinite_samples();
+  s.paths = r->paths();
+  s.longestPath = r->longest_path();
+  s.lightSamples = r->light_samples();
   return s;
 }
 

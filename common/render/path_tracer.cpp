@@ -46,19 +46,17 @@ std::optional<float> hitArea(const Light& l, const Ray& ray, float tMax) {
 
 }  // namespace
 
-PathTracer::PathTracer(const Scene& scene, const Bvh& bvh, const FrameSettings& frame, const EffectPlan& plan)
+PathTracer::PathTracer(const Scene& scene, const Bvh& bvh, const EnvironmentLight* sky, const FrameSettings& frame,
+                       const EffectPlan& plan)
     : scene_(scene),
       bvh_(bvh),
       plan_(plan),
       maxBounces_(frame.tracing.maxBounces),
       emitters_(scene.geometry, plan),
+      sky_(sky),
       perBounce_(kFirstLightDimension + 2 * static_cast<int>(scene.lights.size())) {
   for (const Light& l : scene.lights) {
     lightArea_.push_back(l.type == LightType::kArea ? glm::length(glm::cross(l.u, l.v)) : 0.0f);
-  }
-  if (plan.environment) {
-    sky_.emplace(*scene.environment);
-    if (sky_->empty()) sky_.reset();
   }
 }
 
@@ -152,9 +150,11 @@ glm::vec3 PathTracer::directLight(const Vertex& v, const Bsdf& bsdf, const Sampl
     if (!plan_.lights[static_cast<std::size_t>(i)]) continue;
     const int first = dimension(bounce, kFirstLightDimension + 2 * i);
     const std::optional<LightSample> l = sampleLight(v, i, {key.uniform(first), key.uniform(first + 1)});
+    ++stats.lightSamples;
     if (l) sum += contribution(v, bsdf, *l, last, stats);
   }
   if (sky_) {
+    ++stats.lightSamples;
     const int first = dimension(bounce, kSkyDimension);
     const EnvironmentLight::Sample s = sky_->sample({key.uniform(first), key.uniform(first + 1)});
     if (s.pdf > 0.0f) {
@@ -163,6 +163,7 @@ glm::vec3 PathTracer::directLight(const Vertex& v, const Bsdf& bsdf, const Sampl
     }
   }
   if (!emitters_.empty()) {
+    ++stats.lightSamples;
     const int first = dimension(bounce, kEmitterDimension);
     const std::optional<LightSample> l =
         sampleEmitters(v, key.uniform(first), {key.uniform(first + 1), key.uniform(first + 2)});
@@ -208,11 +209,13 @@ glm::vec3 PathTracer::emittedAt(const Ray& ray, const Hit& hit, const SurfaceHit
 
 glm::vec3 PathTracer::radiance(const Ray& cameraRay, const SampleKey& key, RayStats& stats) const {
   ++stats.primary;
+  ++stats.paths;
   glm::vec3 sum(0.0f), throughput(1.0f);
   Ray ray = cameraRay;
   bool inside = false;
   float bsdfPdf = 0.0f;  // the density the last bounce drew the ray with (0: the camera's, or a delta lobe)
-  for (int bounce = 0;; ++bounce) {
+  int bounce = 0;        // the bounce rays traced
+  for (;; ++bounce) {
     const std::optional<Hit> hit = bvh_.intersect(ray, kInfinity);
     if (bounce > 0) sum += throughput * lightsAlong(ray, hit ? hit->t : kInfinity, bsdfPdf);
     if (!hit) {
@@ -248,6 +251,7 @@ glm::vec3 PathTracer::radiance(const Ray& cameraRay, const SampleKey& key, RaySt
     inside = inside != next->transmitted;
     bsdfPdf = next->pdf;
   }
+  stats.longestPath = std::max(stats.longestPath, static_cast<std::uint64_t>(bounce));
   return sum;
 }
 

@@ -45,7 +45,10 @@ class PathTracer {
  public:
   static constexpr int kRouletteFrom = 3;
 
-  PathTracer(const Scene& scene, const Bvh& bvh, const FrameSettings& frame, const EffectPlan& plan);
+  // `sky`: the environment image as a light, nullptr where it has none or
+  // the plan does not look it up.
+  PathTracer(const Scene& scene, const Bvh& bvh, const EnvironmentLight* sky, const FrameSettings& frame,
+             const EffectPlan& plan);
   PathTracer(const PathTracer&) = delete;
   PathTracer& operator=(const PathTracer&) = delete;
 
@@ -95,7 +98,7 @@ class PathTracer {
   const EffectPlan& plan_;
   int maxBounces_;
   Emitters emitters_;
-  std::optional<EnvironmentLight> sky_;  // the environment image, where it has light
+  const EnvironmentLight* sky_;  // the environment image, where it has light and the plan looks it up
   std::vector<float> lightArea_;  // per light: an area light's area, else 0
   int perBounce_;                     // sample dimensions one bounce draws
 };

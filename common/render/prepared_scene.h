@@ -1,6 +1,10 @@
 #pragma once
 
+#include <mutex>
+#include <optional>
+
 #include "common/geometry/bvh.h"
+#include "common/render/environment_light.h"
 #include "common/scene/scene.h"
 
 namespace glint {
@@ -17,10 +21,15 @@ class PreparedScene {
 
   const Scene& scene() const { return scene_; }
   const Bvh& bvh() const { return bvh_; }
+  // The environment image as a light (path transport samples it), made once,
+  // when a frame first asks; nullptr where the scene has none or it is black.
+  const EnvironmentLight* environmentLight() const;
 
  private:
   Scene scene_;
   Bvh bvh_;
+  mutable std::once_flag skyOnce_;
+  mutable std::optional<EnvironmentLight> sky_;
 };
 
 }  // namespace glint

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
 namespace glint {
@@ -13,6 +14,13 @@ struct RayStats {
   std::uint64_t reflection = 0;
   std::uint64_t refraction = 0;
   std::uint64_t nonFiniteSamples = 0;  // samples discarded because a channel was NaN or infinite
+  // Path transport's: the paths (one a camera sample), the bounces of the
+  // longest (its bounce rays: reflection and refraction above count them
+  // all), and the lights' samples drawn for next-event estimation (a shadow
+  // ray each, unless the light cannot reach the point).
+  std::uint64_t paths = 0;
+  std::uint64_t longestPath = 0;
+  std::uint64_t lightSamples = 0;
 
   RayStats& operator+=(const RayStats& o) {
     primary += o.primary;
@@ -21,6 +29,9 @@ struct RayStats {
     reflection += o.reflection;
     refraction += o.refraction;
     nonFiniteSamples += o.nonFiniteSamples;
+    paths += o.paths;
+    longestPath = std::max(longestPath, o.longestPath);
+    lightSamples += o.lightSamples;
     return *this;
   }
   std::uint64_t total() const { return primary + shadow + reflection + refraction; }

@@ -23,7 +23,10 @@ Renderer::Renderer(const PreparedScene& prepared, const FrameSettings& frame, co
       filter_(frame.sampling.filter),
       sampleLayout_(frame.sampling),
       tracer_(prepared.scene(), prepared.bvh(), frame_, plan_) {
-  if (frame.tracing.transport == Transport::kPath) path_.emplace(prepared.scene(), prepared.bvh(), frame_, plan_);
+  if (frame.tracing.transport == Transport::kPath) {
+    path_.emplace(prepared.scene(), prepared.bvh(), plan_.environment ? prepared.environmentLight() : nullptr, frame_,
+                  plan_);
+  }
 }
 
 Ray Renderer::cameraRay(const glm::vec2& film, const SampleKey& key) const {

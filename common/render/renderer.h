@@ -48,12 +48,6 @@ class Renderer {
   // renderTileLinear).
   glm::vec3 pixel(int x, int y, RayStats& stats) const;
 
-  const Scene& scene() const { return prepared_.scene(); }
-  const FrameSettings& frame() const { return frame_; }
-  const EffectPlan& plan() const { return plan_; }
-  const Camera& camera() const { return camera_; }
-
- private:
   // A pixel's samples so far: their filter-weighted and plain sums.
   struct PixelSamples {
     glm::vec3 sum{0.0f};
@@ -61,6 +55,19 @@ class Renderer {
     float weightSum = 0.0f;
     int finite = 0;
   };
+  // Traces samples first to end - 1 of pixel (x, y) into p (regular and
+  // jittered patterns). Samples added in passes, in order, sum as pixel()
+  // sums them all at once: resolve() then gives pixel()'s value, bit for bit.
+  void addSamples(int x, int y, int first, int end, PixelSamples& p, RayStats& stats) const;
+  // The pixel's colour from its samples (the background when none is finite).
+  glm::vec3 resolve(const PixelSamples& p) const;
+
+  const Scene& scene() const { return prepared_.scene(); }
+  const FrameSettings& frame() const { return frame_; }
+  const EffectPlan& plan() const { return plan_; }
+  const Camera& camera() const { return camera_; }
+
+ private:
   // A camera ray and the filter's weight for its radiance.
   struct CameraSample {
     Ray ray;
@@ -71,11 +78,8 @@ class Renderer {
   // The camera's ray through film position `film` (through the lens point
   // the key draws, under depth of field).
   Ray cameraRay(const glm::vec2& film, const SampleKey& key) const;
-  // Traces samples first to end - 1 of pixel (x, y) into p.
-  void addSamples(int x, int y, int first, int end, PixelSamples& p, RayStats& stats) const;
   // One ray through the pixel's centre into p, with weight 1.
   void addCentreSample(int x, int y, PixelSamples& p, RayStats& stats) const;
-  glm::vec3 resolve(const PixelSamples& p) const;
   // The radiance of a camera sample, by the frame's transport.
   glm::vec3 radiance(const Ray& ray, const SampleKey& key, RayStats& stats) const {
     return path_ ? path_->radiance(ray, key, stats) : tracer_.radiance(ray, key, stats);

@@ -39,12 +39,13 @@
 #include "tests/bench/mesh_file_section.h"
 #include "tests/bench/perceptual_section.h"
 #include "tests/bench/soft_shadow_section.h"
+#include "tests/bench/transport_section.h"
 
 namespace glint::bench {
 
 // The sections, in the order they run (all by default).
-constexpr std::array<const char*, 12> kSections{"bvh",  "room", "accuracy", "protocol",    "hybrid",   "perceptual",
-                                                "soft", "gl",   "load",     "distributed", "meshfile", "embree"};
+constexpr std::array<const char*, 13> kSections{"bvh",  "room", "accuracy",    "protocol", "hybrid", "perceptual", "soft",
+                                                "gl",   "load", "distributed", "meshfile", "embree", "transport"};
 
 namespace {
 
@@ -467,6 +468,7 @@ int main(int argc, char** argv) {
     if (o.wants("distributed")) bench::distributedSection(o.scenes, o.quick);
     if (o.wants("meshfile")) bench::meshFileSection(o.quick, o.runs);
     if (o.wants("embree")) bench::embreeSection(o.scenes, o.quick, o.runs);
+    if (o.wants("transport")) bench::transportSection(o.scenes, o.quick);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "glint-bench: %s\n", e.what());
     return 1;

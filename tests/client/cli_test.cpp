@@ -183,6 +183,28 @@ TEST_F(Cli, ViewShowsTheSameFrameAsRender) {
   EXPECT_NE(decodePng(path("preview.png")).rgb, decodePng(path("render.png")).rgb);
 }
 
+// Where every pixel is traced in process (path transport), the resting view
+// sums its samples in passes, each shown, and ends as glint render's frame;
+// its first pass, one sample a pixel, is far from it.
+TEST_F(Cli, ThePathTracedViewConvergesToRendersFrame) {
+  if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed";
+  const std::string args = scene("cornell.json") + " --size 48x48 --samples 16 --max-bounces 3";
+  const Result view = glint("view " + args + " --frames 100 --screenshot " + path("view.png"), "xvfb-run -a ");
+  ASSERT_EQ(view.status, 0) << view.output;
+  const Result render = glint("render " + args + " -o " + path("render.png") + " -q");
+  ASSERT_EQ(render.status, 0) << render.output;
+  const std::vector<std::uint8_t> rendered = decodePng(path("render.png")).rgb;
+  EXPECT_EQ(decodePng(path("view.png")).rgb, rendered);
+
+  const Result first = glint("view " + args + " --frames 1 --screenshot " + path("first.png"), "xvfb-run -a ");
+  ASSERT_EQ(first.status, 0) << first.output;
+  const std::vector<std::uint8_t> pass = decodePng(path("first.png")).rgb;
+  ASSERT_EQ(pass.size(), rendered.size());
+  double squares = 0.0;
+  for (std::size_t i = 0; i < pass.size(); ++i) squares += std::pow(double(pass[i]) - double(rendered[i]), 2.0);
+  EXPECT_GT(std::sqrt(squares / static_cast<double>(pass.size())), 4.0);  // one sample's noise, in 8-bit steps
+}
+
 // Through two glintd, the view shows the same frame; with no server at all it
 // keeps showing the raster frame, the pixels that needed tracing magenta, and
 // says why.

@@ -38,6 +38,22 @@ TEST(StatsJson, SharesOfTheFullTrace) {
   EXPECT_DOUBLE_EQ(j["traced_share"].get<double>(), 1.0);
 }
 
+// Path transport's counts appear only when paths were traced.
+TEST(StatsJson, PathsAreCountedWhereThereAreAny) {
+  FrameRecord r;
+  EXPECT_FALSE(toJson(r).contains("paths"));
+  r.rays.paths = 4;
+  r.rays.reflection = 9;
+  r.rays.refraction = 1;
+  r.rays.longestPath = 5;
+  r.rays.lightSamples = 12;
+  const nlohmann::json paths = toJson(r)["paths"];
+  EXPECT_EQ(paths["count"], 4);
+  EXPECT_DOUBLE_EQ(paths["bounces_mean"].get<double>(), 2.5);
+  EXPECT_EQ(paths["bounces_max"], 5);
+  EXPECT_EQ(paths["light_samples"], 12);
+}
+
 TEST(StatsJson, RemoteRecordNamesTheConnection) {
   FrameRecord r;
   r.remote = true;

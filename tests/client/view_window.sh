@@ -2,7 +2,8 @@
 # glint view as a user sees it: the window on a virtual display (Xvfb, 24-bit
 # colour), captured by the X server (xwd), not read back from OpenGL, holds
 # the same pixels as glint render's PNG of the same scene and size, once the
-# title says the frame (not the one-sample preview) is shown.
+# title says the frame (not the one-sample preview) is shown; under path
+# transport (cornell), once its passes have summed the frame's samples.
 # Usage: view_window.sh GLINT SCENES_DIR
 # Exit 77 (CTest: skipped) without xvfb-run, xwininfo, xwd or netpbm.
 set -euo pipefail
@@ -20,8 +21,11 @@ trap 'rm -rf "$work"' EXIT
 size=160x120
 pixels=$((160 * 120 * 3))
 
-for name in room glass; do
-  "$glint" render "$scenes/$name.json" --size "$size" -o "$work/$name.png" -q
+# Each scene's options beyond the size: the Cornell box's, few samples.
+options() { [ "$1" = cornell ] && echo "--samples 16 --max-bounces 3" || true; }
+for name in room glass cornell; do
+  # shellcheck disable=SC2046
+  "$glint" render "$scenes/$name.json" --size "$size" $(options "$name") -o "$work/$name.png" -q
   pngtopnm "$work/$name.png" | tail -c "$pixels" > "$work/$name.rgb"
 done
 
@@ -33,9 +37,10 @@ xvfb-run -a -s "-screen 0 640x480x24" bash -c '
   glint=$1 scenes=$2 work=$3 size=$4 pixels=$5
   view=""
   trap "[ -n \"\$view\" ] && kill \$view 2> /dev/null; wait" EXIT
-  window() { xwininfo -root -tree | grep "\"glint view[^\"]*|  frame " | head -n 1 | awk "{print \$1}"; }
-  for name in room glass; do
-    "$glint" view "$scenes/$name.json" --size "$size" > "$work/$name.log" 2>&1 &
+  window() { xwininfo -root -tree | grep -E "\"glint view[^\"]*\|  (frame |[0-9]+ of [0-9]+ spp)" | head -n 1 | awk "{print \$1}"; }
+  options() { [ "$1" = cornell ] && echo "--samples 16 --max-bounces 3" || true; }
+  for name in room glass cornell; do
+    "$glint" view "$scenes/$name.json" --size "$size" $(options "$name") > "$work/$name.log" 2>&1 &
     view=$!
     same=0
     for _ in $(seq 1 300); do

@@ -196,6 +196,9 @@ TEST(Messages, TileRequestAndResultRoundTrip) {
     rays.reflection = 70;
     rays.refraction = 60;
     rays.nonFiniteSamples = 1;
+    rays.paths = 500;
+    rays.longestPath = 7;
+    rays.lightSamples = 1200;
     const auto* m = decode(encodeTileResult(3, 44, rgb, rays, 250)).body_as_TileResult();
     EXPECT_EQ(m->tile_id(), 44u);
     EXPECT_EQ(std::vector<std::uint8_t>(m->rgb()->begin(), m->rgb()->end()), rgb);
@@ -206,6 +209,9 @@ TEST(Messages, TileRequestAndResultRoundTrip) {
     EXPECT_EQ(back.reflection, 70u);
     EXPECT_EQ(back.refraction, 60u);
     EXPECT_EQ(back.nonFiniteSamples, 1u);
+    EXPECT_EQ(back.paths, 500u);
+    EXPECT_EQ(back.longestPath, 7u);
+    EXPECT_EQ(back.lightSamples, 1200u);
     EXPECT_EQ(m->compute_us(), 250u);
   }
 }

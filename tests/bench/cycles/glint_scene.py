@@ -1,7 +1,7 @@
 """Builds a Glint scene in Blender and renders it with Cycles, for the bench's
-light-transport comparison (tests/bench/cycles/compare.sh).
+light-transport comparison (glint-bench --sections transport).
 
-    blender -b --factory-startup --python glint_scene.py -- SCENE.json OUT.exr SAMPLES BOUNCES
+    blender -b --factory-startup --python glint_scene.py -- SCENE.json OUT.exr SAMPLES BOUNCES [SEED]
 
 Takes what a path-transport scene of quads and triangles with diffuse and
 emitting materials holds (scenes/cornell.json): the camera (eye, look_at,
@@ -91,11 +91,12 @@ def build(scene_file):
     return scene
 
 
-def settings(scene, samples, bounces):
+def settings(scene, samples, bounces, seed):
     s = bpy.context.scene
     s.render.engine = "CYCLES"
     s.cycles.device = "CPU"
     s.cycles.samples = samples
+    s.cycles.seed = seed
     s.cycles.use_adaptive_sampling = False
     s.cycles.use_denoising = False
     s.cycles.max_bounces = bounces
@@ -119,8 +120,9 @@ def settings(scene, samples, bounces):
 def main():
     args = sys.argv[sys.argv.index("--") + 1:]
     scene_file, out, samples, bounces = args[0], args[1], int(args[2]), int(args[3])
+    seed = int(args[4]) if len(args) > 4 else 0
     scene = build(scene_file)
-    settings(scene, samples, bounces)
+    settings(scene, samples, bounces, seed)
     bpy.context.scene.render.filepath = out
     start = time.time()
     bpy.ops.render.render(write_still=True)

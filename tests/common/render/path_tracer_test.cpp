@@ -47,6 +47,19 @@ TEST(PathTracer, AFurnaceSumsItsBouncesGeometrically) {
   }
 }
 
+// Inside the furnace with roulette out of reach, every path takes exactly
+// max_bounces bounces and samples the emitting sphere at each vertex.
+TEST(PathTracer, CountsItsPathsBouncesAndLightSamples) {
+  RayStats stats;
+  test::renderLinearFrame(test::sceneFromJson(furnace(0.5, 2).dump()), stats);
+  EXPECT_EQ(stats.paths, 16u * 16u * 64u);
+  EXPECT_EQ(stats.primary, stats.paths);
+  EXPECT_EQ(stats.reflection, 2 * stats.paths);
+  EXPECT_EQ(stats.longestPath, 2u);
+  EXPECT_EQ(stats.lightSamples, 3 * stats.paths);
+  EXPECT_EQ(stats.nonFiniteSamples, 0u);
+}
+
 // A sphere of `material` under a uniform white sky (the background, radiance
 // 1), seen from outside: a convex surface that loses no energy returns
 // exactly 1 along every path, whatever its lobes.
