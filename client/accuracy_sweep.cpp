@@ -119,6 +119,7 @@ std::vector<Series> defaultSweep(const Scene& scene) {
     // Every pixel is traced: the model (Whitted's missing light, bounces
     // cut short) beside the sampling.
     return {{AccuracyKey::kSamples, {"1", "4", "16", "64"}},
+            {AccuracyKey::kPattern, {"jittered", "sobol"}},
             {AccuracyKey::kTransport, {"whitted", "path"}},
             {AccuracyKey::kMaxBounces, {"0", "1", "2", "4", "8"}},
             {AccuracyKey::kFilter, {"box", "tent", "gaussian", "mitchell"}}};

@@ -208,7 +208,7 @@ void addFrameOptions(CLI::App* app, FrameOverrides& o) {
       ->check(CLI::Range(1, FrameLimits::kMaxSamples));
   addEnumOption(app, "--pattern", o.pattern,
                 "Sample pattern (default: the scene's); adaptive: one sample per pixel, all where it differs from a "
-                "neighbour");
+                "neighbour; sobol: scrambled Sobol points, even in every direction at 2, 4, 8 ... samples");
   app->add_option("--adaptive-threshold", o.adaptiveThreshold,
                   "Under --pattern adaptive: a channel difference above this (linear, default 1/64) refines");
   app->add_option("--perceptual-threshold", o.perceptualThreshold,

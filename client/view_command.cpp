@@ -271,7 +271,7 @@ struct Accumulation {
 bool summable(TileBackend& backend, const Controls& controls) {
   const SamplingSettings& s = backend.scene().frame.sampling;
   return backend.prepared() && controls.rule == MaskRule::kAll && s.samples > 1 &&
-         (s.pattern == SamplePattern::kRegular || s.pattern == SamplePattern::kJittered);
+         s.pattern != SamplePattern::kAdaptive && s.pattern != SamplePattern::kPerceptual;
 }
 
 // The next pass of the resting camera's frame, made anew after the camera

@@ -127,7 +127,7 @@ std::vector<std::uint8_t> encodeFrameSetup(std::uint32_t frameId, const SceneHas
       f.output.encoding == Encoding::kSrgb, f.output.exposure, f.sampling.pattern == SamplePattern::kPerceptual,
       f.sampling.perceptualThreshold, static_cast<std::uint32_t>(f.sampling.lightSamples), f.camera.aperture,
       f.camera.focusDistance, static_cast<std::uint8_t>(f.tracing.transport),
-      static_cast<std::uint32_t>(f.tracing.maxBounces));
+      static_cast<std::uint32_t>(f.tracing.maxBounces), f.sampling.pattern == SamplePattern::kSobol);
   return finish(b, setup, wire::Body::FrameSetup);
 }
 
@@ -205,6 +205,7 @@ FrameSettings decodeFrameSettings(const wire::FrameSetup& s, std::size_t maxPixe
   f.camera.focusDistance = s.focus_distance();
   f.sampling.pattern = s.perceptual() ? SamplePattern::kPerceptual
                        : s.adaptive() ? SamplePattern::kAdaptive
+                       : s.sobol()    ? SamplePattern::kSobol
                        : s.jittered() ? SamplePattern::kJittered
                                       : SamplePattern::kRegular;
   f.sampling.adaptiveThreshold = s.adaptive() ? s.adaptive_threshold() : f.sampling.adaptiveThreshold;

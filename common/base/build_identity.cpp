@@ -22,8 +22,9 @@ namespace {
 // samplers' wrap modes and magnification filter; 11: the shadow terminator
 // (shadow rays from the smooth surface); 12: path transport (a scene that
 // asks for it renders otherwise than a build without it would; Whitted
-// pixels unchanged).
-constexpr int kTracerVersion = 12;
+// pixels unchanged); 13: path transport draws its choices from scrambled
+// Sobol points (Whitted pixels unchanged).
+constexpr int kTracerVersion = 13;
 
 // FNV-1a: the flags only need a short, stable fingerprint.
 std::uint64_t fingerprint(const char* text) {

@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 
 #include "common/math/circular.h"
+#include "common/math/float_bits.h"
 
 namespace glint {
 namespace {
@@ -36,10 +37,15 @@ Emitters::Emitters(const Geometry& geometry, const EffectPlan& plan) : geometry_
   }
 }
 
-Emitters::Point Emitters::sample(float pick, const glm::vec2& u) const {
-  const auto at = std::upper_bound(cumulative_.begin(), cumulative_.end(), pick * total_);
+Emitters::Point Emitters::sample(const glm::vec2& pickAndPlace) const {
+  const float target = pickAndPlace.x * total_;
+  const auto at = std::upper_bound(cumulative_.begin(), cumulative_.end(), target);
   const std::size_t i = std::min<std::size_t>(static_cast<std::size_t>(at - cumulative_.begin()), prims_.size() - 1);
   const std::uint32_t prim = prims_[i];
+  const float before = i == 0 ? 0.0f : cumulative_[i - 1];
+  const float share = cumulative_[i] - before;
+  const glm::vec2 u{share > 0.0f ? std::clamp((target - before) / share, 0.0f, kOneMinusEpsilon) : 0.5f,
+                    pickAndPlace.y};
   if (geometry_.isSphere(prim)) {
     const Sphere& s = geometry_.spheres()[prim - geometry_.triangles().size()];
     const float z = 1.0f - 2.0f * u.x;  // uniform over the sphere

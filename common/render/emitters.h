@@ -29,8 +29,11 @@ class Emitters {
     std::uint32_t prim;
     float b1, b2;
   };
-  // `pick` chooses the primitive (by area), u the point on it.
-  Point sample(float pick, const glm::vec2& u) const;
+  // pickAndPlace.x chooses the primitive (by area) and, rescaled within
+  // that primitive's share, places the point on it with pickAndPlace.y: a
+  // set of values spread evenly over the square stays spread evenly over
+  // the emitters' whole area.
+  Point sample(const glm::vec2& pickAndPlace) const;
 
  private:
   const Geometry& geometry_;

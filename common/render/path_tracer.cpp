@@ -20,11 +20,10 @@ constexpr float kPi = 3.14159265358979f;
 // A shadow ray to a point on an emitting surface stops this share short of
 // it, so that the surface itself does not block it.
 constexpr float kShortOfEmitter = 1e-3f;
-// Sample dimensions of a bounce, from its first: the lobe, the direction,
-// the roulette, the emitters' pick and point, the environment's direction,
-// then two per light.
-constexpr int kLobeDimension = 0, kDirectionDimension = 1, kRouletteDimension = 3, kEmitterDimension = 4,
-              kSkyDimension = 7, kFirstLightDimension = 9;
+// The pairs of sample dimensions a bounce draws (SampleKey::stratified),
+// from its first: the direction; the lobe and the roulette; the point on the
+// emitters; the environment's direction; then one a light.
+constexpr int kDirectionPair = 0, kLobePair = 1, kEmitterPair = 2, kSkyPair = 3, kFirstLightPair = 4;
 
 float powerHeuristic(float a, float b) { return a * a / (a * a + b * b); }
 float maxOf(const glm::vec3& c) { return std::max({c.x, c.y, c.z}); }
@@ -54,7 +53,7 @@ PathTracer::PathTracer(const Scene& scene, const Bvh& bvh, const EnvironmentLigh
       maxBounces_(frame.tracing.maxBounces),
       emitters_(scene.geometry, plan),
       sky_(sky),
-      perBounce_(kFirstLightDimension + 2 * static_cast<int>(scene.lights.size())) {
+      perBounce_(kFirstLightPair + static_cast<int>(scene.lights.size())) {
   for (const Light& l : scene.lights) {
     lightArea_.push_back(l.type == LightType::kArea ? glm::length(glm::cross(l.u, l.v)) : 0.0f);
   }
@@ -112,9 +111,8 @@ std::optional<PathTracer::LightSample> PathTracer::sampleLight(const Vertex& v, 
   return std::nullopt;
 }
 
-std::optional<PathTracer::LightSample> PathTracer::sampleEmitters(const Vertex& v, float pick,
-                                                                  const glm::vec2& u) const {
-  const Emitters::Point e = emitters_.sample(pick, u);
+std::optional<PathTracer::LightSample> PathTracer::sampleEmitters(const Vertex& v, const glm::vec2& u) const {
+  const Emitters::Point e = emitters_.sample(u);
   const glm::vec3 to = e.p - v.s.p;
   const float d = glm::length(to);
   if (!(d > 0.0f)) return std::nullopt;
@@ -148,15 +146,13 @@ glm::vec3 PathTracer::directLight(const Vertex& v, const Bsdf& bsdf, const Sampl
   glm::vec3 sum(0.0f);
   for (int i = 0; i < static_cast<int>(scene_.lights.size()); ++i) {
     if (!plan_.lights[static_cast<std::size_t>(i)]) continue;
-    const int first = dimension(bounce, kFirstLightDimension + 2 * i);
-    const std::optional<LightSample> l = sampleLight(v, i, {key.uniform(first), key.uniform(first + 1)});
+    const std::optional<LightSample> l = sampleLight(v, i, key.stratified(pair(bounce, kFirstLightPair + i)));
     ++stats.lightSamples;
     if (l) sum += contribution(v, bsdf, *l, last, stats);
   }
   if (sky_) {
     ++stats.lightSamples;
-    const int first = dimension(bounce, kSkyDimension);
-    const EnvironmentLight::Sample s = sky_->sample({key.uniform(first), key.uniform(first + 1)});
+    const EnvironmentLight::Sample s = sky_->sample(key.stratified(pair(bounce, kSkyPair)));
     if (s.pdf > 0.0f) {
       sum += contribution(v, bsdf, {s.direction, kInfinity, scene_.environment->radiance(s.direction), s.pdf}, last,
                           stats);
@@ -164,9 +160,7 @@ glm::vec3 PathTracer::directLight(const Vertex& v, const Bsdf& bsdf, const Sampl
   }
   if (!emitters_.empty()) {
     ++stats.lightSamples;
-    const int first = dimension(bounce, kEmitterDimension);
-    const std::optional<LightSample> l =
-        sampleEmitters(v, key.uniform(first), {key.uniform(first + 1), key.uniform(first + 2)});
+    const std::optional<LightSample> l = sampleEmitters(v, key.stratified(pair(bounce, kEmitterPair)));
     if (l) sum += contribution(v, bsdf, *l, last, stats);
   }
   return sum;
@@ -234,15 +228,14 @@ glm::vec3 PathTracer::radiance(const Ray& cameraRay, const SampleKey& key, RaySt
     const bool last = bounce >= maxBounces_;
     if (bsdf.smooth()) sum += throughput * directLight(v, bsdf, key, bounce, last, stats);
     if (last) break;
-    const int first = dimension(bounce, 0);
-    const std::optional<Bsdf::Sample> next = bsdf.sample(
-        key.uniform(first + kLobeDimension),
-        {key.uniform(first + kDirectionDimension), key.uniform(first + kDirectionDimension + 1)});
+    const glm::vec2 lobeAndRoulette = key.stratified(pair(bounce, kLobePair));
+    const std::optional<Bsdf::Sample> next =
+        bsdf.sample(lobeAndRoulette.x, key.stratified(pair(bounce, kDirectionPair)));
     if (!next) break;
     throughput *= next->weight;
     if (bounce + 1 >= kRouletteFrom) {
       const float survive = std::min(0.95f, maxOf(throughput));
-      if (!(key.uniform(first + kRouletteDimension) < survive)) break;
+      if (!(lobeAndRoulette.y < survive)) break;
       throughput /= survive;
     }
     if (!allFinite(throughput)) break;

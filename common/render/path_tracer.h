@@ -28,7 +28,9 @@ namespace glint {
 // the probability of its throughput's largest channel (at most 0.95, Russian
 // roulette), and it stops after tracing.maxBounces bounces. Every random
 // number comes from the camera sample's key, so the estimate depends on the
-// pixel and sample alone.
+// pixel and sample alone: each choice's pair of numbers from the key's
+// scrambled Sobol points (SampleKey::stratified), so that a pixel's samples
+// spread evenly over each light, lobe and direction.
 //
 // The lights as radiometry (docs/scene-format.md): a point or spot light of
 // `color` has the intensity pi color / attenuation(d) (a diffuse surface it
@@ -76,7 +78,7 @@ class PathTracer {
   glm::vec3 directLight(const Vertex& v, const Bsdf& bsdf, const SampleKey& key, int bounce, bool last,
                         RayStats& stats) const;
   std::optional<LightSample> sampleLight(const Vertex& v, int light, const glm::vec2& u) const;
-  std::optional<LightSample> sampleEmitters(const Vertex& v, float pick, const glm::vec2& u) const;
+  std::optional<LightSample> sampleEmitters(const Vertex& v, const glm::vec2& u) const;
   glm::vec3 contribution(const Vertex& v, const Bsdf& bsdf, const LightSample& l, bool last, RayStats& stats) const;
   // Area and sphere lights a bounced ray meets before tMax, weighted against
   // light sampling for a ray drawn with density bsdfPdf (0: a delta lobe).
@@ -91,7 +93,7 @@ class PathTracer {
   // passes behind the flat triangle, the point lifted onto the smooth
   // surface (the shadow terminator, as Tracer does), computed once a vertex.
   const glm::vec3& shadowFrom(const Vertex& v, const glm::vec3& d) const;
-  int dimension(int bounce, int offset) const { return SampleKey::kFirstLightDimension + bounce * perBounce_ + offset; }
+  int pair(int bounce, int offset) const { return SampleKey::kFirstPathPair + bounce * perBounce_ + offset; }
 
   const Scene& scene_;
   const Bvh& bvh_;
@@ -100,7 +102,7 @@ class PathTracer {
   Emitters emitters_;
   const EnvironmentLight* sky_;  // the environment image, where it has light and the plan looks it up
   std::vector<float> lightArea_;  // per light: an area light's area, else 0
-  int perBounce_;                     // sample dimensions one bounce draws
+  int perBounce_;                     // pairs of sample dimensions one bounce draws
 };
 
 }  // namespace glint

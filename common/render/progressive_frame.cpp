@@ -13,7 +13,7 @@ ProgressiveFrame::ProgressiveFrame(const Renderer& renderer, int tileSize)
       tiles_(tileGrid(renderer.frame().width, renderer.frame().height, std::max(1, tileSize))),
       pixels_(static_cast<std::size_t>(renderer.frame().width) * static_cast<std::size_t>(renderer.frame().height)) {
   const SamplePattern pattern = renderer.frame().sampling.pattern;
-  if (pattern != SamplePattern::kRegular && pattern != SamplePattern::kJittered) {
+  if (pattern == SamplePattern::kAdaptive || pattern == SamplePattern::kPerceptual) {
     throw std::logic_error("ProgressiveFrame: the adaptive patterns cannot be summed in passes");
   }
 }

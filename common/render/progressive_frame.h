@@ -16,8 +16,8 @@ namespace glint {
 // in the order Renderer::pixel() adds them, so that after the last pass the
 // frame is the one-pass render's at the frame's samples, byte for byte. The
 // passes double what is in: 1, 2, 4, ... samples a pixel, then the rest.
-// For the regular and jittered patterns (the adaptive ones decide per pixel
-// from its neighbours' samples).
+// For the regular, jittered and sobol patterns (the adaptive ones decide
+// per pixel from its neighbours' samples).
 class ProgressiveFrame {
  public:
   ProgressiveFrame(const Renderer& renderer, int tileSize);

@@ -44,8 +44,8 @@ class Renderer {
                         RayStats& stats) const;
 
   // Linear colour of pixel (x, y): the filtered average of its samples
-  // (regular and jittered patterns; the adaptive ones need their neighbours:
-  // renderTileLinear).
+  // (regular, jittered and sobol patterns; the adaptive ones need their
+  // neighbours: renderTileLinear).
   glm::vec3 pixel(int x, int y, RayStats& stats) const;
 
   // A pixel's samples so far: their filter-weighted and plain sums.
@@ -55,8 +55,8 @@ class Renderer {
     float weightSum = 0.0f;
     int finite = 0;
   };
-  // Traces samples first to end - 1 of pixel (x, y) into p (regular and
-  // jittered patterns). Samples added in passes, in order, sum as pixel()
+  // Traces samples first to end - 1 of pixel (x, y) into p (regular,
+  // jittered and sobol patterns). Samples added in passes, in order, sum as pixel()
   // sums them all at once: resolve() then gives pixel()'s value, bit for bit.
   void addSamples(int x, int y, int first, int end, PixelSamples& p, RayStats& stats) const;
   // The pixel's colour from its samples (the background when none is finite).

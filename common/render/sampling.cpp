@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "common/math/float_bits.h"
+#include "common/render/sobol.h"
 
 namespace glint {
 namespace {
@@ -43,6 +44,11 @@ float dimensionUniform(std::uint64_t hash, int dimension) {
   return static_cast<float>(h >> 40) * 0x1p-24f;
 }
 
+glm::vec2 stratifiedPoint(std::uint64_t pixelHash, int sample, int pair) {
+  const std::uint64_t h = mix(pixelHash ^ (static_cast<std::uint64_t>(static_cast<std::uint32_t>(pair)) << 32));
+  return scrambledSobol(static_cast<std::uint32_t>(sample), static_cast<std::uint32_t>(h >> 32));
+}
+
 }  // namespace
 
 float hashUniform(std::uint32_t seed, int px, int py, int sample, int dimension) {
@@ -70,9 +76,10 @@ Stratum jitteredStratum(int samples, int sample) {
 }
 
 SampleLayout::SampleLayout(const SamplingSettings& sampling)
-    : seedHash_(seedHash(sampling.seed)), jittered_(sampling.pattern != SamplePattern::kRegular) {
+    : seedHash_(seedHash(sampling.seed)), pattern_(sampling.pattern) {
   const int n = sampling.samples;
-  if (jittered_) {
+  if (pattern_ == SamplePattern::kSobol) return;
+  if (pattern_ != SamplePattern::kRegular) {
     for (int sample = 0; sample < n; ++sample) strata_.push_back(jitteredStratum(n, sample));
     return;
   }
@@ -93,13 +100,18 @@ glm::vec2 stratumPoint(const Stratum& s, const glm::vec2& u) {
 
 float SampleKey::uniform(int dimension) const { return dimensionUniform(hash, dimension); }
 
+glm::vec2 SampleKey::stratified(int pair) const { return stratifiedPoint(pixel, sample, pair); }
+
 SampleLayout::Pixel SampleLayout::pixel(int px, int py) const { return {pixelHash(seedHash_, px, py)}; }
 
-SampleKey SampleLayout::key(const Pixel& pixel, int sample) { return {sampleHash(pixel.hash, sample)}; }
+SampleKey SampleLayout::key(const Pixel& pixel, int sample) {
+  return {sampleHash(pixel.hash, sample), pixel.hash, sample};
+}
 
 glm::vec2 SampleLayout::position(const Pixel& pixel, int sample) const {
   const auto i = static_cast<std::size_t>(sample);
-  if (!jittered_) return points_[i];
+  if (pattern_ == SamplePattern::kSobol) return stratifiedPoint(pixel.hash, sample, SampleKey::kPixelPair);
+  if (pattern_ == SamplePattern::kRegular) return points_[i];
   const std::uint64_t h = sampleHash(pixel.hash, sample);
   return stratumPoint(strata_[i], {dimensionUniform(h, 0), dimensionUniform(h, 1)});
 }

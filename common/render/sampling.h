@@ -32,8 +32,20 @@ struct SampleKey {
   // directions (their layout: Tracer::lightDimension and lobeDimension).
   static constexpr int kLensDimension = 2;
   static constexpr int kFirstLightDimension = 4;
-  std::uint64_t hash = 0;
+  // stratified()'s pairs: the place in the pixel (the sobol pattern's),
+  // then path transport's from kFirstPathPair.
+  static constexpr int kPixelPair = 0;
+  static constexpr int kFirstPathPair = 1;
+  std::uint64_t hash = 0;   // of the seed, the pixel and the sample
+  std::uint64_t pixel = 0;  // of the seed and the pixel, which its samples share
+  int sample = 0;
   float uniform(int dimension) const;
+  // The sample's point in a sequence over the pixel's samples, one for each
+  // `pair` of dimensions: a scrambled Sobol sequence (sobol.h) whose
+  // scramble comes from the pixel and the pair. A pixel's n samples then
+  // cover the square evenly (one in each of n equal cells of any shape when
+  // n is a power of two) where uniform()'s values fall independently.
+  glm::vec2 stratified(int pair) const;
 };
 
 // Where a frame's samples lie: position(px, py, sample) is sample `sample`
@@ -45,6 +57,10 @@ struct SampleKey {
 //    uniformly placed in its stratum by hashUniform's dimensions 0 and 1.
 //    For any n: rows of floor or ceil(n / rows) cells whose heights are
 //    proportional to their cell count, so every stratum has area 1 / n.
+//  - sobol: the sample's point of SampleKey::stratified's kPixelPair: at n
+//    a power of two, one sample in each of n equal cells of every shape
+//    (n x 1, n/2 x 2, ...), so an edge across the pixel, in any
+//    direction, is found in proportion to the area it cuts.
 // The points and strata, the same for every pixel, are computed once.
 class SampleLayout {
  public:
@@ -63,7 +79,7 @@ class SampleLayout {
 
  private:
   std::uint64_t seedHash_;  // the seed's step of the hash, the same for every pixel
-  bool jittered_;
+  SamplePattern pattern_;
   std::vector<glm::vec2> points_;  // regular: each sample's point
   std::vector<Stratum> strata_;    // jittered: each sample's stratum
 };

@@ -21,8 +21,10 @@ namespace glint {
 // where the pixel differs from a neighbour by more than adaptiveThreshold.
 // kPerceptual: one ray at each pixel's centre, then the jittered pattern's
 // full count where it differs visibly from one of its eight neighbours'
-// (FLIP's colour term above perceptualThreshold).
-enum class SamplePattern { kRegular, kJittered, kAdaptive, kPerceptual };
+// (FLIP's colour term above perceptualThreshold). kSobol: a scrambled Sobol
+// sequence over the pixel (common/render/sobol.h), stratified in every
+// shape at power-of-two counts.
+enum class SamplePattern { kRegular, kJittered, kAdaptive, kPerceptual, kSobol };
 enum class FilterType { kBox, kTent, kGaussian, kMitchell };
 // kPerceptual: auto's pixels, traced with the perceptual pattern, and the
 // raster's pixels on a visible edge of its colours (client/hybrid_frame.h).
@@ -38,11 +40,12 @@ enum class Encoding { kLinear, kSrgb };
 
 template <>
 struct EnumWords<SamplePattern> {
-  static constexpr std::array<std::pair<SamplePattern, std::string_view>, 4> kWords{
+  static constexpr std::array<std::pair<SamplePattern, std::string_view>, 5> kWords{
       {{SamplePattern::kRegular, "regular"},
        {SamplePattern::kJittered, "jittered"},
        {SamplePattern::kAdaptive, "adaptive"},
-       {SamplePattern::kPerceptual, "perceptual"}}};
+       {SamplePattern::kPerceptual, "perceptual"},
+       {SamplePattern::kSobol, "sobol"}}};
 };
 template <>
 struct EnumWords<FilterType> {

@@ -33,12 +33,11 @@ struct Frame {
   double seconds = 0.0;
 };
 
-// The settings both renderers get: jittered samples, a box filter one pixel
-// wide (each pixel its own samples' mean), `samples` a pixel.
+// The settings both renderers get: a box filter one pixel wide (each pixel
+// its own samples' mean), `samples` a pixel (Glint's in the scene's pattern).
 Scene transportScene(const fs::path& file, int size, int samples) {
   Scene scene = loadSceneFile(file);
   scene.frame.width = scene.frame.height = size;
-  scene.frame.sampling.pattern = SamplePattern::kJittered;
   scene.frame.sampling.filter = FilterType::kBox;
   scene.frame.sampling.samples = samples;
   return scene;

@@ -119,7 +119,8 @@ TEST(Messages, FrameSetupRoundTrips) {
     EXPECT_EQ(back.tracing.minWeight, f.tracing.minWeight);
   }
   for (const SamplePattern pattern :
-       {SamplePattern::kRegular, SamplePattern::kJittered, SamplePattern::kAdaptive, SamplePattern::kPerceptual}) {
+       {SamplePattern::kRegular, SamplePattern::kJittered, SamplePattern::kAdaptive, SamplePattern::kPerceptual,
+        SamplePattern::kSobol}) {
     FrameSettings f = someFrame();
     f.sampling.pattern = pattern;
     f.sampling.samples = 4;

@@ -105,7 +105,7 @@ def settings(scene, samples, bounces, seed):
     s.cycles.transmission_bounces = bounces
     s.cycles.sample_clamp_direct = 0.0
     s.cycles.sample_clamp_indirect = 0.0
-    s.cycles.filter_width = 0.01  # a box of (about) one pixel: the pixel's own samples
+    s.cycles.filter_width = 1.0  # Cycles' box filter is one pixel wide whatever this says
     s.cycles.pixel_filter_type = "BOX"
     if hasattr(s.cycles, "use_light_tree"):
         s.cycles.use_light_tree = False
