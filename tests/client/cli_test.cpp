@@ -41,6 +41,11 @@ class Cli : public ::testing::Test {
     return path(name);
   }
   static std::string scene(const std::string& name) { return std::string(GLINT_SOURCE_DIR) + "/scenes/" + name; }
+  // glint view of `args` on a virtual display, closed after `frames`
+  // frames, the last written to the PNG `png`.
+  Result view(const std::string& args, int frames, const std::string& png) const {
+    return glint("view " + args + " --frames " + std::to_string(frames) + " --screenshot " + path(png), "xvfb-run -a ");
+  }
 
   // Debian's textured glTF box in box/, and beside it box/NAME.gltf: the
   // same with `insert` written before the first `anchor`.
@@ -164,8 +169,8 @@ TEST_F(Cli, HybridRenderWritesImageMaskAndStepTimes) {
 TEST_F(Cli, ViewShowsTheSameFrameAsRender) {
   if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed";
   const std::string args = scene("room.json") + " --size 160x120";
-  const Result view = glint("view " + args + " --frames 2 --screenshot " + path("view.png"), "xvfb-run -a ");
-  ASSERT_EQ(view.status, 0) << view.output;
+  const Result shown = view(args, 2, "view.png");
+  ASSERT_EQ(shown.status, 0) << shown.output;
   const Result render = glint("render " + args + " -o " + path("render.png") + " -q");
   ASSERT_EQ(render.status, 0) << render.output;
   std::ifstream a(path("view.png"), std::ios::binary), b(path("render.png"), std::ios::binary);
@@ -176,7 +181,7 @@ TEST_F(Cli, ViewShowsTheSameFrameAsRender) {
 
   // The view's first frame (the camera has just "moved") is the one-sample
   // preview: glint render's frame at one sample a pixel, at its centre.
-  const Result preview = glint("view " + args + " --frames 1 --screenshot " + path("preview.png"), "xvfb-run -a ");
+  const Result preview = view(args, 1, "preview.png");
   ASSERT_EQ(preview.status, 0) << preview.output;
   ASSERT_EQ(glint("render " + args + " -o " + path("one.png") + " -q --samples 1 --pattern regular").status, 0);
   EXPECT_EQ(decodePng(path("preview.png")).rgb, decodePng(path("one.png")).rgb);
@@ -189,14 +194,14 @@ TEST_F(Cli, ViewShowsTheSameFrameAsRender) {
 TEST_F(Cli, ThePathTracedViewConvergesToRendersFrame) {
   if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed";
   const std::string args = scene("cornell.json") + " --size 48x48 --samples 16 --max-bounces 3";
-  const Result view = glint("view " + args + " --frames 100 --screenshot " + path("view.png"), "xvfb-run -a ");
-  ASSERT_EQ(view.status, 0) << view.output;
+  const Result passes = view(args, 100, "view.png");
+  ASSERT_EQ(passes.status, 0) << passes.output;
   const Result render = glint("render " + args + " -o " + path("render.png") + " -q");
   ASSERT_EQ(render.status, 0) << render.output;
   const std::vector<std::uint8_t> rendered = decodePng(path("render.png")).rgb;
   EXPECT_EQ(decodePng(path("view.png")).rgb, rendered);
 
-  const Result first = glint("view " + args + " --frames 1 --screenshot " + path("first.png"), "xvfb-run -a ");
+  const Result first = view(args, 1, "first.png");
   ASSERT_EQ(first.status, 0) << first.output;
   const std::vector<std::uint8_t> pass = decodePng(path("first.png")).rgb;
   ASSERT_EQ(pass.size(), rendered.size());
