@@ -5,12 +5,12 @@
 namespace glint {
 namespace {
 
+// The bytes swapped, then the bits within each byte.
 std::uint32_t reverseBits(std::uint32_t x) {
+  x = __builtin_bswap32(x);
   x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
   x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
-  x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
-  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
-  return (x >> 16) | (x << 16);
+  return ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
 }
 
 // A hash in which each bit depends only on the bits below it (Laine and
@@ -29,16 +29,17 @@ std::uint32_t owenScramble(std::uint32_t x, std::uint32_t seed) {
   return reverseBits(laineKarras(reverseBits(x), seed));
 }
 
-// The second Sobol dimension: its generator matrix is Pascal's triangle
-// mod 2, whose column k is the k-th direction number. The index's bits pick
-// columns to sum (xor); the sums for each byte of the index are tabled.
+// The second Sobol dimension, bit-reversed (as its scramble takes it): its
+// generator matrix is Pascal's triangle mod 2, whose column k is the k-th
+// direction number. The index's bits pick columns to sum (xor); the sums
+// for each byte of the index are tabled.
 using ByteTables = std::array<std::array<std::uint32_t, 256>, 4>;
 constexpr ByteTables secondDimensionTables() {
   std::array<std::uint32_t, 32> column{};
-  std::uint32_t v = 1u << 31;
+  std::uint32_t v = 1u;
   for (std::uint32_t& c : column) {
     c = v;
-    v ^= v >> 1;
+    v ^= v << 1;  // the direction numbers, reversed: 1, 3, 5, 15, ...
   }
   ByteTables tables{};
   for (int byte = 0; byte < 4; ++byte) {
@@ -52,7 +53,7 @@ constexpr ByteTables secondDimensionTables() {
 }
 constexpr ByteTables kSecond = secondDimensionTables();
 
-std::uint32_t sobolSecond(std::uint32_t index) {
+std::uint32_t sobolSecondReversed(std::uint32_t index) {
   return kSecond[0][index & 0xffu] ^ kSecond[1][(index >> 8) & 0xffu] ^ kSecond[2][(index >> 16) & 0xffu] ^
          kSecond[3][index >> 24];
 }
@@ -76,7 +77,7 @@ glm::vec2 scrambledSobol(std::uint32_t index, std::uint32_t seed) {
   // The first dimension is the index bit-reversed (van der Corput's), so
   // its scramble needs no reversal going in.
   return {fraction(reverseBits(laineKarras(shuffled, hashSeed(seed, 1)))),
-          fraction(owenScramble(sobolSecond(shuffled), hashSeed(seed, 2)))};
+          fraction(reverseBits(laineKarras(sobolSecondReversed(shuffled), hashSeed(seed, 2))))};
 }
 
 }  // namespace glint
