@@ -43,9 +43,8 @@ Scene transportScene(const fs::path& file, int size, int samples) {
   return scene;
 }
 
-Frame glintFrame(const Scene& scene, ThreadPool& pool) {
-  const PreparedScene prepared(scene, BvhSettings{});
-  const Renderer renderer(prepared, scene.frame);
+Frame glintFrame(const PreparedScene& prepared, ThreadPool& pool) {
+  const Renderer renderer(prepared, prepared.scene().frame);
   RayStats stats;
   const Clock::time_point start = Clock::now();
   LinearImage image = renderLinear(renderer, pool, stats, LinearRange::kUnbounded);
@@ -72,8 +71,8 @@ std::optional<Frame> cyclesFrame(const fs::path& script, const fs::path& sceneFi
 }
 
 // Mean radiance of each material's pixels (those whose centre sees it).
-std::map<std::string, glm::dvec3> surfaceMeans(const Scene& scene, const LinearImage& image) {
-  const PreparedScene prepared(scene, BvhSettings{});
+std::map<std::string, glm::dvec3> surfaceMeans(const PreparedScene& prepared, const LinearImage& image) {
+  const Scene& scene = prepared.scene();
   const Camera camera(scene.frame.camera, image.width, image.height);
   std::map<std::string, glm::dvec3> sums;
   std::map<std::string, int> counts;
@@ -97,7 +96,7 @@ double meanFlip(const LinearImage& reference, const LinearImage& test) {
   return flipStats(hdrFlip(reference, test, hdrExposures(reference))).mean;
 }
 
-void printComparison(const Scene& scene, const Frame& cycles, const Frame& cycles1, const Frame& glint) {
+void printComparison(const PreparedScene& prepared, const Frame& cycles, const Frame& cycles1, const Frame& glint) {
   const double floor = meanFlip(cycles.image, cycles1.image), glintFlip = meanFlip(cycles.image, glint.image);
   std::printf("| renderer | render s | mean HDR-FLIP against Cycles, seed 0 | RMSE |\n|---|---|---|---|\n");
   std::printf("| Cycles, seed 0 | %.2f | | |\n", cycles.seconds);
@@ -108,7 +107,7 @@ void printComparison(const Scene& scene, const Frame& cycles, const Frame& cycle
   std::printf("Glint: %.2fx Cycles' speed; its FLIP %.2fx the noise floor's\n\n", cycles.seconds / glint.seconds,
               glintFlip / floor);
   std::printf("| surface | Cycles (R, G, B) | Glint (R, G, B) | Glint / Cycles - 1, luminance |\n|---|---|---|---|\n");
-  const auto theirs = surfaceMeans(scene, cycles.image), ours = surfaceMeans(scene, glint.image);
+  const auto theirs = surfaceMeans(prepared, cycles.image), ours = surfaceMeans(prepared, glint.image);
   const auto luminance = [](const glm::dvec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; };
   for (const auto& [name, c] : theirs) {
     const glm::dvec3 g = ours.at(name);
@@ -122,7 +121,8 @@ void printComparison(const Scene& scene, const Frame& cycles, const Frame& cycle
 void transportSection(const std::string& scenes, bool quick) {
   const int size = quick ? 64 : 128, samples = quick ? 64 : 4096;
   const fs::path sceneFile = fs::path(scenes) / "cornell.json";
-  const Scene scene = transportScene(sceneFile, size, samples);
+  const PreparedScene prepared(transportScene(sceneFile, size, samples), BvhSettings{});
+  const Scene& scene = prepared.scene();
   ThreadPool pool(resolveThreadCount(0));
   const int bounces = scene.frame.tracing.maxBounces;
   std::printf("\n## Light transport: Glint's path tracer and Blender's Cycles (%s, %dx%d, %d samples, %d bounces, "
@@ -138,11 +138,11 @@ void transportSection(const std::string& scenes, bool quick) {
   text["image"]["width"] = text["image"]["height"] = size;
   std::ofstream(dir / "scene.json") << text.dump();
   const fs::path script = (fs::absolute(scenes) / "../tests/bench/cycles/glint_scene.py").lexically_normal();
-  const Frame glint = glintFrame(scene, pool);
+  const Frame glint = glintFrame(prepared, pool);
   const auto cycles = cyclesFrame(script, dir / "scene.json", dir / "cycles0.exr", samples, bounces, 0);
   const auto cycles1 = cyclesFrame(script, dir / "scene.json", dir / "cycles1.exr", samples, bounces, 1);
   if (cycles && cycles1) {
-    printComparison(scene, *cycles, *cycles1, glint);
+    printComparison(prepared, *cycles, *cycles1, glint);
   } else {
     std::printf("blender did not render the scene (run tests/bench/cycles/glint_scene.py by hand to see why)\n");
   }
