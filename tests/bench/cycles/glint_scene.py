@@ -11,6 +11,16 @@ Glint's y-up scene is turned into Blender's z-up one by a rotation of 90
 degrees about x (a proper rotation: the image is not mirrored). The film
 is linear (view transform Standard, EXR), its pixel filter a box one pixel
 wide, no sample clamping, Cycles' light tree off, as Glint samples.
+
+An emitting quad is cut into an 8 x 8 grid of quads. Cycles samples a
+light triangle by solid angle when the triangle is large beside its
+distance to the shaded point, and that sampling is dark at grazing angles:
+with the Cornell box's light as two triangles, Cycles 3.4's direct light on
+the back wall 0.29 below the ceiling is 1.8 % under the closed form (and
+3.7 % at 0.09 below), where Glint's is within 0.02 %. Cut into small
+triangles, the light is sampled by area, as Glint samples it, and Cycles'
+direct light there matches the closed form to 0.02 %; the integral is the
+same, only Cycles' estimator changes.
 """
 import json
 import math
@@ -49,6 +59,20 @@ def material(name, m):
     return mat
 
 
+EMITTER_CUTS = 8
+
+
+def grid(corners, n):
+    """The quad's n x n cells, each as four corners in the quad's order."""
+    c = [Vector(p) for p in corners]
+
+    def at(a, b):
+        return list((c[0] * (1 - a) + c[1] * a) * (1 - b) + (c[3] * (1 - a) + c[2] * a) * b)
+
+    return [[at(i / n, j / n), at((i + 1) / n, j / n), at((i + 1) / n, (j + 1) / n), at(i / n, (j + 1) / n)]
+            for i in range(n) for j in range(n)]
+
+
 def build(scene_file):
     with open(scene_file) as f:
         scene = json.load(f)
@@ -58,10 +82,12 @@ def build(scene_file):
     names = list(mats)
     for o in scene["objects"]:
         corners = o["corners"] if o["type"] == "quad" else o["vertices"]
-        first = len(verts)
-        verts += [turned(p) for p in corners]
-        faces.append(tuple(range(first, first + len(corners))))
-        face_mats.append(names.index(o["material"]))
+        emits = "emission" in scene["materials"][o["material"]]
+        for polygon in grid(corners, EMITTER_CUTS) if emits and o["type"] == "quad" else [corners]:
+            first = len(verts)
+            verts += [turned(p) for p in polygon]
+            faces.append(tuple(range(first, first + len(polygon))))
+            face_mats.append(names.index(o["material"]))
     mesh = bpy.data.meshes.new("scene")
     mesh.from_pydata(verts, [], faces)
     for m in names:
