@@ -23,8 +23,10 @@ namespace {
 // (shadow rays from the smooth surface); 12: path transport (a scene that
 // asks for it renders otherwise than a build without it would; Whitted
 // pixels unchanged); 13: path transport draws its choices from scrambled
-// Sobol points (Whitted pixels unchanged).
-constexpr int kTracerVersion = 13;
+// Sobol points (Whitted pixels unchanged); 14: path transport's diffuse
+// bounce weighs by the albedo exactly, turns its azimuth in float and draws
+// a lobe only where there is a choice (Whitted pixels unchanged).
+constexpr int kTracerVersion = 14;
 
 // FNV-1a: the flags only need a short, stable fingerprint.
 std::uint64_t fingerprint(const char* text) {

@@ -61,4 +61,25 @@ SineCosine sineCosine(float x) {
   }
 }
 
+SineCosine turn(float u) {
+  const float quarters = 4.0f * u;
+  const float q = std::floor(quarters + 0.5f);
+  // Exact (Sterbenz): quarters and q are within a factor of two of each other.
+  const float a = (quarters - q) * 1.57079632679489662f;  // |a| <= pi/4 and a little
+  const float a2 = a * a;
+  const float s = a * (1.0f + a2 * (-1.0f / 6.0f + a2 * (1.0f / 120.0f + a2 * (-1.0f / 5040.0f + a2 / 362880.0f))));
+  const float c =
+      1.0f + a2 * (-0.5f + a2 * (1.0f / 24.0f + a2 * (-1.0f / 720.0f + a2 * (1.0f / 40320.0f - a2 / 3628800.0f))));
+  switch (static_cast<int>(q) & 3) {
+    case 0:
+      return {s, c};
+    case 1:
+      return {c, -s};
+    case 2:
+      return {-s, -c};
+    default:
+      return {-c, s};
+  }
+}
+
 }  // namespace glint

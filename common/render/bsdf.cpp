@@ -22,7 +22,7 @@ float maxOf(const glm::vec3& c) { return std::max({c.x, c.y, c.z}); }
 // The unit vector at polar cosine `cosTheta` and azimuth 2 pi u around n.
 glm::vec3 around(const glm::vec3& n, float cosTheta, float u) {
   const float sinTheta = std::sqrt(std::max(0.0f, 1.0f - cosTheta * cosTheta));
-  const SineCosine phi = sineCosine(kTwoPi * u);
+  const SineCosine phi = turn(u);
   glm::vec3 t, b;
   orthonormalBasis(n, t, b);
   return glm::normalize(sinTheta * phi.cos * t + sinTheta * phi.sin * b + cosTheta * n);
@@ -122,8 +122,24 @@ std::optional<Bsdf::Sample> Bsdf::smoothSample(const glm::vec3& wi) const {
   return Sample{wi, eval(wi) * (glm::dot(wi, ns_) / p), p, false};
 }
 
+bool Bsdf::choosesLobe() const {
+  const int lobes = (pDiffuse_ > 0.0f) + (pSpecular_ > 0.0f) + (pGlossy_ > 0.0f) + (pMirror_ > 0.0f) +
+                    (pDielectric_ > 0.0f);
+  return lobes > 1;
+}
+
+// Cosine-weighted. Where the Lambertian lobe is the only one eval() sees, f
+// cos / pdf is the albedo over the lobe's chance whatever the direction.
+std::optional<Bsdf::Sample> Bsdf::diffuseSample(const glm::vec2& u) const {
+  const glm::vec3 wi = around(ns_, std::sqrt(u.x), u.y);
+  if (pSpecular_ > 0.0f || pGlossy_ > 0.0f) return smoothSample(wi);
+  const float cosI = glm::dot(wi, ns_);
+  if (cosI <= 0.0f || glm::dot(wi, ng_) <= 0.0f) return std::nullopt;
+  return Sample{wi, albedo_ / pDiffuse_, pDiffuse_ * cosI / kPi, false};
+}
+
 std::optional<Bsdf::Sample> Bsdf::sample(float pick, const glm::vec2& u) const {
-  if (pick < pDiffuse_) return smoothSample(around(ns_, std::sqrt(u.x), u.y));  // cosine-weighted
+  if (pick < pDiffuse_) return diffuseSample(u);
   pick -= pDiffuse_;
   if (pick < pSpecular_) {
     const float cosAlpha = power(u.x, 1.0f / (shininess_ + 1.0f));

@@ -36,6 +36,8 @@ class Bsdf {
   bool black() const { return total_ <= 0.0f; }
   // Whether some lobe that eval() sees is there (light sampling helps).
   bool smooth() const { return pDiffuse_ + pSpecular_ + pGlossy_ > 0.0f; }
+  // Whether sample()'s `pick` matters: more than one lobe is there.
+  bool choosesLobe() const;
 
   // f(wo, wi) of the non-delta lobes, and the probability density (solid
   // angle) with which sample() draws wi.
@@ -55,6 +57,7 @@ class Bsdf {
  private:
   glm::vec3 glossy(const glm::vec3& wi, float& pdf) const;
   std::optional<Sample> smoothSample(const glm::vec3& wi) const;
+  std::optional<Sample> diffuseSample(const glm::vec2& u) const;
 
   glm::vec3 ns_, ng_, wo_;
   float cosO_;  // wo . ns

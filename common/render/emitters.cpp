@@ -50,8 +50,9 @@ Emitters::Point Emitters::sample(const glm::vec2& pickAndPlace) const {
     const Sphere& s = geometry_.spheres()[prim - geometry_.triangles().size()];
     const float z = 1.0f - 2.0f * u.x;  // uniform over the sphere
     const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-    const SineCosine phi = sineCosine(2.0f * kPi * u.y);
-    return {s.centre + s.radius * glm::vec3(r * phi.cos, r * phi.sin, z), prim, 0.0f, 0.0f};
+    const SineCosine phi = turn(u.y);
+    const glm::vec3 n(r * phi.cos, r * phi.sin, z);
+    return {s.centre + s.radius * n, n, prim, 0.0f, 0.0f};
   }
   // Uniform over the triangle: b0 = 1 - sqrt(u.x), b1 = u.y sqrt(u.x).
   const float su = std::sqrt(u.x);
@@ -59,7 +60,7 @@ Emitters::Point Emitters::sample(const glm::vec2& pickAndPlace) const {
   const Triangle& t = geometry_.triangles()[prim];
   const auto& p = geometry_.positions();
   const glm::vec3 q = (1.0f - b1 - b2) * p[t.v[0]] + b1 * p[t.v[1]] + b2 * p[t.v[2]];
-  return {q, prim, b1, b2};
+  return {q, geometry_.faceNormals()[prim], prim, b1, b2};
 }
 
 }  // namespace glint

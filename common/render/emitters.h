@@ -22,10 +22,11 @@ class Emitters {
   bool empty() const { return prims_.empty(); }
   float area() const { return total_; }
 
-  // A point on an emitter and how to find it again: the primitive and the
-  // point's barycentrics on a triangle (b0 = 1 - b1 - b2; 0 on a sphere).
+  // A point on an emitter, the emitter's unit normal there (either side),
+  // and how to find the point again: the primitive and the point's
+  // barycentrics on a triangle (b0 = 1 - b1 - b2; 0 on a sphere).
   struct Point {
-    glm::vec3 p;
+    glm::vec3 p, n;
     std::uint32_t prim;
     float b1, b2;
   };

@@ -116,14 +116,17 @@ std::optional<PathTracer::LightSample> PathTracer::sampleEmitters(const Vertex& 
   const glm::vec3 to = e.p - v.s.p;
   const float d = glm::length(to);
   if (!(d > 0.0f)) return std::nullopt;
-  const Ray toward(v.s.p, to / d);
-  const Hit hit{d, e.prim, 1.0f - e.b1 - e.b2, e.b1, e.b2};
-  const std::uint32_t material = scene_.geometry.materialOf(e.prim);
-  const SurfaceHit es = scene_.geometry.surface(toward, hit, plan_.materials[material].textured, false);
-  const float cosE = std::abs(glm::dot(es.ng, toward.d));
+  const glm::vec3 wi = to / d;
+  const float cosE = std::abs(glm::dot(e.n, wi));
   if (!(cosE > 0.0f)) return std::nullopt;
-  const glm::vec3 radiance = surfaceEmission(scene_, scene_.materials[material], es.uv);
-  return LightSample{toward.d, d * (1.0f - kShortOfEmitter), radiance, d * d / (cosE * emitters_.area())};
+  const std::uint32_t material = scene_.geometry.materialOf(e.prim);
+  glm::vec2 uv(0.0f);
+  if (plan_.materials[material].textured) {
+    const Ray toward(v.s.p, wi);
+    uv = scene_.geometry.surface(toward, Hit{d, e.prim, 1.0f - e.b1 - e.b2, e.b1, e.b2}, true, false).uv;
+  }
+  const glm::vec3 radiance = surfaceEmission(scene_, scene_.materials[material], uv);
+  return LightSample{wi, d * (1.0f - kShortOfEmitter), radiance, d * d / (cosE * emitters_.area())};
 }
 
 glm::vec3 PathTracer::contribution(const Vertex& v, const Bsdf& bsdf, const LightSample& l, bool last,
@@ -228,12 +231,14 @@ glm::vec3 PathTracer::radiance(const Ray& cameraRay, const SampleKey& key, RaySt
     const bool last = bounce >= maxBounces_;
     if (bsdf.smooth()) sum += throughput * directLight(v, bsdf, key, bounce, last, stats);
     if (last) break;
-    const glm::vec2 lobeAndRoulette = key.stratified(pair(bounce, kLobePair));
+    const bool roulette = bounce + 1 >= kRouletteFrom;
+    const glm::vec2 lobeAndRoulette =
+        roulette || bsdf.choosesLobe() ? key.stratified(pair(bounce, kLobePair)) : glm::vec2(0.0f);
     const std::optional<Bsdf::Sample> next =
         bsdf.sample(lobeAndRoulette.x, key.stratified(pair(bounce, kDirectionPair)));
     if (!next) break;
     throughput *= next->weight;
-    if (bounce + 1 >= kRouletteFrom) {
+    if (roulette) {
       const float survive = std::min(0.95f, maxOf(throughput));
       if (!(lobeAndRoulette.y < survive)) break;
       throughput /= survive;

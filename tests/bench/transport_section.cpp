@@ -9,6 +9,8 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -96,18 +98,45 @@ double meanFlip(const LinearImage& reference, const LinearImage& test) {
   return flipStats(hdrFlip(reference, test, hdrExposures(reference))).mean;
 }
 
-void printComparison(const PreparedScene& prepared, const Frame& cycles, const Frame& cycles1, const Frame& glint) {
-  const double floor = meanFlip(cycles.image, cycles1.image), glintFlip = meanFlip(cycles.image, glint.image);
-  std::printf("| renderer | render s | mean HDR-FLIP against Cycles, seed 0 | RMSE |\n|---|---|---|---|\n");
-  std::printf("| Cycles, seed 0 | %.2f | | |\n", cycles.seconds);
-  std::printf("| Cycles, seed 1 (the noise floor) | %.2f | %.4f | %.5f |\n", cycles1.seconds, floor,
-              compareImages(cycles1.image, cycles.image).rmse);
-  std::printf("| Glint | %.2f | %.4f | %.5f |\n\n", glint.seconds, glintFlip,
-              compareImages(glint.image, cycles.image).rmse);
-  std::printf("Glint: %.2fx Cycles' speed; its FLIP %.2fx the noise floor's\n\n", cycles.seconds / glint.seconds,
+// Each renderer's frames, run in turn (Glint, Cycles, Glint, ...) so that
+// the host's slower minutes fall on both: Cycles' first two seeds give the
+// noise floor, the times are medians.
+struct Runs {
+  std::vector<Frame> glint, cycles;
+};
+
+std::vector<double> secondsOf(const std::vector<Frame>& frames) {
+  std::vector<double> s;
+  for (const Frame& f : frames) s.push_back(f.seconds);
+  return s;
+}
+
+std::string listed(const std::vector<double>& seconds) {
+  std::string text;
+  for (double s : seconds) {
+    char one[32];
+    std::snprintf(one, sizeof one, "%s%.1f", text.empty() ? "" : ", ", s);
+    text += one;
+  }
+  return text;
+}
+
+void printComparison(const PreparedScene& prepared, const Runs& runs) {
+  const LinearImage& reference = runs.cycles[0].image;
+  const LinearImage& glint = runs.glint[0].image;
+  const double floor = meanFlip(reference, runs.cycles[1].image), glintFlip = meanFlip(reference, glint);
+  const double cyclesS = median(secondsOf(runs.cycles)), glintS = median(secondsOf(runs.glint));
+  std::printf("| renderer | render s, median (runs) | mean HDR-FLIP against Cycles, seed 0 | RMSE |\n|---|---|---|---|\n");
+  std::printf("| Cycles, seeds 0 to %zu | %.2f (%s) | | |\n", runs.cycles.size() - 1, cyclesS,
+              listed(secondsOf(runs.cycles)).c_str());
+  std::printf("| Cycles, seed 1 (the noise floor) | | %.4f | %.5f |\n", floor,
+              compareImages(runs.cycles[1].image, reference).rmse);
+  std::printf("| Glint | %.2f (%s) | %.4f | %.5f |\n\n", glintS, listed(secondsOf(runs.glint)).c_str(), glintFlip,
+              compareImages(glint, reference).rmse);
+  std::printf("Glint: %.2fx Cycles' speed (medians); its FLIP %.2fx the noise floor's\n\n", cyclesS / glintS,
               glintFlip / floor);
   std::printf("| surface | Cycles (R, G, B) | Glint (R, G, B) | Glint / Cycles - 1, luminance |\n|---|---|---|---|\n");
-  const auto theirs = surfaceMeans(prepared, cycles.image), ours = surfaceMeans(prepared, glint.image);
+  const auto theirs = surfaceMeans(prepared, reference), ours = surfaceMeans(prepared, glint);
   const auto luminance = [](const glm::dvec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; };
   for (const auto& [name, c] : theirs) {
     const glm::dvec3 g = ours.at(name);
@@ -138,14 +167,19 @@ void transportSection(const std::string& scenes, bool quick) {
   text["image"]["width"] = text["image"]["height"] = size;
   std::ofstream(dir / "scene.json") << text.dump();
   const fs::path script = (fs::absolute(scenes) / "../tests/bench/cycles/glint_scene.py").lexically_normal();
-  const Frame glint = glintFrame(prepared, pool);
-  const auto cycles = cyclesFrame(script, dir / "scene.json", dir / "cycles0.exr", samples, bounces, 0);
-  const auto cycles1 = cyclesFrame(script, dir / "scene.json", dir / "cycles1.exr", samples, bounces, 1);
-  if (cycles && cycles1) {
-    printComparison(prepared, *cycles, *cycles1, glint);
-  } else {
-    std::printf("blender did not render the scene (run tests/bench/cycles/glint_scene.py by hand to see why)\n");
+  Runs runs;
+  for (int seed = 0; seed < (quick ? 2 : 3); ++seed) {
+    runs.glint.push_back(glintFrame(prepared, pool));
+    const fs::path out = dir / ("cycles" + std::to_string(seed) + ".exr");
+    std::optional<Frame> cycles = cyclesFrame(script, dir / "scene.json", out, samples, bounces, seed);
+    if (!cycles) {
+      std::printf("blender did not render the scene (run tests/bench/cycles/glint_scene.py by hand to see why)\n");
+      fs::remove_all(dir);
+      return;
+    }
+    runs.cycles.push_back(std::move(*cycles));
   }
+  printComparison(prepared, runs);
   fs::remove_all(dir);
 }
 

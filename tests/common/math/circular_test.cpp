@@ -64,6 +64,30 @@ TEST(Circular, SignedZeroAndTheLibraryBeyondItsRange) {
   }
 }
 
+// A fraction of a turn: within 2^-23 of sinl and cosl of 2 pi u over the
+// whole turn, exact at the quarter turns.
+TEST(Circular, TurnIsWithinTwoToTheMinus23) {
+  const long double twoPi = 6.283185307179586476925286766559L;
+  float worst = 0.0f;
+  for (int i = 0; i <= 1 << 20; ++i) {
+    const float u = static_cast<float>(i) * 0x1p-20f;
+    for (float v : {u, std::nextafter(u, 2.0f), std::nextafter(u, -1.0f)}) {
+      if (v < 0.0f || v > 1.0f) continue;
+      const SineCosine got = turn(v);
+      const long double angle = twoPi * static_cast<long double>(v);
+      worst = std::max({worst, static_cast<float>(std::abs(got.sin - std::sin(angle))),
+                        static_cast<float>(std::abs(got.cos - std::cos(angle)))});
+    }
+  }
+  EXPECT_LE(worst, 0x1p-23f);
+  const float quarters[][3] = {{0.0f, 0.0f, 1.0f}, {0.25f, 1.0f, 0.0f}, {0.5f, 0.0f, -1.0f}, {0.75f, -1.0f, 0.0f},
+                               {1.0f, 0.0f, 1.0f}};
+  for (const auto& q : quarters) {
+    EXPECT_EQ(turn(q[0]).sin, q[1]) << q[0];  // -0 equals 0
+    EXPECT_EQ(turn(q[0]).cos, q[2]) << q[0];
+  }
+}
+
 // Transform's rotation is glm::rotate's matrix, operation for operation:
 // where std::sin and std::cos give sineCosine's bits, the two matrices are
 // the same bits.
