@@ -2,9 +2,51 @@
 
 #include <algorithm>
 #include <atomic>
-#include <exception>
 
 namespace glint {
+
+// A forked task's one run, claimed by whichever comes first: a worker, or
+// the owner joining it.
+struct ThreadPool::Forked::State {
+  std::function<void()> task;
+  std::atomic<bool> claimed{false};
+  std::mutex mutex;
+  std::condition_variable finished;
+  bool done = false;
+  std::exception_ptr error;
+
+  bool claim() { return !claimed.exchange(true); }
+  void run() {
+    std::exception_ptr thrown;
+    try {
+      task();
+    } catch (...) {
+      thrown = std::current_exception();
+    }
+    task = nullptr;
+    std::lock_guard lock(mutex);
+    error = thrown;
+    done = true;
+    finished.notify_all();
+  }
+};
+
+ThreadPool::Forked::~Forked() {
+  if (!state_) return;
+  try {
+    join();
+  } catch (...) {  // the owner left by an exception of its own; this one adds nothing
+  }
+}
+
+void ThreadPool::Forked::join() {
+  if (!state_) return;
+  const std::shared_ptr<State> state = std::move(state_);
+  if (state->claim()) state->run();
+  std::unique_lock lock(state->mutex);
+  state->finished.wait(lock, [&] { return state->done; });
+  if (state->error) std::rethrow_exception(state->error);
+}
 
 ThreadPool::ThreadPool(int threads) {
   const int n = std::max(1, threads);
@@ -29,6 +71,15 @@ void ThreadPool::submit(std::function<void()> task) {
   ready_.notify_one();
 }
 
+ThreadPool::Forked ThreadPool::fork(std::function<void()> task) {
+  auto state = std::make_shared<Forked::State>();
+  state->task = std::move(task);
+  submit([state] {
+    if (state->claim()) state->run();
+  });
+  return Forked(std::move(state));
+}
+
 void ThreadPool::work() {
   while (true) {
     std::function<void()> task;
@@ -47,26 +98,33 @@ void ThreadPool::parallelFor(std::size_t count, const std::function<void(std::si
   if (count == 0) return;
   std::atomic<std::size_t> next{0};
   std::atomic<bool> failed{false};
+  const auto loop = [&] {
+    try {
+      for (std::size_t i = next++; i < count && !failed; i = next++) body(i);
+    } catch (...) {
+      failed = true;
+      throw;
+    }
+  };
+  // The caller is one of the runners; a helper no worker reached before
+  // the indices ran out is run by join() and finds none left.
+  const std::size_t helpers = std::min(count, static_cast<std::size_t>(size())) - 1;
+  std::vector<Forked> forked;
+  forked.reserve(helpers);
+  for (std::size_t h = 0; h < helpers; ++h) forked.push_back(fork(loop));
   std::exception_ptr error;
-  std::mutex doneMutex;
-  std::condition_variable done;
-  const std::size_t runners = std::min(count, static_cast<std::size_t>(size()));
-  std::size_t running = runners;
-  for (std::size_t r = 0; r < runners; ++r) {
-    submit([&] {
-      try {
-        for (std::size_t i = next++; i < count && !failed; i = next++) body(i);
-      } catch (...) {
-        std::lock_guard lock(doneMutex);
-        if (!error) error = std::current_exception();
-        failed = true;
-      }
-      std::lock_guard lock(doneMutex);
-      if (--running == 0) done.notify_one();
-    });
+  try {
+    loop();
+  } catch (...) {
+    error = std::current_exception();
   }
-  std::unique_lock lock(doneMutex);
-  done.wait(lock, [&] { return running == 0; });
+  for (Forked& f : forked) {
+    try {
+      f.join();
+    } catch (...) {
+      if (!error) error = std::current_exception();
+    }
+  }
   if (error) std::rethrow_exception(error);
 }
 

@@ -3,14 +3,19 @@
 #include <condition_variable>
 #include <cstddef>
 #include <deque>
+#include <exception>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <thread>
 #include <vector>
 
 namespace glint {
 
-// A fixed set of worker threads taking tasks from one queue.
+// A fixed set of worker threads taking tasks from one queue. Work may be
+// forked and joined, and loops run in parallel, from any thread, a worker
+// included: a joining thread that finds its task not yet started runs it
+// itself, so nested work never waits on a worker that is waiting too.
 class ThreadPool {
  public:
   explicit ThreadPool(int threads);
@@ -21,9 +26,27 @@ class ThreadPool {
   int size() const { return static_cast<int>(workers_.size()); }
   void submit(std::function<void()> task);
 
-  // Runs body(i) for every i in [0, count) on the workers and waits. The
-  // first exception a body throws is rethrown here, after every started body
-  // has finished; the remaining indices are skipped.
+  // A task handed to the workers that its owner joins: join() runs it on
+  // the calling thread if no worker has taken it yet, else waits for it,
+  // and rethrows what it threw. Joined on destruction (its error dropped).
+  class Forked {
+   public:
+    Forked(Forked&&) = default;
+    Forked& operator=(Forked&&) = delete;
+    ~Forked();
+    void join();
+
+   private:
+    friend class ThreadPool;
+    struct State;
+    explicit Forked(std::shared_ptr<State> state) : state_(std::move(state)) {}
+    std::shared_ptr<State> state_;
+  };
+  [[nodiscard]] Forked fork(std::function<void()> task);
+
+  // Runs body(i) for every i in [0, count) on the workers and the calling
+  // thread, and waits. The first exception a body throws is rethrown here,
+  // after every started body has finished; the remaining indices are skipped.
   void parallelFor(std::size_t count, const std::function<void(std::size_t)>& body);
 
  private:
