@@ -11,10 +11,11 @@
 #include "client/offscreen_context.h"
 #include "client/raster_scene.h"
 #include "client/scene_warnings.h"
+#include "common/base/compute_pool.h"
 #include "common/base/error.h"
 #include "common/scene/frame_limits.h"
 #include "common/image/encoding.h"
-#include "common/image/flip.h"
+#include "common/metrics/flip.h"
 #include "common/image/image_write.h"
 #include "common/render/linear_frame.h"
 #include "common/scene/load_limits.h"
@@ -188,7 +189,7 @@ void runAccuracy(const AccuracyOptions& o) {
   if (ec || !fs::is_directory(dir)) throw InputError("-o " + o.outDir + ": cannot make the folder (" + ec.message() + ")");
 
   const PreparedScene prepared(scene, BvhSettings{});
-  ThreadPool pool(resolveThreadCount(o.threads));
+  ThreadPool& pool = computePool();
   std::unique_ptr<DistributedTileService> remote;
   if (o.remote.any()) remote = connectServers(o.remote, loaded.bundle);
   Sweep sweep{prepared, Encoder(scene.frame.output), pool, o.frames, o.frame.tileSize, remote.get(), o.gl, nullptr, nullptr};

@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "common/base/enum_words.h"
-#include "common/image/flip.h"
-#include "common/image/image_metrics.h"
+#include "common/metrics/flip.h"
+#include "common/metrics/image_metrics.h"
 #include "common/render/frame.h"
 #include "common/render/ray_stats.h"
 

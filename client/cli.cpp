@@ -24,6 +24,7 @@
 #include "client/server_source.h"
 #include "client/view_command.h"
 #include "common/base/build_identity.h"
+#include "common/base/compute_pool.h"
 #include "common/base/error.h"
 #include "common/base/nearest_word.h"
 #include "common/scene/frame_limits.h"
@@ -280,7 +281,10 @@ std::function<void()> declareRender(CLI::App* render) {
   render->add_flag("--progress", o.progress,
                    "Show each frame's progress (tiles, each server's share, time left) even when stderr is not a "
                    "terminal (a line a second) or the frame is short");
-  return [options] { runRender(*options); };
+  return [options] {
+    setComputeThreads(options->threads);
+    runRender(*options);
+  };
 }
 
 // Declares `glint view`'s options; returns what runs once they are parsed.
@@ -294,7 +298,10 @@ std::function<void()> declareView(CLI::App* view) {
   addEnumOption(view, "--bvh", o.bvh, "BVH builder in process (default: sah; qsplit is the thesis's)");
   view->add_option("--frames", o.frames, "Close after N frames (for scripts)")->check(CLI::Range(1, 1000000));
   view->add_option("--screenshot", o.screenshot, "Write the last frame as PNG when the window closes");
-  return [options] { runView(*options); };
+  return [options] {
+    setComputeThreads(options->threads);
+    runView(*options);
+  };
 }
 
 constexpr const char* kInfoHelp =
@@ -348,7 +355,10 @@ std::function<void()> declareAccuracy(CLI::App* accuracy) {
   addEnumOption(accuracy, "--metric", o.metric,
                 "The plot's error axis and the Pareto front's: flip (mean FLIP, what a viewer sees; the default) or "
                 "rmse");
-  return [options] { runAccuracy(*options); };
+  return [options] {
+    setComputeThreads(options->threads);
+    runAccuracy(*options);
+  };
 }
 
 constexpr const char* kCompareHelp =

@@ -5,7 +5,7 @@
 
 #include "client/pixel_mark.h"
 #include "common/image/encoding.h"
-#include "common/image/flip.h"
+#include "common/image/flip_colour.h"
 
 namespace glint {
 std::size_t markColourEdges(std::span<const std::uint8_t> rgb, int width, int height, float threshold,

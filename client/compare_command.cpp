@@ -6,7 +6,7 @@
 #include <string>
 
 #include "common/base/error.h"
-#include "common/image/image_metrics.h"
+#include "common/metrics/image_metrics.h"
 #include "common/image/image_read.h"
 #include "common/image/image_write.h"
 

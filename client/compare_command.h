@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "common/image/flip.h"
+#include "common/metrics/flip.h"
 
 namespace glint {
 

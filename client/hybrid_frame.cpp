@@ -6,12 +6,12 @@
 #include <cstring>
 #include <span>
 #include <string>
-#include <thread>
 
 #include "client/colour_edges.h"
 #include "client/focus_blur.h"
 #include "client/pixel_mark.h"
 #include "client/raster_edges.h"
+#include "common/base/compute_pool.h"
 #include "common/base/error.h"
 #include "common/base/timing.h"
 
@@ -164,10 +164,10 @@ void cropRows(std::vector<std::uint8_t>& rgb, int frameWidth, const TileRect& wi
 
 // Marks for tracing (with direct light, as an undecided shadow) each pixel
 // OpenGL shades whose point is not proved to see every area light whole:
-// the penumbra and umbra (client/penumbra_proof.h). Rows are cut among the
-// hardware threads; each pixel's proof stands alone.
+// the penumbra and umbra (client/penumbra_proof.h). Rows are cut into bands
+// on the compute pool; each pixel's proof stands alone.
 void markPenumbra(const gl::RasterScene& raster, const FrameSettings& frame, HybridResult& result) {
-  const int threads = static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 16u));
+  const int bands = computePool().size();
   const gl::RasterScene::PixelPoints points = raster.pixelPoints(frame);
   const auto rows = [&](int first, int end) {
     for (int y = first; y < end; ++y) {
@@ -181,10 +181,10 @@ void markPenumbra(const gl::RasterScene& raster, const FrameSettings& frame, Hyb
       }
     }
   };
-  std::vector<std::thread> workers;
-  for (int t = 1; t < threads; ++t) workers.emplace_back(rows, frame.height * t / threads, frame.height * (t + 1) / threads);
-  rows(0, frame.height / threads);
-  for (std::thread& w : workers) w.join();
+  computePool().parallelFor(static_cast<std::size_t>(bands), [&](std::size_t b) {
+    const int band = static_cast<int>(b);
+    rows(frame.height * band / bands, frame.height * (band + 1) / bands);
+  });
 }
 
 // Reads the raster back: each pixel's mark into result.mask, and the

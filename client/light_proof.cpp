@@ -4,12 +4,12 @@
 #include <array>
 #include <cmath>
 #include <optional>
-#include <thread>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include "common/base/compute_pool.h"
 #include "common/geometry/bvh.h"
 #include "common/geometry/region_query.h"
 
@@ -252,31 +252,25 @@ LightProof LightProof::prove(const Scene& scene, const std::vector<bool>& casts)
   const Geometry& g = scene.geometry;
   const Bvh bvh = Bvh::build(g, BvhSettings{});
   // Each primitive's proof stands alone: the primitives are cut into one
-  // run per hardware thread, and the runs' spots joined in order.
+  // run per thread of the compute pool, and the runs' spots joined in order.
   const std::uint32_t count = g.primitiveCount();
   const std::uint32_t runs =
-      std::clamp(std::thread::hardware_concurrency(), 1u, std::max(1u, count / 64));
+      std::clamp(static_cast<std::uint32_t>(computePool().size()), 1u, std::max(1u, count / 64));
   std::vector<std::vector<ShadowSpot>> found(runs);
-  std::vector<std::thread> threads;
-  for (std::uint32_t r = 0; r < runs; ++r) {
-    threads.emplace_back([&, r] {
-      for (std::size_t light = 0; light < scene.lights.size(); ++light) {
-        if (!casts[light]) continue;
-        const Light& l = scene.lights[light];
-        for (std::uint32_t prim = count * r / runs; prim < count * (r + 1) / runs; ++prim) {
-          if (auto spot = l.type == LightType::kDirectional ? wholeSpot(g, prim) : spotOf(g, bvh, prim, l.position)) {
-            spot->light = static_cast<int>(light);
-            found[r].push_back(*spot);
-          }
+  computePool().parallelFor(runs, [&](std::size_t r) {
+    for (std::size_t light = 0; light < scene.lights.size(); ++light) {
+      if (!casts[light]) continue;
+      const Light& l = scene.lights[light];
+      for (std::uint32_t prim = count * r / runs; prim < count * (r + 1) / runs; ++prim) {
+        if (auto spot = l.type == LightType::kDirectional ? wholeSpot(g, prim) : spotOf(g, bvh, prim, l.position)) {
+          spot->light = static_cast<int>(light);
+          found[r].push_back(*spot);
         }
       }
-    });
-  }
+    }
+  });
   LightProof proof;
-  for (std::uint32_t r = 0; r < runs; ++r) {
-    threads[r].join();
-    proof.spots.insert(proof.spots.end(), found[r].begin(), found[r].end());
-  }
+  for (const std::vector<ShadowSpot>& spots : found) proof.spots.insert(proof.spots.end(), spots.begin(), spots.end());
   std::stable_sort(proof.spots.begin(), proof.spots.end(),
                    [](const ShadowSpot& a, const ShadowSpot& b) { return a.light < b.light; });
   return proof;

@@ -328,7 +328,7 @@ void runRender(const RenderOptions& options) {
   if (!options.provenanceOut.empty() && options.crop) {
     throw UsageError("--provenance-out " + options.provenanceOut + ": shows the whole frame; it cannot go with --crop");
   }
-  TileBackend backend({options.remote, options.threads, options.bvh, true}, std::move(loaded));
+  TileBackend backend({options.remote, options.bvh, true}, std::move(loaded));
   run.prepareMs = msSince(prepareStart);
 
   std::vector<HybridTimes> frameTimes;

@@ -1,6 +1,7 @@
 #include "client/tile_backend.h"
 
 #include "client/distributed_tile_service.h"
+#include "common/base/compute_pool.h"
 #include "common/base/error.h"
 
 namespace glint {
@@ -34,7 +35,7 @@ TileBackend::TileBackend(const Options& options, proto::LoadedBundle loaded) : l
   BvhSettings bvh;
   bvh.builder = options.bvh.value_or(bvh.builder);
   prepared_ = std::make_unique<PreparedScene>(std::move(loaded_.scene), bvh);
-  pool_ = std::make_unique<ThreadPool>(resolveThreadCount(options.threads));
+  pool_ = &computePool();
   service_ = std::make_unique<LocalTileService>(*prepared_, *pool_);
 }
 

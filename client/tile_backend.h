@@ -41,7 +41,6 @@ class TileBackend {
  public:
   struct Options {
     RemoteOptions remote;
-    int threads = 0;  // in process; 0: every hardware thread
     std::optional<BvhBuilder> bvh;
     bool awaitServer = true;  // wait for a server to be ready (view does not)
   };
@@ -59,7 +58,7 @@ class TileBackend {
   // In process: the prepared scene and its pool (for linear renders);
   // nullptr through servers.
   const PreparedScene* prepared() const { return prepared_.get(); }
-  ThreadPool* pool() { return pool_.get(); }
+  ThreadPool* pool() { return pool_; }
   // "4 threads", "server HOST:PORT" or "3 servers", for summaries.
   std::string where() const;
 
@@ -67,7 +66,7 @@ class TileBackend {
   DistributedTileService* distributed_ = nullptr;  // service_, when it is one
   proto::LoadedBundle loaded_;
   std::unique_ptr<PreparedScene> prepared_;  // in process only
-  std::unique_ptr<ThreadPool> pool_;         // in process only
+  ThreadPool* pool_ = nullptr;               // the compute pool, in process only
   std::unique_ptr<TileService> service_;
 };
 

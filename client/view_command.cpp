@@ -340,7 +340,7 @@ void runView(const ViewOptions& options) {
   glfwSwapInterval(0);
   const gl::Api api = gl::loadApi([](const char* name) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); });
 
-  TileBackend backend({options.remote, options.threads, options.bvh, false}, std::move(loaded));
+  TileBackend backend({options.remote, options.bvh, false}, std::move(loaded));
   const Scene& scene = backend.scene();
   gl::RasterScene raster(api, scene);
 

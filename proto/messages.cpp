@@ -96,18 +96,6 @@ std::vector<std::vector<std::uint8_t>> encodeFileChunks(std::string_view bytes, 
   return chunks;
 }
 
-std::vector<std::vector<std::uint8_t>> encodeFullUpload(const SceneBundle& bundle, std::size_t chunkBytes) {
-  const BundleDigest d = digest(bundle);
-  std::vector<std::vector<std::uint8_t>> frames;
-  std::size_t i = 0;
-  for (const auto& [path, bytes] : bundle.files) {
-    for (auto& chunk : encodeFileChunks(bytes, d.files[i], chunkBytes)) frames.push_back(std::move(chunk));
-    ++i;
-  }
-  frames.push_back(encodeSceneUpload(d.scene, bundle, d.files));
-  return frames;
-}
-
 std::vector<std::uint8_t> encodeSceneReady(const SceneHash& hash, float buildMs) {
   FlatBufferBuilder b;
   return finish(b, wire::CreateSceneReady(b, b.CreateVector(hash.data(), hash.size()), buildMs),

@@ -36,10 +36,6 @@ std::vector<std::uint8_t> encodeFileChunk(const SceneHash& file, std::uint64_t s
 // (one, empty, for an empty file).
 std::vector<std::vector<std::uint8_t>> encodeFileChunks(std::string_view bytes, const SceneHash& hash,
                                                         std::size_t chunkBytes);
-// A whole upload to a server that holds none of the bundle's files: every
-// file's chunks, then the SceneUpload.
-std::vector<std::vector<std::uint8_t>> encodeFullUpload(const SceneBundle& bundle,
-                                                        std::size_t chunkBytes = kFileChunkBytes);
 std::vector<std::uint8_t> encodeSceneReady(const SceneHash& hash, float buildMs);
 std::vector<std::uint8_t> encodeFrameSetup(std::uint32_t frameId, const SceneHash& hash, const FrameSettings& frame);
 std::vector<std::uint8_t> encodeTileRequest(std::uint32_t frameId, std::uint32_t tileId, const TileRect& rect,

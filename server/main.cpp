@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "common/base/build_identity.h"
+#include "common/base/compute_pool.h"
 #include "common/base/error.h"
 #include "common/base/heap_tuning.h"
 #include "common/base/nearest_word.h"
@@ -148,6 +149,8 @@ int main(int argc, char** argv) {
   }
   setLogging(!quiet);
   raiseDescriptorLimit(o);
+  glint::setComputeThreads(o.threads);
+  o.computePool = true;
   try {
     Server server(o);
     // One line on stdout that scripts can wait for; the port is the real one.

@@ -5,8 +5,8 @@
 namespace glint::server {
 
 SceneBuilds::SceneBuilds(const BuildLimits& limits, MemoryGauge& buildMemory, int threads)
-    : limits_(limits), buildMemory_(buildMemory) {
-  for (int i = 0; i < std::max(threads, 1); ++i) threads_.emplace_back([this] { run(); });
+    : limits_(limits), buildMemory_(buildMemory), builders_(std::max(threads, 1)) {
+  for (int i = 0; i < builders_.size(); ++i) builders_.submit([this] { run(); });
 }
 
 SceneBuilds::~SceneBuilds() {
@@ -14,8 +14,7 @@ SceneBuilds::~SceneBuilds() {
     std::lock_guard lock(mutex_);
     stopping_ = true;
   }
-  wake_.notify_all();
-  for (std::thread& t : threads_) t.join();
+  wake_.notify_all();  // each run() returns; the pool's destructor joins its workers
 }
 
 std::size_t SceneBuilds::built() const {

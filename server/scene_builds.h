@@ -8,14 +8,14 @@
 #include <map>
 #include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
+#include "common/base/thread_pool.h"
 #include "server/scene_builder.h"
 
 namespace glint::server {
 
-// glintd's scene builds, on threads of their own so that a long or hostile
+// glintd's scene builds, on a pool of their own so that a long or hostile
 // build never holds a tracing thread: tiles of every client go on while a
 // scene is parsed and its BVH built; several builds run at once, so that
 // one long build does not hold every new scene back (a client has at most
@@ -64,7 +64,7 @@ class SceneBuilds {
   std::deque<proto::SceneHash> refusedOrder_;  // oldest first
   std::size_t built_ = 0;
   bool stopping_ = false;
-  std::vector<std::thread> threads_;  // last: they start once the rest is made
+  ThreadPool builders_;  // last: each runs run() until stopping_, once the rest is made
 };
 
 }  // namespace glint::server

@@ -1,5 +1,6 @@
 #include "server/server.h"
 
+#include "common/base/compute_pool.h"
 #include "common/base/error.h"
 #include "proto/byte_stream.h"
 #include "proto/endpoint.h"
@@ -53,7 +54,8 @@ Server::Server(const ServerOptions& options)
     : options_(checked(options)),
       cache_(options.cacheBytes),
       files_(options.maxSceneBytes),
-      scheduler_(resolveThreadCount(options.threads)),
+      ownPool_(options.computePool ? nullptr : std::make_unique<ThreadPool>(resolveThreadCount(options.threads))),
+      scheduler_(ownPool_ ? *ownPool_ : computePool()),
       registry_(static_cast<std::size_t>(options.maxClients), static_cast<std::size_t>(options.maxWaiting)),
       buildMemory_(options.maxMemoryBytes - options.cacheBytes - options.maxSceneBytes,
                    "glintd --max-memory-mb less --cache-mb and the files kept (--max-scene-mb)"),

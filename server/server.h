@@ -6,7 +6,7 @@
 
 #include <asio.hpp>
 
-#include "common/scene/scene_budget.h"
+#include "common/base/memory_gauge.h"
 #include "server/connection_registry.h"
 #include "server/scene_builds.h"
 #include "server/scene_cache.h"
@@ -33,7 +33,8 @@ struct ServerContext {
 
 // glintd: accepts clients, holds the scene cache and the tile scheduler.
 // All socket I/O runs on the thread that calls run(); tracing runs on the
-// scheduler's pool, scene builds on threads of their own (SceneBuilds).
+// scheduler's pool (the compute pool in glintd), scene builds on a pool of
+// their own (SceneBuilds).
 class Server {
  public:
   // Checks the options and binds the listening socket; throws InputError
@@ -60,6 +61,7 @@ class Server {
   asio::io_context io_;
   SceneCache cache_;
   FileStore files_;
+  std::unique_ptr<ThreadPool> ownPool_;  // where the options do not name the compute pool
   TileScheduler scheduler_;
   ConnectionRegistry registry_;
   MemoryGauge buildMemory_;

@@ -13,6 +13,10 @@ namespace glint::server {
 struct ServerOptions {
   std::string listen = "127.0.0.1:7878";  // loopback unless the user says otherwise
   int threads = 0;                         // tracing threads; 0 = one per hardware thread
+  // Trace on the process's compute pool (glintd: its one pool, sized by
+  // --threads, that BVH builds and decoders share) rather than on a pool of
+  // the server's own (a test's servers in one process).
+  bool computePool = false;
   std::size_t maxMessageBytes = proto::kDefaultMaxMessageBytes;
   // Before Hello a peer is a stranger: its messages (a Hello is under 100
   // bytes) may be no larger than this.

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "common/base/memory_gauge.h"
 #include "common/render/renderer.h"
 #include "common/render/tile.h"
 #include "proto/framing.h"

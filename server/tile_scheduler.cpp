@@ -2,13 +2,12 @@
 
 namespace glint::server {
 
-TileScheduler::TileScheduler(int threads) : pool_(threads) {}
-
 TileScheduler::~TileScheduler() {
-  std::lock_guard lock(mutex_);
+  std::unique_lock lock(mutex_);
   queues_.clear();
   turn_.clear();
   queued_ = 0;
+  idle_.wait(lock, [this] { return inPool_ == 0; });
 }
 
 void TileScheduler::submit(std::uint64_t client, std::function<void()> task, Tag tag) {
@@ -18,9 +17,14 @@ void TileScheduler::submit(std::uint64_t client, std::function<void()> task, Tag
     if (queue.empty()) turn_.push_back(client);
     queue.push_back({std::move(task), tag});
     ++queued_;
+    ++inPool_;
   }
   // Each submitted task adds one "run the next task in turn" to the pool.
-  pool_.submit([this] { runOne(); });
+  pool_.submit([this] {
+    runOne();
+    std::lock_guard lock(mutex_);
+    if (--inPool_ == 0) idle_.notify_all();
+  });
 }
 
 void TileScheduler::runOne() {

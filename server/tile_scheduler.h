@@ -1,5 +1,6 @@
 #pragma once
 
+#include <condition_variable>
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -11,12 +12,13 @@
 
 namespace glint::server {
 
-// Runs work of many clients on one thread pool with a fair share: queued
+// Runs work of many clients on a thread pool with a fair share: queued
 // tasks are taken round robin, one per client in turn, so a client with a
 // thousand queued tiles does not starve one with ten.
 class TileScheduler {
  public:
-  explicit TileScheduler(int threads);
+  explicit TileScheduler(ThreadPool& pool) : pool_(pool) {}
+  // Drops the queued tasks and waits for the running ones.
   ~TileScheduler();
 
   // A task's tag names it for cancel(client, which); untagged tasks (scene
@@ -42,7 +44,9 @@ class TileScheduler {
   std::map<std::uint64_t, std::deque<Task>> queues_;
   std::deque<std::uint64_t> turn_;  // clients with queued work, in serving order
   std::size_t queued_ = 0;
-  ThreadPool pool_;  // last member: its workers stop before the queues go away
+  std::size_t inPool_ = 0;  // turns handed to the pool and not yet over
+  std::condition_variable idle_;
+  ThreadPool& pool_;
 };
 
 }  // namespace glint::server

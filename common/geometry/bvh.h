@@ -33,8 +33,8 @@ struct BvhSettings {
   int maxLeafSize = kBlockTriangles;  // a node with at most this many primitives may become a leaf
   int sahBins = 16;        // the most centroid bins per axis for the SAH (a node of n primitives: 4 + n / 20)
   float traversalCost = 1.0f;  // SAH cost of visiting a node, relative to one primitive test
-  // Threads the build may use (0: one per hardware thread): large subtrees
-  // near the root are built side by side. The tree is the same for any count.
+  // Threads the build may use (0: the compute pool's, common/base/compute_pool.h):
+  // large subtrees near the root are built side by side. The tree is the same for any count.
   int buildThreads = 0;
 };
 

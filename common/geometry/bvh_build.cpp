@@ -5,9 +5,9 @@
 #include <memory>
 #include <optional>
 #include <span>
-#include <thread>
 #include <vector>
 
+#include "common/base/compute_pool.h"
 #include "common/geometry/bvh.h"
 #include "common/geometry/bvh_collapse.h"
 #include "common/geometry/bvh_split.h"
@@ -24,7 +24,7 @@ struct Cursor {
 
 // Where both halves of a split have at least this many primitives, the
 // first such split on each path down the tree (up to log2 of the build
-// threads of them) builds its second half on a thread of its own, the first
+// threads of them) forks its second half onto the compute pool, the first
 // on the caller's: the same splits, and the same 8-wide tree as one thread
 // builds. The first such split, not only the root's: the bunny scene's root
 // splits off its floor, and its bunny forks a level down (a higher limit
@@ -43,14 +43,14 @@ constexpr float kBlockTestCost = 1.5f;
 
 // Builds the binary tree depth-first (a node is appended, its first child
 // follows it, and the second child's index is patched in afterwards), large
-// subtrees near the root on threads of their own, then collapses it into
+// subtrees near the root forked onto the compute pool, then collapses it into
 // 8-wide nodes.
 class BvhBuilderImpl {
  public:
   BvhBuilderImpl(BvhArrays& out, const Geometry& geometry, const BvhSettings& settings)
       : out_(out), geometry_(geometry), settings_(settings) {
-    const unsigned threads = settings.buildThreads > 0 ? static_cast<unsigned>(settings.buildThreads)
-                                                       : std::max(1u, std::thread::hardware_concurrency());
+    const unsigned threads = static_cast<unsigned>(settings.buildThreads > 0 ? settings.buildThreads
+                                                                              : computePool().size());
     forkLevels_ = static_cast<int>(std::bit_width(threads)) - 1;
   }
 
@@ -95,7 +95,8 @@ class BvhBuilderImpl {
     }
     if (forks > 0 && prims.size() - mid >= kParallelSubtree && mid >= kParallelSubtree) {
       Cursor second{nodeIndex + 2 * static_cast<std::uint32_t>(mid), 0};  // after the first half's 2 mid - 1
-      std::thread worker([&] { split(prims.subspan(mid), cut.sides[1], depth + 1, forks - 1, second); });
+      ThreadPool::Forked worker =
+          computePool().fork([&] { split(prims.subspan(mid), cut.sides[1], depth + 1, forks - 1, second); });
       split(prims.first(mid), cut.sides[0], depth + 1, forks - 1, cursor);
       worker.join();
       node.offset = nodeIndex + 2 * static_cast<std::uint32_t>(mid);

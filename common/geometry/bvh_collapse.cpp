@@ -4,6 +4,7 @@
 #include <array>
 #include <thread>
 
+#include "common/base/compute_pool.h"
 #include "common/geometry/bvh_lanes.h"
 
 namespace glint {
@@ -84,7 +85,9 @@ void BvhCollapse::run(std::size_t primCount) {
     collapse(0, plan);
     fillBlocks(0, blocksMade_.load(std::memory_order_relaxed));
   } else {
-    std::thread filler([this] {
+    // If no worker takes the filler before the collapse ends, join() runs it
+    // here, and it fills every block at once.
+    ThreadPool::Forked filler = computePool().fork([this] {
       std::size_t next = 0;
       for (bool last = false; !last;) {
         last = collapsed_.load(std::memory_order_acquire);
@@ -98,7 +101,10 @@ void BvhCollapse::run(std::size_t primCount) {
       collapse(0, plan);
     } catch (...) {  // out of memory: let the filler finish before the error goes on
       collapsed_.store(true, std::memory_order_release);
-      filler.join();
+      try {
+        filler.join();
+      } catch (...) {  // the collapse's own error is the one to report
+      }
       throw;
     }
     collapsed_.store(true, std::memory_order_release);

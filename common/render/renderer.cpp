@@ -6,7 +6,7 @@
 #include <new>
 
 #include "common/image/encoding.h"
-#include "common/image/flip.h"
+#include "common/image/flip_colour.h"
 #include "common/math/finite.h"
 #include "common/render/sampling.h"
 

@@ -8,9 +8,9 @@
 #include <map>
 #include <memory>
 #include <streambuf>
-#include <thread>
 #include <utility>
 
+#include "common/base/compute_pool.h"
 #include "common/base/error.h"
 #include "common/base/heap_tuning.h"
 #include "common/scene/obj_colors.h"
@@ -333,7 +333,7 @@ struct PieceReader {
 constexpr std::size_t kPieceBytes = std::size_t{4} << 20;
 
 std::size_t piecesFor(std::size_t bytes) {
-  const std::size_t threads = std::max(1u, std::thread::hardware_concurrency());
+  const auto threads = static_cast<std::size_t>(computePool().size());
   return std::max<std::size_t>(1, std::min(threads, bytes / kPieceBytes));
 }
 
@@ -410,7 +410,7 @@ bool readWhole(const std::string& text, const MaterialTable& table, const LoadLi
   return true;
 }
 
-// The pieces read at once, one a thread, and joined; false where only a
+// The pieces read at once on the compute pool, and joined; false where only a
 // whole read gives LoadObj's answer: a piece failed (an error, a larger
 // polygon: the whole read meets it in file order), a later piece used a
 // relative index, or the pieces together pass a limit.
@@ -428,11 +428,7 @@ bool readPieces(const std::string& text, const MaterialTable& table, const LoadL
       failed[i] = 1;
     }
   };
-  {
-    std::vector<std::jthread> threads;  // joined when the block ends, also on an exception
-    for (std::size_t i = 1; i < readers.size(); ++i) threads.emplace_back(readOne, i);
-    readOne(0);
-  }
+  computePool().parallelFor(readers.size(), readOne);
   std::size_t vertices = 0, triangles = 0;
   for (std::size_t i = 0; i < readers.size(); ++i) {
     if (failed[i] || readers[i]->relative) return false;

@@ -36,14 +36,6 @@ const std::size_t SceneBudget::kBvhBytesPerPrimitive =
     sizeof(BvhNode) + sizeof(std::uint32_t) + sizeof(TriangleBlock) / 2 + sizeof(BuildPrimitive) +
     2 * (sizeof(BinaryNode) + sizeof(BvhLanePlan::Choice)) + sizeof(BlockRange) / 2;
 
-bool MemoryGauge::take(std::size_t bytes) {
-  std::size_t used = used_.load();
-  do {
-    if (bytes > capacity_ - used) return false;
-  } while (!used_.compare_exchange_weak(used, used + bytes));
-  return true;
-}
-
 SceneBudget::SceneBudget(const LoadLimits& limits, std::string limitName, MemoryGauge* shared)
     : limits_(limits), limitName_(std::move(limitName)), shared_(shared) {}
 

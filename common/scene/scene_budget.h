@@ -1,34 +1,13 @@
 #pragma once
 
-#include <atomic>
 #include <cstddef>
 #include <string>
 
 #include "common/base/deadline.h"
+#include "common/base/memory_gauge.h"
 #include "common/scene/load_limits.h"
 
 namespace glint {
-
-// Memory shared by loads that run at once (glintd's scenes being built): each
-// load draws its charges from it and gives them back when it is done.
-class MemoryGauge {
- public:
-  MemoryGauge(std::size_t capacityBytes, std::string name) : capacity_(capacityBytes), name_(std::move(name)) {}
-  MemoryGauge(const MemoryGauge&) = delete;
-  MemoryGauge& operator=(const MemoryGauge&) = delete;
-
-  // Takes `bytes` if they fit; false (and nothing taken) otherwise.
-  bool take(std::size_t bytes);
-  void give(std::size_t bytes) { used_.fetch_sub(bytes); }
-  std::size_t used() const { return used_.load(); }
-  std::size_t capacity() const { return capacity_; }
-  const std::string& name() const { return name_; }
-
- private:
-  std::atomic<std::size_t> used_{0};
-  std::size_t capacity_;
-  std::string name_;
-};
 
 // What one scene will hold in memory once built, counted as the loader reads
 // it and before each allocation that the input decides: an image's texels

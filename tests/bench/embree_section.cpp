@@ -19,6 +19,7 @@
 #include "common/render/optics.h"
 #include "common/scene/scene_load.h"
 #include "common/base/timing.h"
+#include "tests/bench/bench_timing.h"
 #include "tests/bench/bench_scenes.h"
 
 namespace glint::bench {

@@ -10,6 +10,7 @@
 #include "client/offscreen_context.h"
 #include "client/raster_scene.h"
 #include "common/base/timing.h"
+#include "tests/bench/bench_timing.h"
 #include "common/scene/scene_load.h"
 
 namespace glint::bench {

@@ -17,6 +17,7 @@
 #include "common/base/file_source.h"
 #include "common/scene/obj_load.h"
 #include "common/base/timing.h"
+#include "tests/bench/bench_timing.h"
 #include "tests/bench/bench_scenes.h"
 #include "tests/support/glint_run.h"
 

@@ -8,7 +8,7 @@
 #include "client/raster_scene.h"
 #include "common/base/timing.h"
 #include "common/image/encoding.h"
-#include "common/image/flip.h"
+#include "common/metrics/flip.h"
 #include "common/render/linear_frame.h"
 #include "common/render/renderer.h"
 #include "common/render/tile_service.h"

@@ -16,8 +16,8 @@
 
 #include "common/base/thread_pool.h"
 #include "common/base/timing.h"
-#include "common/image/flip.h"
-#include "common/image/image_metrics.h"
+#include "common/metrics/flip.h"
+#include "common/metrics/image_metrics.h"
 #include "common/image/image_read.h"
 #include "common/math/float_bits.h"
 #include "common/render/linear_frame.h"

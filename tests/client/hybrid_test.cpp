@@ -26,7 +26,7 @@
 #include "common/render/renderer.h"
 #include "common/scene/scene_load.h"
 #include "proto/scene_bundle.h"
-#include "server/background_server.h"
+#include "tests/support/background_server.h"
 #include "server/log.h"
 #include "tests/support/test_support.h"
 

@@ -14,7 +14,7 @@
 #include "client/distributed_tile_service.h"
 #include "common/base/error.h"
 #include "common/render/frame.h"
-#include "server/background_server.h"
+#include "tests/support/background_server.h"
 #include "server/log.h"
 #include "server/server.h"
 #include "tests/support/test_support.h"

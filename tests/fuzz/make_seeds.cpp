@@ -23,6 +23,7 @@
 #include "proto/scene_bundle.h"
 #include "tests/fuzz/fuzz_files.h"
 #include "tests/fuzz/server_link_script.h"
+#include "tests/support/full_upload.h"
 #include "tests/support/hostile_frames.h"
 #include "tests/support/hostile_images.h"
 

@@ -19,6 +19,7 @@
 #include "common/render/frame.h"
 #include "proto/messages.h"
 #include "server/log.h"
+#include "tests/support/full_upload.h"
 #include "tests/support/test_support.h"
 #include "tests/support/hostile_frames.h"
 #include "tests/support/hostile_images.h"

@@ -18,7 +18,7 @@
 #include "tests/support/message_stream.h"
 #include "proto/messages.h"
 #include "server/log.h"
-#include "server/background_server.h"
+#include "tests/support/background_server.h"
 #include "tests/support/test_support.h"
 #include "tests/support/glintd_process.h"
 #include "tests/server/raw_client.h"

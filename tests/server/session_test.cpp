@@ -6,6 +6,7 @@
 
 #include "proto/messages.h"
 #include "server/log.h"
+#include "tests/support/full_upload.h"
 #include "tests/support/test_support.h"
 #include "tests/support/inline_host.h"
 

@@ -39,7 +39,8 @@ class Gate {
 // With one worker, queued tasks of three clients run in turn, one each,
 // whatever order and count they were submitted in.
 TEST(TileScheduler, ClientsTakeTurns) {
-  TileScheduler scheduler(1);
+  ThreadPool pool(1);
+  TileScheduler scheduler(pool);
   Gate gate(scheduler);
   std::mutex m;
   std::vector<int> order;
@@ -53,7 +54,8 @@ TEST(TileScheduler, ClientsTakeTurns) {
 }
 
 TEST(TileScheduler, CancelDropsQueuedWorkOfOneClient) {
-  TileScheduler scheduler(1);
+  ThreadPool pool(1);
+  TileScheduler scheduler(pool);
   Gate gate(scheduler);
   std::atomic<int> ran1{0}, ran2{0};
   for (int i = 0; i < 5; ++i) scheduler.submit(1, [&] { ++ran1; });
@@ -68,7 +70,8 @@ TEST(TileScheduler, CancelDropsQueuedWorkOfOneClient) {
 // Cancelling by tag drops only the tagged tasks it names; untagged tasks
 // (scene builds) and other clients' tasks run.
 TEST(TileScheduler, CancelByTagDropsOnlyTheNamedTasks) {
-  TileScheduler scheduler(1);
+  ThreadPool pool(1);
+  TileScheduler scheduler(pool);
   Gate gate(scheduler);
   std::mutex m;
   std::vector<int> ran;

@@ -7,8 +7,8 @@
 
 namespace glint::server {
 
-// A glintd inside this process, serving on a thread of its own until the
-// object goes away (tests, the benchmark, programs that embed a server).
+// A glintd inside this process, serving on a thread of its own (its I/O
+// thread) until the object goes away: tests and the benchmark.
 class BackgroundServer {
  public:
   explicit BackgroundServer(const ServerOptions& options) : server_(options), thread_([this] { server_.run(); }) {}

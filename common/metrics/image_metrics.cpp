@@ -1,4 +1,4 @@
-#include "common/image/image_metrics.h"
+#include "common/metrics/image_metrics.h"
 
 #include <algorithm>
 #include <cmath>

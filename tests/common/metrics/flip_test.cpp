@@ -1,12 +1,13 @@
-// FLIP (common/image/flip.h): identical images score 0, the paper's
+// FLIP (common/metrics/flip.h): identical images score 0, the paper's
 // properties hold, and the mean agrees with NVIDIA's reference
 // implementation on the pairs in tests/data/flip.
-#include "common/image/flip.h"
+#include "common/metrics/flip.h"
 
 #include <gtest/gtest.h>
 
 #include "common/base/error.h"
 #include "common/image/encoding.h"
+#include "common/image/flip_colour.h"
 #include "common/image/image_read.h"
 #include "tests/support/test_support.h"
 

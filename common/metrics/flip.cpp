@@ -1,4 +1,4 @@
-#include "common/image/flip.h"
+#include "common/metrics/flip.h"
 
 #include <algorithm>
 #include <array>
@@ -9,25 +9,22 @@
 #include <glm/vec3.hpp>
 
 #include "common/base/error.h"
+#include "common/image/flip_colour.h"
 #include "common/math/power.h"
 
 // The constants and the order of operations follow the paper and agree with
 // NVIDIA's reference implementation (github.com/NVlabs/flip, FLIP.h v1.6),
 // which filters separably, in single precision, clamping at the borders.
-// The colour space's powers are power()'s (common/math/power.h): the
-// perceptual pattern decides pixels by VisibleDifference, and a pixel must
-// not depend on the machine's libm.
+// The colour space is flip_colour's (common/image/flip_colour.h).
 
 namespace glint {
 namespace {
 
+using namespace flip_colour;
+
 constexpr float kPi = 3.14159265358979f;
-// The paper's parameters: colour exponent, the share of the colour range
-// mapped to [0, kBelowCut], the feature filter's width in degrees, the
-// feature exponent.
-constexpr float kColourExponent = 0.7f;
-constexpr float kCutShare = 0.4f;
-constexpr float kBelowCut = 0.95f;
+// The paper's parameters: the feature filter's width in degrees, the
+// feature exponent (the colour term's are flip_colour's).
 constexpr float kFeatureWidthDeg = 0.082f;
 constexpr float kFeatureExponent = 0.5f;
 // The contrast sensitivity functions as sums of Gaussians a sqrt(pi / b)
@@ -38,9 +35,6 @@ struct Csf {
 };
 constexpr Csf kCsfY{1.0f, 0.0047f}, kCsfCx{1.0f, 0.0053f}, kCsfCz1{34.1f, 0.04f}, kCsfCz2{13.5f, 0.025f};
 constexpr float kWidestB = 0.04f;
-// D65 white in XYZ, and its inverse.
-constexpr glm::vec3 kWhite{0.950428545f, 1.0f, 1.088900371f};
-constexpr glm::vec3 kInvWhite{1.052156925f, 1.0f, 0.918357670f};
 
 // One channel of an image.
 struct Plane {
@@ -49,67 +43,6 @@ struct Plane {
   std::vector<float> v;
   float at(int x, int y) const { return v[static_cast<std::size_t>(y) * width + x]; }
 };
-
-glm::vec3 linearToXyz(const glm::vec3& c) {
-  return {(10135552.0f / 24577794.0f) * c.x + (8788810.0f / 24577794.0f) * c.y + (4435075.0f / 24577794.0f) * c.z,
-          (2613072.0f / 12288897.0f) * c.x + (8788810.0f / 12288897.0f) * c.y + (887015.0f / 12288897.0f) * c.z,
-          (1425312.0f / 73733382.0f) * c.x + (8788810.0f / 73733382.0f) * c.y + (70074185.0f / 73733382.0f) * c.z};
-}
-
-glm::vec3 xyzToLinear(const glm::vec3& c) {
-  return {3.241003275f * c.x - 1.537398934f * c.y - 0.498615861f * c.z,
-          -0.969224334f * c.x + 1.875930071f * c.y + 0.041554224f * c.z,
-          0.055639423f * c.x - 0.204011202f * c.y + 1.057148933f * c.z};
-}
-
-// YCxCz: L*a*b* without the cube root (linear in XYZ, so it may be filtered).
-glm::vec3 xyzToYcxcz(glm::vec3 c) {
-  c *= kInvWhite;
-  return {116.0f * c.y - 16.0f, 500.0f * (c.x - c.y), 200.0f * (c.y - c.z)};
-}
-
-glm::vec3 ycxczToXyz(const glm::vec3& c) {
-  const float y = (c.x + 16.0f) / 116.0f;
-  return glm::vec3(y + c.y / 500.0f, y, y - c.z / 200.0f) * kWhite;
-}
-
-glm::vec3 xyzToLab(glm::vec3 c) {
-  constexpr float delta = 6.0f / 29.0f;
-  const auto f = [](float t) {
-    return t > delta * delta * delta ? cubeRoot(t) : t / (3.0f * delta * delta) + 4.0f / 29.0f;
-  };
-  c *= kInvWhite;
-  const glm::vec3 t{f(c.x), f(c.y), f(c.z)};
-  return {116.0f * t.y - 16.0f, 500.0f * (t.x - t.y), 200.0f * (t.y - t.z)};
-}
-
-// The Hunt effect: chroma weighs less in the dark.
-glm::vec3 hunt(const glm::vec3& lab) {
-  return {lab.x, 0.01f * lab.x * lab.y, 0.01f * lab.x * lab.z};
-}
-
-// HyAB: city-block in lightness, Euclidean in the chroma plane.
-float hyab(const glm::vec3& a, const glm::vec3& b) {
-  const float da = a.y - b.y, db = a.z - b.z;
-  return std::abs(a.x - b.x) + std::sqrt(da * da + db * db);
-}
-
-// The largest colour difference, green against blue, raised to
-// kColourExponent (worked out once).
-float largestColourDifference() {
-  static const float cmax = [] {
-    const auto huntLab = [](const glm::vec3& rgb) { return hunt(xyzToLab(linearToXyz(rgb))); };
-    return power(hyab(huntLab({0.0f, 1.0f, 0.0f}), huntLab({0.0f, 0.0f, 1.0f})), kColourExponent);
-  }();
-  return cmax;
-}
-
-// A HyAB distance compressed and mapped to [0, 1]: distances up to kCutShare
-// of the largest to [0, kBelowCut], the rest to (kBelowCut, 1].
-float colourError(float distance) {
-  const float cmax = largestColourDifference(), d = power(distance, kColourExponent), cut = kCutShare * cmax;
-  return d < cut ? d * kBelowCut / cut : kBelowCut + (d - cut) / (cmax - cut) * (1.0f - kBelowCut);
-}
 
 // Convolves rows (or columns) with a centred kernel, clamping at the borders.
 Plane convolve(const Plane& in, const std::vector<float>& kernel, bool rows) {
@@ -314,22 +247,6 @@ FlipMap hdrFlip(const LinearImage& reference, const LinearImage& test, const Hdr
     for (std::size_t p = 0; p < map.error.size(); ++p) worst.error[p] = std::max(worst.error[p], map.error[p]);
   }
   return worst;
-}
-
-glm::vec3 flipLab(const glm::vec3& displayedLinear) {
-  return hunt(xyzToLab(linearToXyz(glm::clamp(displayedLinear, 0.0f, 1.0f))));
-}
-
-VisibleDifference::VisibleDifference(float threshold) {
-  // colourError's inverse: the distance whose compressed value is the threshold.
-  const float cmax = largestColourDifference(), cut = kCutShare * cmax;
-  const float compressed = threshold < kBelowCut ? threshold * cut / kBelowCut
-                                                 : cut + (threshold - kBelowCut) / (1.0f - kBelowCut) * (cmax - cut);
-  distance_ = power(compressed, 1.0f / kColourExponent);
-}
-
-bool VisibleDifference::operator()(const glm::vec3& labA, const glm::vec3& labB) const {
-  return hyab(labA, labB) > distance_;
 }
 
 FlipStats flipStats(const FlipMap& map) {

@@ -63,25 +63,6 @@ FlipMap hdrFlip(const LinearImage& reference, const LinearImage& test, const Hdr
 
 FlipStats flipStats(const FlipMap& map);
 
-// FLIP's colour term for two flat colours, without the spatial filtering
-// (which only lowers the difference of small features): what a pixel's
-// error would be at most, were it as wide as the eye resolves. flipLab is
-// the Hunt-adjusted L*a*b* of a displayed linear colour; VisibleDifference
-// asks whether the HyAB distance of two such colours, compressed and mapped
-// to [0, 1] as the map's colour term is, exceeds a threshold, by comparing
-// the distance with the one the threshold maps to (the term grows with the
-// distance): one power for the threshold, none a pair.
-glm::vec3 flipLab(const glm::vec3& displayedLinear);
-
-class VisibleDifference {
- public:
-  explicit VisibleDifference(float threshold);
-  bool operator()(const glm::vec3& labA, const glm::vec3& labB) const;
-
- private:
-  float distance_;
-};
-
 // The map in the paper's colour map (magma: black 0, purple, orange, pale
 // yellow 1), as the paper shows its errors.
 FrameImage magmaImage(const FlipMap& map);
