@@ -3,6 +3,8 @@
 namespace glint {
 namespace {
 
+// A write gathers about this much, so that an upload's progress is seen a
+// piece at a time.
 constexpr std::size_t kGatherBytes = 1 << 20;
 
 }  // namespace
@@ -10,7 +12,7 @@ constexpr std::size_t kGatherBytes = 1 << 20;
 ServerLink::ServerLink(asio::io_context& io, std::unique_ptr<proto::ByteStream> stream, std::size_t index,
                        std::string name, const proto::SceneBundle& bundle, const proto::BundleDigest& digest,
                        const LinkTimeouts& timeouts)
-    : stream_(std::move(stream)),
+    : pipe_(std::move(stream), kGatherBytes),
       timer_(io),
       index_(index),
       name_(std::move(name)),
@@ -18,12 +20,13 @@ ServerLink::ServerLink(asio::io_context& io, std::unique_ptr<proto::ByteStream> 
 
 void ServerLink::start(LinkListener& listener) {
   listener_ = &listener;
+  pipe_.start(std::shared_ptr<proto::PipeOwner>(shared_from_this(), static_cast<proto::PipeOwner*>(this)));
   conversation_.start();
-  stream_->open([self = shared_from_this()](const std::string& failure) {
+  pipe_.stream().open([self = shared_from_this()](const std::string& failure) {
     if (!failure.empty()) return self->conversation_.fail(LinkFailure::Kind::kUnreachable, failure);
     if (self->conversation_.over()) return;
     self->conversation_.connected();
-    self->readMore();
+    self->pipe_.read();
   });
 }
 
@@ -53,56 +56,28 @@ void ServerLink::delivered(std::uint32_t frameId, std::uint32_t tileId, TileOutp
 }
 
 void ServerLink::lost(const LinkFailure& failure) {
-  stream_->close();
+  pipe_.stream().close();
   if (listener_) listener_->linkFailed(*this, failure);
 }
 
-void ServerLink::send(std::vector<std::uint8_t> frame) {
-  writes_.push(std::move(frame));
-  if (!writes_.writing()) writeNext();
+void ServerLink::send(std::vector<std::uint8_t> frame) { pipe_.send(std::move(frame)); }
+
+void ServerLink::refused(const proto::Decoded& bad) {
+  conversation_.fail(LinkFailure::Kind::kBadBytes, "sent a bad message: " + bad.error);
 }
 
-// One write in flight, gathering the messages queued meanwhile up to about
-// kGatherBytes, so that an upload's progress is seen a piece at a time.
-void ServerLink::writeNext() {
-  if (!stream_->isOpen()) return;
-  std::vector<asio::const_buffer> buffers;
-  for (const auto& frame : writes_.next(kGatherBytes)) buffers.push_back(asio::buffer(frame.data(), frame.size()));
-  if (buffers.empty()) return;
-  stream_->write(buffers, [self = shared_from_this()](const asio::error_code& error, std::size_t n) {
-    self->sent_ += n;
-    self->writes_.written();
-    const bool closing = self->conversation_.state() == ServerConversation::State::kClosed;
-    if (closing && self->writes_.empty()) self->stream_->close();
-    if (!closing && error) {
-      return self->conversation_.fail(LinkFailure::Kind::kClosed, "sending failed: " + self->stream_->describe(error));
-    }
-    self->conversation_.wrote(n);
-    self->writeNext();
-  });
+void ServerLink::readFailed(const asio::error_code& error) {
+  conversation_.streamEnded(pipe_.stream().describe(error));
 }
 
-void ServerLink::readMore() {
-  const std::span<std::uint8_t> space = reader_.space();
-  stream_->readSome(
-      asio::buffer(space.data(), space.size()),
-      [self = shared_from_this()](const asio::error_code& error, std::size_t n) { self->onRead(error, n); });
+// Closing, the stream closes once Goodbye is written, whatever the write's end.
+void ServerLink::writeFailed(const asio::error_code& error) {
+  if (closing()) return pipe_.stream().close();
+  conversation_.fail(LinkFailure::Kind::kClosed, "sending failed: " + pipe_.stream().describe(error));
 }
 
-// Hands every whole message that arrived to the conversation, in order.
-void ServerLink::onRead(const asio::error_code& error, std::size_t n) {
-  if (conversation_.over()) return;
-  if (error) return conversation_.streamEnded(stream_->describe(error));
-  received_ += n;
-  reader_.filled(n);
-  while (!conversation_.over()) {
-    const proto::Decoded d = reader_.next(proto::kDefaultMaxMessageBytes);
-    if (d.status == proto::DecodeStatus::kNeedMore) return readMore();
-    if (d.status == proto::DecodeStatus::kBad) {
-      return conversation_.fail(LinkFailure::Kind::kBadBytes, "sent a bad message: " + d.error);
-    }
-    conversation_.handle(*d.message);
-  }
+void ServerLink::drained() {
+  if (closing()) pipe_.stream().close();
 }
 
 }  // namespace glint

@@ -10,8 +10,7 @@
 
 #include "client/server_conversation.h"
 #include "proto/byte_stream.h"
-#include "proto/frame_reader.h"
-#include "proto/write_queue.h"
+#include "proto/message_pipe.h"
 
 namespace glint {
 
@@ -26,12 +25,12 @@ class LinkListener {
   virtual void linkFailed(ServerLink& link, const LinkFailure& failure) = 0;
 };
 
-// One glintd seen from the client, on a socket: the stream (plain or TLS),
-// the wait's timer, framing and gathered writes. What is said, and what an
-// answer means, is its ServerConversation's. Asynchronous on an io_context
-// shared with the other links; owned through a shared_ptr so that handlers
-// in flight outlive a link its owner dropped.
-class ServerLink : public std::enable_shared_from_this<ServerLink>, private ConversationHost {
+// One glintd seen from the client: its message pipe (proto/message_pipe.h)
+// and the wait's timer. What is said, and what an answer means, is its
+// ServerConversation's. Asynchronous on an io_context shared with the other
+// links; owned through a shared_ptr so that handlers in flight outlive a
+// link its owner dropped.
+class ServerLink : public std::enable_shared_from_this<ServerLink>, private ConversationHost, private proto::PipeOwner {
  public:
   // `stream`, not yet open, is plain TCP or TLS (proto/byte_stream.h).
   ServerLink(asio::io_context& io, std::unique_ptr<proto::ByteStream> stream, std::size_t index, std::string name,
@@ -59,8 +58,8 @@ class ServerLink : public std::enable_shared_from_this<ServerLink>, private Conv
   bool failed() const { return conversation_.state() == ServerConversation::State::kFailed; }
   int threads() const { return conversation_.threads(); }
   bool uploaded() const { return conversation_.uploaded(); }
-  std::uint64_t bytesSent() const { return sent_; }
-  std::uint64_t bytesReceived() const { return received_; }
+  std::uint64_t bytesSent() const { return pipe_.bytesSent(); }
+  std::uint64_t bytesReceived() const { return pipe_.bytesReceived(); }
 
  private:
   // ConversationHost
@@ -71,20 +70,23 @@ class ServerLink : public std::enable_shared_from_this<ServerLink>, private Conv
   void delivered(std::uint32_t frameId, std::uint32_t tileId, TileOutput&& out) override;
   void lost(const LinkFailure& failure) override;
 
-  void writeNext();
-  void readMore();
-  void onRead(const asio::error_code& error, std::size_t n);
+  // proto::PipeOwner
+  bool listening() const override { return !conversation_.over(); }
+  std::size_t messageLimit() const override { return proto::kDefaultMaxMessageBytes; }
+  void received(const wire::Message& message) override { conversation_.handle(message); }
+  void refused(const proto::Decoded& bad) override;
+  void readFailed(const asio::error_code& error) override;
+  void wrote(std::size_t bytes) override { conversation_.wrote(bytes); }
+  void writeFailed(const asio::error_code& error) override;
+  void drained() override;
+  bool closing() const { return conversation_.state() == ServerConversation::State::kClosed; }
 
-  std::unique_ptr<proto::ByteStream> stream_;
+  proto::MessagePipe pipe_;
   asio::steady_timer timer_;
   std::size_t index_;
   std::string name_;
   LinkListener* listener_ = nullptr;
   ServerConversation conversation_;
-  proto::WriteQueue writes_;
-  proto::FrameReader reader_;
-  std::uint64_t sent_ = 0;
-  std::uint64_t received_ = 0;
 };
 
 }  // namespace glint

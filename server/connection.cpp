@@ -18,7 +18,7 @@ Session::Settings sessionSettings(const ServerContext& context) {
 
 Connection::Connection(std::unique_ptr<proto::ByteStream> stream, ServerContext& context, std::uint64_t id,
                        std::string peer)
-    : stream_(std::move(stream)),
+    : pipe_(std::move(stream), SIZE_MAX),
       timer_(context.io),
       context_(context),
       id_(id),
@@ -30,11 +30,12 @@ Connection::Connection(std::unique_ptr<proto::ByteStream> stream, ServerContext&
 // stalls holds little, briefly.
 void Connection::start() {
   logLine(session_.peer() + ": connected");
+  pipe_.start(std::shared_ptr<proto::PipeOwner>(shared_from_this(), static_cast<proto::PipeOwner*>(this)));
   armTimer(context_.options.handshakeTimeout, "TLS handshake");
-  stream_->open([self = shared_from_this()](const std::string& failure) {
+  pipe_.stream().open([self = shared_from_this()](const std::string& failure) {
     if (!failure.empty()) return self->close("TLS handshake failed: " + failure);
     self->waitForMessage();
-    self->read();
+    self->pipe_.read();
   });
 }
 
@@ -48,12 +49,12 @@ void Connection::armTimer(std::chrono::milliseconds timeout, const char* what) {
 // What a silent client holds is freed: a message started and not finished,
 // a connection with nothing to do, a client that stopped reading its results.
 void Connection::onTimer(const char* what) {
-  if (reader_.midMessage()) {
+  if (pipe_.midMessage()) {
     close(greeted() ? "read timeout: a message was not finished" : "handshake timeout: no Hello");
   } else if (pending_ > 0) {
     armTimer(context_.options.idleTimeout, what);  // our own work is not idleness
-  } else if (writes_.writing()) {
-    if (Clock::now() - lastWrite_ > context_.options.readTimeout) {
+  } else if (pipe_.writing()) {
+    if (Clock::now() - pipe_.lastWrite() > context_.options.readTimeout) {
       close("client stopped reading its results");
     } else {
       armTimer(context_.options.readTimeout, what);
@@ -63,46 +64,30 @@ void Connection::onTimer(const char* what) {
   }
 }
 
-void Connection::read() {
-  if (closed_ || closeAfterWrites_) return;
-  const std::span<std::uint8_t> space = reader_.space();
-  stream_->readSome(asio::buffer(space.data(), space.size()), [self = shared_from_this()](const asio::error_code& error,
-                                                                                          std::size_t n) {
-    if (error) {
-      const bool mid = self->reader_.midMessage();
-      self->close(error == asio::error::eof ? (mid ? "disconnected mid-message" : "disconnected") : error.message());
-      return;
-    }
-    const bool wasMid = self->reader_.midMessage();
-    self->reader_.filled(n);
-    self->takeMessages(wasMid);
-  });
+std::size_t Connection::messageLimit() const {
+  return greeted() ? context_.options.maxMessageBytes : ServerOptions::kMaxHandshakeMessageBytes;
 }
 
-// Hands every whole message that arrived to the session, then reads on
-// (`wasMid`: part of a message was held before these bytes). A message
-// started arms the read timeout once (before Hello the handshake's
-// deadline stands: a header does not buy a connection more time); a
-// connection between messages waits under the idle or handshake timeout.
-void Connection::takeMessages(bool wasMid) {
-  bool took = false;
-  while (!closed_ && !closeAfterWrites_) {
-    const std::size_t limit = greeted() ? context_.options.maxMessageBytes : ServerOptions::kMaxHandshakeMessageBytes;
-    const proto::Decoded d = reader_.next(limit);
-    if (d.status == proto::DecodeStatus::kNeedMore) break;
-    if (d.status == proto::DecodeStatus::kBad) {
-      const bool tooLarge = d.code == wire::ErrorCode::TooLarge;
-      const std::string hint = greeted() ? " (is this a Glint client?)" : " before Hello (is this a Glint client?)";
-      return session_.error(d.code, d.error + (tooLarge ? hint : ""), true);
-    }
-    took = true;
-    session_.handle(*d.message);
-  }
-  if (closed_ || closeAfterWrites_) return;
-  const bool mid = reader_.midMessage();
+void Connection::readFailed(const asio::error_code& error) {
+  const bool mid = pipe_.midMessage();
+  close(error == asio::error::eof ? (mid ? "disconnected mid-message" : "disconnected") : error.message());
+}
+
+void Connection::refused(const proto::Decoded& bad) {
+  const bool tooLarge = bad.code == wire::ErrorCode::TooLarge;
+  const std::string hint = greeted() ? " (is this a Glint client?)" : " before Hello (is this a Glint client?)";
+  session_.error(bad.code, bad.error + (tooLarge ? hint : ""), true);
+}
+
+// After a read's messages (`wasMid`: part of a message was held before its
+// bytes). A message started arms the read timeout once (before Hello the
+// handshake's deadline stands: a header does not buy a connection more
+// time); a connection between messages waits under the idle or handshake
+// timeout.
+void Connection::afterRead(bool wasMid, bool took) {
+  const bool mid = pipe_.midMessage();
   if (mid && (took || !wasMid) && greeted()) armTimer(context_.options.readTimeout, "read");
   if (!mid && took) waitForMessage();
-  read();
 }
 
 void Connection::waitForMessage() {
@@ -113,7 +98,7 @@ void Connection::waitForMessage() {
 void Connection::end(const std::string& why) {
   logLine(session_.peer() + ": " + why);
   closeAfterWrites_ = true;
-  if (!writes_.writing()) close(why);
+  if (!pipe_.writing()) close(why);
 }
 
 void Connection::build(SceneJob job) {
@@ -156,32 +141,16 @@ void Connection::takeOutbox() {
 
 void Connection::reply(std::vector<std::uint8_t> frame) {
   if (closed_) return;
-  const std::size_t queued = writes_.queuedBytes() + frame.size();
+  const std::size_t queued = pipe_.queuedBytes() + frame.size();
   if (queued > context_.options.maxQueuedBytes) {
     close("client is not reading its results (" + std::to_string(queued) + " bytes queued)");
     return;
   }
-  writes_.push(std::move(frame));
-  if (!writes_.writing()) writeNext();
+  pipe_.send(std::move(frame));  // everything queued goes out in one gathered write
 }
 
-// Everything queued goes out in one gathered write (one system call for many
-// small tile results); new results queue up behind it.
-void Connection::writeNext() {
-  if (closed_) return;
-  const std::vector<std::span<const std::uint8_t>> frames = writes_.next(SIZE_MAX);
-  if (frames.empty()) {
-    if (closeAfterWrites_) close("closed after its last reply");
-    return;
-  }
-  lastWrite_ = Clock::now();
-  std::vector<asio::const_buffer> buffers;
-  for (const auto& frame : frames) buffers.push_back(asio::buffer(frame.data(), frame.size()));
-  stream_->write(buffers, [self = shared_from_this()](const asio::error_code& error, std::size_t) {
-    if (error) return self->close(error.message());
-    self->writes_.written();
-    self->writeNext();
-  });
+void Connection::drained() {
+  if (closeAfterWrites_) close("closed after its last reply");
 }
 
 void Connection::close(const std::string& why) {
@@ -191,7 +160,7 @@ void Connection::close(const std::string& why) {
   const std::size_t dropped = context_.scheduler.cancel(id_);
   pending_ -= static_cast<int>(dropped);
   timer_.cancel();
-  stream_->close();
+  pipe_.stream().close();
   logLine(session_.peer() + ": closed (" + why +
           (dropped ? ", " + std::to_string(dropped) + " queued tiles cancelled" : "") + ")");
 }

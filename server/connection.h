@@ -9,8 +9,7 @@
 #include <asio.hpp>
 
 #include "proto/byte_stream.h"
-#include "proto/frame_reader.h"
-#include "proto/write_queue.h"
+#include "proto/message_pipe.h"
 #include "server/connection_registry.h"
 #include "server/outbox.h"
 #include "server/server.h"
@@ -18,14 +17,18 @@
 
 namespace glint::server {
 
-// One client's stream: reads frames, hands verified messages to its
-// Session, sends the session's builds to SceneBuilds and its tiles to the
-// scheduler (results come back through the Outbox) and writes what comes
-// back, one write in flight. Lives on the I/O thread; work on the
-// pool reaches it only through asio::post. Nothing a client sends can stop
-// the server or other clients: a connection that cannot go on is closed.
-// The stream is plain TCP or TLS over it (proto/byte_stream.h), one design.
-class Connection : public std::enable_shared_from_this<Connection>, public ConnectionHandle, private SessionHost {
+// One client: its message pipe (proto/message_pipe.h) hands verified
+// messages to its Session; the connection sends the session's builds to
+// SceneBuilds and its tiles to the scheduler (results come back through the
+// Outbox), writes what comes back, and keeps the timeouts. Lives on the I/O
+// thread; work on the pool reaches it only through asio::post. Nothing a
+// client sends can stop the server or other clients: a connection that
+// cannot go on is closed. The stream is plain TCP or TLS over it
+// (proto/byte_stream.h), one design.
+class Connection : public std::enable_shared_from_this<Connection>,
+                   public ConnectionHandle,
+                   private SessionHost,
+                   private proto::PipeOwner {
  public:
   // `peer` names the client in the log ("10.0.0.2:51234").
   Connection(std::unique_ptr<proto::ByteStream> stream, ServerContext& context, std::uint64_t id, std::string peer);
@@ -46,26 +49,30 @@ class Connection : public std::enable_shared_from_this<Connection>, public Conne
   void trace(TileWork work) override;
   void cancel(std::uint32_t frameId, std::span<const std::uint32_t> tileIds) override;
 
-  void read();
-  void takeMessages(bool wasMid);
+  // proto::PipeOwner
+  bool listening() const override { return !closed_ && !closeAfterWrites_; }
+  std::size_t messageLimit() const override;
+  void received(const wire::Message& message) override { session_.handle(message); }
+  void refused(const proto::Decoded& bad) override;
+  void readFailed(const asio::error_code& error) override;
+  void afterRead(bool wasMid, bool took) override;
+  void writeFailed(const asio::error_code& error) override { close(error.message()); }
+  void drained() override;
+
   void waitForMessage();
   void armTimer(std::chrono::milliseconds timeout, const char* what);
   void onTimer(const char* what);
   void takeOutbox();  // on the I/O thread
-  void writeNext();
   bool greeted() const { return session_.state() != Session::State::kAwaitingHello; }
 
-  std::unique_ptr<proto::ByteStream> stream_;
+  proto::MessagePipe pipe_;
   asio::steady_timer timer_;
   ServerContext& context_;
   std::uint64_t id_;
   Outbox outbox_;  // finished tiles from the pool
   Session session_;
-  proto::FrameReader reader_;
-  proto::WriteQueue writes_;
   bool closeAfterWrites_ = false;
   bool closed_ = false;
-  std::chrono::steady_clock::time_point lastWrite_;
   int pending_ = 0;  // tiles and scene builds queued or running for this client
 };
 
