@@ -20,7 +20,7 @@ ServerLink::ServerLink(asio::io_context& io, std::unique_ptr<proto::ByteStream> 
 
 void ServerLink::start(LinkListener& listener) {
   listener_ = &listener;
-  pipe_.start(std::shared_ptr<proto::PipeOwner>(shared_from_this(), static_cast<proto::PipeOwner*>(this)));
+  pipe_.start(shared_from_this());
   conversation_.start();
   pipe_.stream().open([self = shared_from_this()](const std::string& failure) {
     if (!failure.empty()) return self->conversation_.fail(LinkFailure::Kind::kUnreachable, failure);

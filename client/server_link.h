@@ -30,7 +30,7 @@ class LinkListener {
 // ServerConversation's. Asynchronous on an io_context shared with the other
 // links; owned through a shared_ptr so that handlers in flight outlive a
 // link its owner dropped.
-class ServerLink : public std::enable_shared_from_this<ServerLink>, private ConversationHost, private proto::PipeOwner {
+class ServerLink : public std::enable_shared_from_this<ServerLink>, private ConversationHost, public proto::PipeOwner {
  public:
   // `stream`, not yet open, is plain TCP or TLS (proto/byte_stream.h).
   ServerLink(asio::io_context& io, std::unique_ptr<proto::ByteStream> stream, std::size_t index, std::string name,

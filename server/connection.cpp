@@ -30,7 +30,7 @@ Connection::Connection(std::unique_ptr<proto::ByteStream> stream, ServerContext&
 // stalls holds little, briefly.
 void Connection::start() {
   logLine(session_.peer() + ": connected");
-  pipe_.start(std::shared_ptr<proto::PipeOwner>(shared_from_this(), static_cast<proto::PipeOwner*>(this)));
+  pipe_.start(shared_from_this());
   armTimer(context_.options.handshakeTimeout, "TLS handshake");
   pipe_.stream().open([self = shared_from_this()](const std::string& failure) {
     if (!failure.empty()) return self->close("TLS handshake failed: " + failure);

@@ -28,7 +28,7 @@ namespace glint::server {
 class Connection : public std::enable_shared_from_this<Connection>,
                    public ConnectionHandle,
                    private SessionHost,
-                   private proto::PipeOwner {
+                   public proto::PipeOwner {
  public:
   // `peer` names the client in the log ("10.0.0.2:51234").
   Connection(std::unique_ptr<proto::ByteStream> stream, ServerContext& context, std::uint64_t id, std::string peer);

@@ -37,6 +37,21 @@ constexpr std::array<double, N> seriesOf(int first) {
 constexpr auto kSin = seriesOf<9>(1);
 constexpr auto kCos = seriesOf<10>(0);
 
+// sin and cos of k pi/2 + r from s = sin r and c = cos r (negation is
+// exact, so negating before or after the rounding to float is the same).
+SineCosine turnedBy(int quarter, float s, float c) {
+  switch (quarter) {
+    case 0:
+      return {s, c};
+    case 1:
+      return {c, -s};
+    case 2:
+      return {-s, -c};
+    default:
+      return {-c, s};
+  }
+}
+
 }  // namespace
 
 SineCosine sineCosine(float x) {
@@ -49,16 +64,7 @@ SineCosine sineCosine(float x) {
   const double r2 = r * r;
   const double s = r * horner(kSin, r2);
   const double c = horner(kCos, r2);
-  switch (static_cast<std::int64_t>(k) & 3) {
-    case 0:
-      return {static_cast<float>(s), static_cast<float>(c)};
-    case 1:
-      return {static_cast<float>(c), static_cast<float>(-s)};
-    case 2:
-      return {static_cast<float>(-s), static_cast<float>(-c)};
-    default:
-      return {static_cast<float>(-c), static_cast<float>(s)};
-  }
+  return turnedBy(static_cast<int>(static_cast<std::int64_t>(k) & 3), static_cast<float>(s), static_cast<float>(c));
 }
 
 SineCosine turn(float u) {
@@ -70,16 +76,7 @@ SineCosine turn(float u) {
   const float s = a * (1.0f + a2 * (-1.0f / 6.0f + a2 * (1.0f / 120.0f + a2 * (-1.0f / 5040.0f + a2 / 362880.0f))));
   const float c =
       1.0f + a2 * (-0.5f + a2 * (1.0f / 24.0f + a2 * (-1.0f / 720.0f + a2 * (1.0f / 40320.0f - a2 / 3628800.0f))));
-  switch (static_cast<int>(q) & 3) {
-    case 0:
-      return {s, c};
-    case 1:
-      return {c, -s};
-    case 2:
-      return {-s, -c};
-    default:
-      return {-c, s};
-  }
+  return turnedBy(static_cast<int>(q) & 3, s, c);
 }
 
 }  // namespace glint
