@@ -11,8 +11,8 @@ namespace {
 // 2: the adaptive pattern; 3: power() (common/math/power.h); 4: exponential()
 // and sineCosine() (common/math/power.h, common/math/circular.h); 5: the hybrid frame
 // rasterizes at one sample a pixel and traces its edges
-// (client/raster_edges.h); 6: the raster reads the shadow maps only where
-// the geometry does not prove the light reaches (client/light_proof.h), and
+// (client/raster/raster_edges.h); 6: the raster reads the shadow maps only where
+// the geometry does not prove the light reaches (client/raster/light_proof.h), and
 // tests OpenGL's own depth; 7: a material's colour multiplies its texture
 // (glTF's baseColorFactor; the scenes' own pixels are unchanged); 8: a
 // material's emission (glTF's emissiveFactor x emissiveTexture, MTL's Ke),

@@ -14,7 +14,7 @@ namespace glint {
 // 2^exposure, then (8-bit outputs only) the transfer function. With the
 // defaults (linear, 0 EV) a value passes unchanged, so 8-bit values are the
 // thesis's frame buffer. The raster shaders apply the same formulas
-// (client/raster_shaders.cpp, encodeOutput).
+// (client/raster/raster_shaders.cpp, encodeOutput).
 class Encoder {
  public:
   explicit Encoder(const OutputSettings& output);

@@ -107,7 +107,7 @@ nlohmann::json toJson(const EffectPlan& plan) {
 
 bool rasterShadows(const Scene& scene, const EffectPlan& plan, const MaskSettings& mask) {
   if (!plan.shadows || mask.shadowMap <= 0 || mask.rule == MaskRule::kAll) return false;
-  bool punctual = false;  // soft lights: client/penumbra_proof.h
+  bool punctual = false;  // soft lights: client/raster/penumbra_proof.h
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
     punctual = punctual || (plan.lights[i] && !softLight(scene.lights[i]));
   }

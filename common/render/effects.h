@@ -61,7 +61,7 @@ nlohmann::json toJson(const EffectPlan& plan);
 
 // Whether the raster pass decides shadows: shadows can occur, a point, spot
 // or directional light casts them, the mask leaves a lit material to
-// OpenGL, and the maps are not turned off (client/shadow_maps.h).
+// OpenGL, and the maps are not turned off (client/raster/shadow_maps.h).
 bool rasterShadows(const Scene& scene, const EffectPlan& plan, const MaskSettings& mask);
 
 }  // namespace glint

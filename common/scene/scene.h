@@ -27,7 +27,7 @@ namespace glint {
 enum class SamplePattern { kRegular, kJittered, kAdaptive, kPerceptual, kSobol };
 enum class FilterType { kBox, kTent, kGaussian, kMitchell };
 // kPerceptual: auto's pixels, traced with the perceptual pattern, and the
-// raster's pixels on a visible edge of its colours (client/hybrid_frame.h).
+// raster's pixels on a visible edge of its colours (client/raster/hybrid_frame.h).
 enum class MaskRule { kAuto, kAll, kNone, kPerceptual };
 // How light is carried: kWhitted, the thesis's tracer (direct light from
 // the lights, mirror and refracted rays, a constant ambient term for the
@@ -95,7 +95,7 @@ struct MaskSettings {
   MaskRule rule = MaskRule::kAuto;
   float minReflectivity = 0.2f;
   float minTransparency = 0.0f;
-  // Texels along a shadow map's face edge (client/shadow_maps.h), 0: surfaces
+  // Texels along a shadow map's face edge (client/raster/shadow_maps.h), 0: surfaces
   // OpenGL draws get no shadows (the thesis's frame).
   int shadowMap = 1024;
 };

@@ -8,7 +8,7 @@ namespace glint {
 namespace {
 
 // A texture coordinate in [0, 1] (repeat: [0, 1)) as the wrap mode reads
-// it; the raster's shaders compute it alike (client/raster_shaders.cpp).
+// it; the raster's shaders compute it alike (client/raster/raster_shaders.cpp).
 float wrapped(float x, TextureWrap mode) {
   switch (mode) {
     case TextureWrap::kRepeat: {

@@ -4,10 +4,10 @@
 #include <filesystem>
 #include <memory>
 
-#include "client/distributed_tile_service.h"
-#include "client/hybrid_frame.h"
-#include "client/offscreen_context.h"
-#include "client/raster_scene.h"
+#include "client/farm/distributed_tile_service.h"
+#include "client/raster/hybrid_frame.h"
+#include "client/raster/offscreen_context.h"
+#include "client/raster/raster_scene.h"
 #include "common/base/timing.h"
 #include "proto/scene_bundle.h"
 #include "tests/support/glintd_process.h"

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "client/hybrid_frame.h"
-#include "client/offscreen_context.h"
-#include "client/raster_scene.h"
+#include "client/raster/hybrid_frame.h"
+#include "client/raster/offscreen_context.h"
+#include "client/raster/raster_scene.h"
 #include "common/base/timing.h"
 #include "tests/bench/bench_timing.h"
 #include "common/scene/scene_load.h"

@@ -7,7 +7,7 @@
 #include <thread>
 #include <vector>
 
-#include "client/distributed_tile_service.h"
+#include "client/farm/distributed_tile_service.h"
 #include "common/base/error.h"
 #include "common/render/frame.h"
 #include "common/base/thread_pool.h"

@@ -3,9 +3,9 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "client/hybrid_frame.h"
-#include "client/offscreen_context.h"
-#include "client/raster_scene.h"
+#include "client/raster/hybrid_frame.h"
+#include "client/raster/offscreen_context.h"
+#include "client/raster/raster_scene.h"
 #include "common/base/timing.h"
 #include "common/image/encoding.h"
 #include "common/metrics/flip.h"

@@ -11,9 +11,9 @@
 
 #include <gtest/gtest.h>
 
-#include "client/accuracy_command.h"
-#include "client/accuracy_report.h"
-#include "client/accuracy_sweep.h"
+#include "client/accuracy/accuracy_command.h"
+#include "client/accuracy/accuracy_report.h"
+#include "client/accuracy/accuracy_sweep.h"
 #include "common/base/error.h"
 #include "common/metrics/flip.h"
 #include "common/metrics/image_metrics.h"

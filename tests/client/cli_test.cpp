@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "client/accuracy_sweep.h"
+#include "client/accuracy/accuracy_sweep.h"
 #include "common/image/encoding.h"
 #include "common/image/image_write.h"
 #include "tests/support/glint_run.h"

@@ -1,13 +1,13 @@
 // The perceptual rule's colour edges: neighbours OpenGL shades whose colours
 // differ visibly are both marked, a faint difference is not, masked pixels
 // are neither compared nor re-marked.
-#include "client/colour_edges.h"
+#include "client/raster/colour_edges.h"
 
 #include <vector>
 
 #include <gtest/gtest.h>
 
-#include "client/pixel_mark.h"
+#include "client/raster/pixel_mark.h"
 
 namespace glint {
 namespace {

@@ -1,7 +1,7 @@
 // The client's tile service over glintd against peers that break the
 // protocol: every server message is checked before use, and a bad one loses
 // that server with a reason that names it, never a crash or a wrong image.
-#include "client/distributed_tile_service.h"
+#include "client/farm/distributed_tile_service.h"
 
 #include <atomic>
 

@@ -13,13 +13,13 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
-#include "client/distributed_tile_service.h"
-#include "client/hybrid_frame.h"
-#include "client/image_rows.h"
-#include "client/offscreen_context.h"
-#include "client/pixel_mark.h"
-#include "client/provenance.h"
-#include "client/raster_scene.h"
+#include "client/farm/distributed_tile_service.h"
+#include "client/raster/hybrid_frame.h"
+#include "client/raster/image_rows.h"
+#include "client/raster/offscreen_context.h"
+#include "client/raster/pixel_mark.h"
+#include "client/commands/provenance.h"
+#include "client/raster/raster_scene.h"
 #include "common/base/file_source.h"
 #include "common/image/encoding.h"
 #include "common/render/mask_rule.h"

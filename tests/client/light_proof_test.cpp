@@ -1,4 +1,4 @@
-#include "client/light_proof.h"
+#include "client/raster/light_proof.h"
 
 #include <random>
 

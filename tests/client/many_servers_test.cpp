@@ -9,11 +9,11 @@
 
 #include <gtest/gtest.h>
 
-#include "client/distributed_tile_service.h"
-#include "client/hybrid_frame.h"
-#include "client/offscreen_context.h"
-#include "client/raster_scene.h"
-#include "client/render_command.h"
+#include "client/farm/distributed_tile_service.h"
+#include "client/raster/hybrid_frame.h"
+#include "client/raster/offscreen_context.h"
+#include "client/raster/raster_scene.h"
+#include "client/commands/render_command.h"
 #include "common/base/error.h"
 #include "common/render/frame.h"
 #include "proto/messages.h"

@@ -1,7 +1,7 @@
 // The float outputs: an .exr reads back (with OpenEXR) as the float image
 // rounded to half, a .pfm as the floats themselves; extensions choose the
 // format and any other is refused by name.
-#include "client/output_file.h"
+#include "client/commands/output_file.h"
 
 #include <filesystem>
 #include <fstream>

@@ -1,6 +1,6 @@
 // A frame's progress line: what it prints, where and when, with time as
 // an input.
-#include "client/progress.h"
+#include "client/commands/progress.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // The provenance legend says everything the frame's report says of its
 // servers: tiles each, who joined, left or was lost, tiles re-issued and
 // copied.
-#include "client/provenance.h"
+#include "client/commands/provenance.h"
 
 #include <gtest/gtest.h>
 

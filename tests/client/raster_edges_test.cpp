@@ -1,11 +1,11 @@
 // The raster's edges, found from each pixel's object and depth alone.
-#include "client/raster_edges.h"
+#include "client/raster/raster_edges.h"
 
 #include <vector>
 
 #include <gtest/gtest.h>
 
-#include "client/pixel_mark.h"
+#include "client/raster/pixel_mark.h"
 
 namespace glint {
 namespace {

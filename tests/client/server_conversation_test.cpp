@@ -1,7 +1,7 @@
 // The client's side of the protocol with one server, without a socket:
 // server messages in as byte vectors, what the client sends out, time as
 // the waits it asks for and their ends.
-#include "client/server_conversation.h"
+#include "client/farm/server_conversation.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // --server values to servers: lists, repeats, names, duplicates merged, and
 // clear errors for what cannot be a server.
-#include "client/server_list.h"
+#include "client/farm/server_list.h"
 
 #include <gtest/gtest.h>
 

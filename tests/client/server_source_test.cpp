@@ -1,7 +1,7 @@
 // Where the farm's servers come from: a --server-file read again when its
 // text changes, names resolved again every few seconds, and what cannot be
 // used keeping the farm as it was, said once.
-#include "client/server_source.h"
+#include "client/farm/server_source.h"
 
 #include <filesystem>
 #include <fstream>

@@ -1,4 +1,4 @@
-#include "client/shadow_rects.h"
+#include "client/raster/shadow_rects.h"
 
 #include <gtest/gtest.h>
 #include <glm/ext/matrix_clip_space.hpp>

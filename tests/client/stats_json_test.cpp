@@ -1,7 +1,7 @@
 // The --stats record names what it measured: the BVH build in process, the
 // connection (connect, upload, the server's build) through a glintd, and the
 // network's share of tracing only where there is a network.
-#include "client/stats_json.h"
+#include "client/commands/stats_json.h"
 
 #include <gtest/gtest.h>
 

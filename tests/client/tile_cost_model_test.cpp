@@ -1,6 +1,6 @@
 // The tile costs the dispatcher balances by: traced pixels at first, then
 // what the previous frame measured for the same tile, in the same unit.
-#include "client/tile_cost_model.h"
+#include "client/farm/tile_cost_model.h"
 
 #include <gtest/gtest.h>
 

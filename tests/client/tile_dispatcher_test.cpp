@@ -1,6 +1,6 @@
 // The client's tile dispatcher: step by step, then whole frames in virtual
 // time (tests/support/dispatch_sim) with slow and lost servers.
-#include "client/tile_dispatcher.h"
+#include "client/farm/tile_dispatcher.h"
 
 #include <algorithm>
 #include <random>
@@ -30,12 +30,12 @@ std::vector<ServerPace> paces(std::size_t servers, int threads) {
 
 TEST(TileDispatcher, CostliestTilesGoFirstAndOnlyToJoinedServers) {
   auto pace = paces(2, 1);
-  TileDispatcher d({1.0, 5.0, 3.0, 5.0, 2.0}, pace, {});
+  TileDispatcher d({1.0, 5.0, 3.0, 5.0, 2.0}, pace.size(), {});
   EXPECT_TRUE(d.assign(0.0).empty());  // nobody joined yet
-  d.join(0, 0.0);
+  d.join(0, pace[0], 0.0);
   // Pace unknown: two tiles per thread, the costliest, ties by index.
   EXPECT_EQ(tilesOf(d.assign(0.0), 0), (std::vector<std::size_t>{1, 3}));
-  d.join(1, 1.0);
+  d.join(1, pace[1], 1.0);
   EXPECT_EQ(tilesOf(d.assign(1.0), 1), (std::vector<std::size_t>{2, 4}));
   EXPECT_TRUE(d.assign(1.0).empty());  // both windows full
   EXPECT_TRUE(d.deliver(0, 1, 2.0, 1.0).first);
@@ -48,9 +48,9 @@ TEST(TileDispatcher, AnIdleServerCopiesTheLastBucketAndTheLoserIsCancelled) {
   auto pace = paces(2, 1);
   DispatchSettings settings;
   settings.initialTilesPerThread = 1;
-  TileDispatcher d({4.0, 1.0}, pace, settings);
-  d.join(0, 0.0);
-  d.join(1, 0.0);
+  TileDispatcher d({4.0, 1.0}, pace.size(), settings);
+  d.join(0, pace[0], 0.0);
+  d.join(1, pace[1], 0.0);
   const Assignments first = d.assign(0.0);
   EXPECT_EQ(tilesOf(first, 0), (std::vector<std::size_t>{0}));
   EXPECT_EQ(tilesOf(first, 1), (std::vector<std::size_t>{1}));
@@ -75,8 +75,8 @@ TEST(TileDispatcher, ATileHeldPastTheP95IsHedgedToAnotherServer) {
   settings.initialTilesPerThread = 1;
   settings.hedgeMinSamples = 4;
   settings.hedgeMinMs = 5.0;
-  TileDispatcher d(std::vector<double>(40, 1.0), pace, settings);
-  for (std::size_t s = 0; s < 3; ++s) d.join(s, 0.0);
+  TileDispatcher d(std::vector<double>(40, 1.0), pace.size(), settings);
+  for (std::size_t s = 0; s < 3; ++s) d.join(s, pace[s], 0.0);
   std::vector<std::vector<std::size_t>> held(3);
   const auto take = [&](const Assignments& sent) {
     for (const auto& a : sent) held[a.server].push_back(a.tile);
@@ -100,6 +100,8 @@ TEST(TileDispatcher, ATileHeldPastTheP95IsHedgedToAnotherServer) {
     take(sent);
     // Until 6 ms the stuck tile is younger than the 5 ms minimum (the p95 is 2 ms).
     EXPECT_EQ(d.hedged(), now < 6.0 ? 0u : 1u) << now << " ms";
+    // With four latencies known, the next check is when the stuck tile turns 5 ms old.
+    if (now == 4.0) EXPECT_EQ(d.nextCheck(now), 5.0);
     for (const auto& a : sent) {
       if (a.tile == stuck) copiedTo = a.server;
     }
@@ -112,13 +114,15 @@ TEST(TileDispatcher, ALostServersTilesAreReissuedAndAStalledOneIsNamed) {
   auto pace = paces(2, 1);
   DispatchSettings settings;
   settings.stallTimeoutMs = 100.0;
-  TileDispatcher d({1.0, 1.0, 1.0, 1.0}, pace, settings);
-  d.join(0, 0.0);
-  d.join(1, 0.0);
+  TileDispatcher d({1.0, 1.0, 1.0, 1.0}, pace.size(), settings);
+  d.join(0, pace[0], 0.0);
+  d.join(1, pace[1], 0.0);
   d.assign(0.0);
+  EXPECT_EQ(d.nextCheck(0.0), 100.0);  // when a stall could first be seen
   EXPECT_TRUE(d.stalled(100.0).empty());
   d.deliver(1, 1, 50.0, 1.0);
   EXPECT_EQ(d.stalled(101.0), (std::vector<std::size_t>{0}));  // server 1 delivered at 50
+  EXPECT_EQ(d.nextCheck(101.0), 150.0);  // a stall found is not due again; server 1's is next
   const std::vector<std::size_t> back = d.lose(0);
   EXPECT_EQ(back, (std::vector<std::size_t>{0, 2}));
   EXPECT_EQ(d.reissued(), 2u);
@@ -139,9 +143,9 @@ TEST(TileDispatcher, WindowsFollowMeasuredPace) {
   sim::simulateFrame(tiles, estimates, servers, sim::Policy::kDispatcher, {}, pace);
   EXPECT_GT(pace[0].costPerMs, 3.0 * pace[1].costPerMs);
   EXPECT_GE(pace[0].rttMs, 0.0);
-  TileDispatcher d(estimates, pace, {});
-  d.join(0, 0.0);
-  d.join(1, 0.0);
+  TileDispatcher d(estimates, pace.size(), {});
+  d.join(0, pace[0], 0.0);
+  d.join(1, pace[1], 0.0);
   const Assignments a = d.assign(0.0);
   EXPECT_GT(tilesOf(a, 0).size(), 2 * tilesOf(a, 1).size());
 }

@@ -10,7 +10,7 @@
 #include <cstring>
 #include <span>
 
-#include "client/server_link.h"
+#include "client/farm/server_link.h"
 #include "proto/messages.h"
 #include "tests/fuzz/server_link_script.h"
 

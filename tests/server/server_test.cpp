@@ -12,7 +12,7 @@
 
 #include <gtest/gtest.h>
 
-#include "client/distributed_tile_service.h"
+#include "client/farm/distributed_tile_service.h"
 #include "common/base/error.h"
 #include "common/render/frame.h"
 #include "tests/support/message_stream.h"

@@ -7,8 +7,8 @@
 namespace glint::sim {
 namespace {
 
-constexpr double kTickMs = 5.0;          // how often the client checks for stalls
-constexpr double kGiveUpMs = 1e7;        // a frame never takes this long in any model here
+constexpr double kTickMs = 5.0;    // how often the client checks for stalls
+constexpr double kGiveUpMs = 1e7;  // a frame never takes this long in any model here
 
 enum class Kind { kJoin, kRequest, kFinish, kResult, kCancel, kClosed, kTick };
 
@@ -33,7 +33,12 @@ class Simulation {
   Simulation(const std::vector<SimTile>& tiles, const std::vector<double>& estimates,
              const std::vector<SimServer>& servers, Policy policy, const DispatchSettings& settings,
              std::vector<ServerPace>& paces, const SimClient& client)
-      : tiles_(tiles), servers_(servers), client_(client), policy_(policy), dispatcher_(estimates, paces, settings),
+      : tiles_(tiles),
+        servers_(servers),
+        client_(client),
+        policy_(policy),
+        paces_(paces),
+        dispatcher_(estimates, paces.size(), settings),
         state_(servers.size()) {
     result_.firstDeliveries.assign(tiles.size(), 0);
     result_.busyMs.assign(servers.size(), 0.0);
@@ -112,7 +117,7 @@ class Simulation {
     ++joinsSeen_;
     if (dead(s, t)) return;
     if (policy_ == Policy::kDispatcher) {
-      dispatcher_.join(s, t);
+      dispatcher_.join(s, paces_[s], t);
       return;
     }
     for (std::size_t tile = s; tile < tiles_.size(); tile += servers_.size()) {
@@ -139,7 +144,8 @@ class Simulation {
     const auto bytes = static_cast<double>(tiles_[tile].resultBytes);
     st.linkFreeAt = std::max(st.linkFreeAt, t) + bytes / servers_[s].bytesPerMs;
     double sent = st.linkFreeAt;
-    if (client_.bytesPerMs > 0.0) sent = clientLinkFreeAt_ = std::max(clientLinkFreeAt_, sent) + bytes / client_.bytesPerMs;
+    if (client_.bytesPerMs > 0.0)
+      sent = clientLinkFreeAt_ = std::max(clientLinkFreeAt_, sent) + bytes / client_.bytesPerMs;
     push(sent + servers_[s].rttMs / 2, Kind::kResult, s, tile);
     startWork(s, t);
   }
@@ -177,7 +183,11 @@ class Simulation {
   void finish(double t) {
     result_.completed = true;
     result_.frameMs = t;
-    if (policy_ == Policy::kDispatcher) dispatcher_.finish();
+    if (policy_ != Policy::kDispatcher) return;
+    dispatcher_.finish();
+    for (std::size_t s = 0; s < paces_.size(); ++s) {
+      if (dispatcher_.joined(s)) paces_[s] = dispatcher_.pace(s);
+    }
   }
 
   const std::vector<SimTile>& tiles_;
@@ -185,6 +195,7 @@ class Simulation {
   SimClient client_;
   double clientLinkFreeAt_ = 0.0;
   Policy policy_;
+  std::vector<ServerPace>& paces_;  // what the dispatcher is told at a join, and learns back at the end
   TileDispatcher dispatcher_;
   std::vector<ServerState> state_;
   std::priority_queue<Event, std::vector<Event>, std::greater<>> events_;

@@ -3,7 +3,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "client/tile_dispatcher.h"
+#include "client/farm/tile_dispatcher.h"
 
 namespace glint::sim {
 
@@ -27,7 +27,7 @@ struct SimTile {
 };
 
 enum class Policy {
-  kDispatcher,        // client/tile_dispatcher
+  kDispatcher,        // client/farm/tile_dispatcher
   kStaticRoundRobin,  // tile i to server i mod n, all at once (OSPRay's default)
 };
 

@@ -1,0 +1,41 @@
+#include "client/farm/frame_run.h"
+
+namespace glint {
+
+FrameRun::FrameRun(std::uint32_t id, const FrameSettings& settings, std::span<const TileJob> jobs, const Done& done,
+                   std::vector<std::size_t> traced, std::vector<double> costs, std::size_t servers,
+                   const DispatchSettings& dispatch, std::size_t reportBase)
+    : id_(id),
+      settings_(settings),
+      jobs_(jobs),
+      done_(done),
+      jobOf_(std::move(traced)),
+      costs_(std::move(costs)),
+      dispatcher_(costs_, servers, dispatch),
+      outputs_(jobOf_.size()),
+      from_(jobOf_.size()),
+      reportBase_(reportBase) {}
+
+void FrameRun::hold(std::size_t tile, std::size_t server, TileOutput&& out) {
+  outputs_[tile] = std::move(out);
+  from_[tile] = server;
+  ++held_;
+}
+
+std::optional<std::size_t> FrameRun::drop(std::size_t tile) {
+  if (!outputs_[tile]) return std::nullopt;
+  outputs_[tile].reset();
+  --held_;
+  return from_[tile];
+}
+
+void FrameRun::deliver(
+    const std::function<void(std::size_t job, std::size_t tile, std::size_t server, const TileOutput&)>& each) {
+  for (std::size_t tile = 0; tile < jobOf_.size(); ++tile) {
+    const std::size_t job = jobOf_[tile];
+    each(job, tile, from_[tile], *outputs_[tile]);
+    done_(job, std::move(*outputs_[tile]));
+  }
+}
+
+}  // namespace glint

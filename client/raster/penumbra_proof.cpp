@@ -1,0 +1,171 @@
+#include "client/raster/penumbra_proof.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "common/geometry/region_query.h"
+#include "common/math/basis.h"
+
+namespace glint::gl {
+namespace {
+
+// How far a pixel's point is lifted off its surface, as a share of its
+// distances to the eye and the light: past the depth buffer's rounding and
+// the region query's slack. An occluder nearer the surface than this is
+// missed (a contact shadow thinner than 1/1000 of the distances).
+constexpr float kLift = 1e-3f;
+
+// The pyramid from a lifted point to a light: its five corners (the apex
+// first) and eight edges.
+struct Pyramid {
+  std::array<glm::vec3, 5> corners;
+  static constexpr int kEdges[8][2] = {{0, 1}, {0, 2}, {0, 3}, {0, 4}, {1, 2}, {2, 3}, {3, 4}, {4, 1}};
+};
+
+// The interval of the points' projections on axis a.
+template <std::size_t N>
+glm::vec2 project(const std::array<glm::vec3, N>& points, const glm::vec3& a) {
+  glm::vec2 range(INFINITY, -INFINITY);
+  for (const glm::vec3& p : points) {
+    const float d = glm::dot(p, a);
+    range = {std::min(range.x, d), std::max(range.y, d)};
+  }
+  return range;
+}
+
+// Whether axis a (any length; none when zero) separates the pyramid from
+// the interval `other` by more than `slack` times its length.
+bool separates(const Pyramid& pyramid, const glm::vec3& a, glm::vec2 other, float slack) {
+  const float length = glm::length(a);
+  if (!(length > 0.0f)) return false;
+  const glm::vec2 own = project(pyramid.corners, a);
+  return own.x > other.y + slack * length || own.y < other.x - slack * length;
+}
+
+// The separating axes of a triangle and a convex polytope: the polytope's
+// faces, the triangle's plane, and each pair of edges. None separating: they
+// may meet.
+bool triangleSeparated(const Pyramid& pyramid, const std::vector<glm::vec4>& faces,
+                       const std::array<glm::vec3, 3>& t, float slack) {
+  const auto separatedOn = [&](const glm::vec3& a) { return separates(pyramid, a, project(t, a), slack); };
+  for (const glm::vec4& f : faces) {
+    if (separatedOn(glm::vec3(f))) return true;
+  }
+  if (separatedOn(glm::cross(t[1] - t[0], t[2] - t[0]))) return true;
+  for (int i = 0; i < 3; ++i) {
+    const glm::vec3 e = t[(i + 1) % 3] - t[i];
+    for (const auto& edge : Pyramid::kEdges) {
+      if (separatedOn(glm::cross(e, pyramid.corners[edge[1]] - pyramid.corners[edge[0]]))) return true;
+    }
+  }
+  return false;
+}
+
+// A sphere and a convex polytope: the direction from the centre to the
+// polytope's nearest point is a face's normal, or points at an edge's nearest
+// point or at a corner; one of them separates if anything does.
+bool sphereSeparated(const Pyramid& pyramid, const std::vector<glm::vec4>& faces, const Sphere& s, float slack) {
+  const auto separatedOn = [&](const glm::vec3& a) {
+    const float c = glm::dot(s.centre, a), r = s.radius * glm::length(a);
+    return separates(pyramid, a, {c - r, c + r}, slack);
+  };
+  for (const glm::vec4& f : faces) {
+    if (separatedOn(glm::vec3(f))) return true;
+  }
+  for (const glm::vec3& corner : pyramid.corners) {
+    if (separatedOn(corner - s.centre)) return true;
+  }
+  for (const auto& edge : Pyramid::kEdges) {
+    const glm::vec3 a = pyramid.corners[edge[0]], d = pyramid.corners[edge[1]] - a;
+    const float t = std::clamp(glm::dot(s.centre - a, d) / glm::dot(d, d), 0.0f, 1.0f);
+    if (separatedOn(a + t * d - s.centre)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool PenumbraProof::blocks(std::uint32_t prim, const ConvexRegion& region) const {
+  Pyramid pyramid;
+  std::copy(region.corners.begin(), region.corners.end(), pyramid.corners.begin());
+  const auto triangles = static_cast<std::uint32_t>(geometry_.triangles().size());
+  if (prim >= triangles) return !sphereSeparated(pyramid, region.planes, geometry_.spheres()[prim - triangles], region.slack);
+  const Triangle& t = geometry_.triangles()[prim];
+  const auto& p = geometry_.positions();
+  return !triangleSeparated(pyramid, region.planes, {p[t.v[0]], p[t.v[1]], p[t.v[2]]}, region.slack);
+}
+
+PenumbraProof::PenumbraProof(const Scene& scene, const EffectPlan& plan) : geometry_(scene.geometry) {
+  if (!plan.softShadows) return;
+  for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& l = scene.lights[i];
+    if (!softLight(l) || !plan.lights[i]) continue;
+    if (l.type == LightType::kSphere) {
+      lights_.push_back({{}, l.position, glm::vec3(0.0f), l.radius});
+      continue;
+    }
+    const glm::vec3 c = l.position - 0.5f * l.u - 0.5f * l.v;
+    lights_.push_back({{c, c + l.u, c + l.u + l.v, c + l.v}, l.position, glm::normalize(glm::cross(l.u, l.v))});
+  }
+  if (!lights_.empty()) bvh_ = Bvh::build(scene.geometry, BvhSettings{});
+}
+
+std::optional<PenumbraProof::Base> PenumbraProof::baseFrom(const SoftLight& light, const glm::vec3& apex,
+                                                           float distance) {
+  if (light.radius == 0.0f) {
+    // Nearly in the light's plane, the pyramid's sides are not planes.
+    if (!(glm::dot(apex - light.centre, light.normal) > kLift * distance)) return std::nullopt;
+    return Base{light.corners, light.normal};
+  }
+  // The ball, grown by the lift, is in the cone from the apex of half-angle
+  // asin(r / d): it meets the plane through the centre in a circle of radius
+  // r / cos, inside the square of that half-side.
+  const float radius = light.radius * (1.0f + kLift);
+  const glm::vec3 toApex = apex - light.centre;
+  const float d = glm::length(toApex);
+  const float ratio = radius / d;
+  const float halfSide = radius / std::sqrt(1.0f - ratio * ratio);
+  if (!std::isfinite(d) || !(ratio < 1.0f) || !std::isfinite(halfSide)) return std::nullopt;
+  const glm::vec3 axis = toApex / d;
+  glm::vec3 t, b;
+  orthonormalBasis(axis, t, b);
+  t *= halfSide;
+  b *= halfSide;
+  const glm::vec3& c = light.centre;
+  return Base{{c - t - b, c + t - b, c + t + b, c - t + b}, axis};
+}
+
+bool PenumbraProof::clear(const glm::vec3& apex, const Base& base, const glm::vec3& centre) const {
+  ConvexRegion pyramid;
+  const glm::vec3 inside = 0.5f * (apex + centre);
+  pyramid.planes.push_back(planeThrough(centre, base.normal, inside));
+  for (int k = 0; k < 4; ++k) {
+    const glm::vec3& a = base.corners[k];
+    const glm::vec3& b = base.corners[(k + 1) % 4];
+    pyramid.planes.push_back(planeThrough(apex, glm::cross(a - apex, b - apex), inside));
+  }
+  pyramid.corners = {apex, base.corners[0], base.corners[1], base.corners[2], base.corners[3]};
+  finishRegion(pyramid);
+  for (std::uint32_t prim : primitivesInRegion(bvh_, geometry_, pyramid, UINT32_MAX)) {
+    if (blocks(prim, pyramid)) return false;
+  }
+  return true;
+}
+
+bool PenumbraProof::seesWhole(const glm::vec3& p, const glm::vec3& eye) const {
+  for (const SoftLight& light : lights_) {
+    // Behind an area light: no light, nothing to prove.
+    if (light.radius == 0.0f && glm::dot(p - light.centre, light.normal) <= 0.0f) continue;
+    const glm::vec3 toLight = light.centre - p;
+    const float distance = glm::length(toLight);
+    const glm::vec3 apex = p + (kLift * (distance + glm::length(p - eye)) / distance) * toLight;
+    const std::optional<Base> base = baseFrom(light, apex, distance);
+    if (!base || !clear(apex, *base, light.centre)) return false;
+  }
+  return true;
+}
+
+}  // namespace glint::gl
