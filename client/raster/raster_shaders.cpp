@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <string>
 
+#include "client/raster/shading_source.h"
 #include "common/render/shading.h"
 #include "common/scene/light.h"
 #include "common/scene/texture.h"
@@ -62,7 +63,8 @@ std::string fragmentPrelude(const ShaderVariant& variant) {
          define("LIGHT_DIRECTIONAL", std::to_string(static_cast<int>(LightType::kDirectional))) +
          define("WRAP_MIRRORED_REPEAT", std::to_string(static_cast<int>(TextureWrap::kMirroredRepeat))) +
          define("WRAP_CLAMP_TO_EDGE", std::to_string(static_cast<int>(TextureWrap::kClampToEdge))) +
-         define("HARD_SPOT_EDGE", floatLiteral(kHardSpotEdge)) + variant.defines();
+         define("HARD_SPOT_EDGE", floatLiteral(kHardSpotEdge)) + variant.defines() + define("SHARED", "") +
+         kSharedShading;
 }
 
 // Shared by both fragment shaders, after the prelude: the material's and the
@@ -331,24 +333,13 @@ float parallelVisibility(int light, vec3 p, vec3 ng) {
 #endif
 
 // Adds the diffuse and specular light of a point light of intensity lightI
-// in direction l (unit, facing the surface), term by term as the tracer.
+// in direction l (unit, facing the surface), as the tracer's addPhong.
 void addPhong(inout vec3 result, vec3 lightI, vec3 c, vec3 ns, vec3 l, vec3 toViewer) {
-  float nl = dot(ns, l);
-  result += lightI * c * (uTerms.y * nl);
+  result += phongDiffuse(lightI, c, uTerms.y, ns, l);
 #ifdef SPECULAR
-  vec3 r = 2.0 * nl * ns - l;
-  float vr = dot(toViewer, r);
-  if (vr > 0.0) result += lightI * (uTerms.z * pow(vr, uTerms.w));
+  result += phongSpecular(lightI, uTerms.z, uTerms.w, ns, l, toViewer);
 #endif
 }
-
-#ifdef SPOT_LIGHTS
-// A spot light's share towards l (common/render/shading.h's spotFactor).
-float spotFactor(vec3 axis, vec2 cone, vec3 l) {
-  float t = clamp((-dot(axis, l) - cone.y) / max(cone.x - cone.y, HARD_SPOT_EDGE), 0.0, 1.0);
-  return t * t;
-}
-#endif
 
 #ifdef LIT
 // Whether light from l reaches the smooth surface from behind the flat
@@ -365,7 +356,7 @@ bool behindTriangle(vec3 l, vec3 ng) {
 
 vec3 shade(vec3 p, vec3 ng, vec3 ns, vec2 uv) {
   vec3 c = surfaceColour(uv);
-  vec3 result = c * uTerms.x;
+  vec3 result = phongAmbient(c, uTerms.x);
 #ifdef EMISSIVE
   result += emitted(uv);
 #endif
@@ -397,7 +388,8 @@ vec3 shade(vec3 p, vec3 ng, vec3 ns, vec2 uv) {
     vec3 l = toLight / d;
     if (dot(l, ns) <= 0.0) continue;
 #ifdef SPOT_LIGHTS
-    float share = uLightKind[i] == LIGHT_SPOT ? spotFactor(uLightDirection[i], uLightCone[i], l) : 1.0;
+    vec2 cone = uLightCone[i];
+    float share = uLightKind[i] == LIGHT_SPOT ? spotFactor(uLightDirection[i], cone.x, cone.y, l) : 1.0;
     if (share == 0.0) continue;
 #endif
     bool behind = behindTriangle(l, ng);
@@ -407,8 +399,7 @@ vec3 shade(vec3 p, vec3 ng, vec3 ns, vec2 uv) {
 #else
     float visible = 1.0;
 #endif
-    vec3 a = uLightAttenuation[i];
-    vec3 lightI = visible * uLightColor[i] / (a.x + a.y * d + a.z * d * d);
+    vec3 lightI = attenuate(visible * uLightColor[i], uLightAttenuation[i], d);
 #ifdef SPOT_LIGHTS
     if (uLightKind[i] == LIGHT_SPOT) lightI *= share;
 #endif
@@ -427,9 +418,9 @@ vec3 shade(vec3 p, vec3 ng, vec3 ns, vec2 uv) {
     vec3 l = toLight / d;
     if (dot(l, ns) <= 0.0) continue;
     behindTriangle(l, ng);
-    vec3 a = texelFetch(uAreaPoints, at + ivec2(2, 0), 0).rgb;
-    addPhong(result, texelFetch(uAreaPoints, at + ivec2(1, 0), 0).rgb / (a.x + a.y * d + a.z * d * d), c, ns, l,
-             toViewer);
+    vec3 lightI = attenuate(texelFetch(uAreaPoints, at + ivec2(1, 0), 0).rgb,
+                            texelFetch(uAreaPoints, at + ivec2(2, 0), 0).rgb, d);
+    addPhong(result, lightI, c, ns, l, toViewer);
   }
 #endif
   return result;

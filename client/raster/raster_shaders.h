@@ -41,8 +41,9 @@ struct ShaderVariant {
   std::string defines() const;
 };
 
-// Every fragment shader is fragmentPrelude(variant), kFragmentShading and
-// its own main(); it writes the colour (location 0) and the surface value
+// Every fragment shader is fragmentPrelude(variant) (the defines, then the
+// tracer's own shading terms, common/render/shading.glsl), kFragmentShading
+// and its own main(); it writes the colour (location 0) and the surface value
 // `object << kPixelMarkBits | mark` (location 1, client/raster/pixel_mark.h).
 std::string fragmentPrelude(const ShaderVariant& variant);
 extern const char* const kFragmentShading;

@@ -101,7 +101,9 @@ TEST(TileDispatcher, ATileHeldPastTheP95IsHedgedToAnotherServer) {
     // Until 6 ms the stuck tile is younger than the 5 ms minimum (the p95 is 2 ms).
     EXPECT_EQ(d.hedged(), now < 6.0 ? 0u : 1u) << now << " ms";
     // With four latencies known, the next check is when the stuck tile turns 5 ms old.
-    if (now == 4.0) EXPECT_EQ(d.nextCheck(now), 5.0);
+    if (now == 4.0) {
+      EXPECT_EQ(d.nextCheck(now), 5.0);
+    }
     for (const auto& a : sent) {
       if (a.tile == stuck) copiedTo = a.server;
     }
