@@ -4,7 +4,7 @@
 #include <string>
 
 #include "client/raster/shading_source.h"
-#include "common/render/shading.h"
+#include "common/scene/shading.h"
 #include "common/scene/light.h"
 #include "common/scene/texture.h"
 
@@ -132,32 +132,6 @@ uint surfaceOf(int object) {
 }
 
 #if defined(TEXTURE_IMAGE) || defined(EMISSION_IMAGE)
-// Texture::evaluate's wrapped() and wrappedIndex(), op for op.
-float wrapped(float x, int mode) {
-  if (mode == WRAP_MIRRORED_REPEAT) {
-    float w = x - 2.0 * floor(x * 0.5);
-    return w <= 1.0 ? w : 2.0 - w;
-  }
-  if (mode == WRAP_CLAMP_TO_EDGE) return clamp(x, 0.0, 1.0);
-  float w = x - floor(x);
-  return w < 1.0 ? w : 0.0;
-}
-
-// i mod n in [0, n) for any i: GLSL leaves % of a negative operand
-// undefined (Mesa's llvmpipe took -1 % 3 as 0, reading the wrong edge).
-int floorMod(int i, int n) {
-  return i >= 0 ? i % n : n - 1 - (-1 - i) % n;
-}
-
-int wrappedIndex(int i, int n, int mode) {
-  if (mode == WRAP_MIRRORED_REPEAT) {
-    int k = floorMod(i, 2 * n);
-    return k < n ? k : 2 * n - 1 - k;
-  }
-  if (mode == WRAP_CLAMP_TO_EDGE) return clamp(i, 0, n - 1);
-  return floorMod(i, n);
-}
-
 vec3 texel(sampler2D image, ivec2 wrap, int x, int y) {
   ivec2 size = textureSize(image, 0);
   return texelFetch(image, ivec2(wrappedIndex(x, size.x, wrap.x), wrappedIndex(y, size.y, wrap.y)), 0).rgb;

@@ -5,7 +5,8 @@
 namespace glint::gl {
 
 // GLSL sources of the raster pass. The fragment shaders compute exactly the
-// tracer's direct lighting (common/render/shading.cpp, common/render/tracer.cpp Tracer::shade;
+// tracer's direct lighting (common/scene/shading.glsl's functions, which they
+// compile too; common/render/tracer.cpp Tracer::shade;
 // shadow rays answered by the shadow maps where they can decide, see
 // client/raster/shadow_maps.h): the same terms, face-forwarded normals, attenuation,
 // checker index and image lookups (common/scene/texture.cpp).
@@ -42,7 +43,7 @@ struct ShaderVariant {
 };
 
 // Every fragment shader is fragmentPrelude(variant) (the defines, then the
-// tracer's own shading terms, common/render/shading.glsl), kFragmentShading
+// tracer's own shading terms, common/scene/shading.glsl), kFragmentShading
 // and its own main(); it writes the colour (location 0) and the surface value
 // `object << kPixelMarkBits | mark` (location 1, client/raster/pixel_mark.h).
 std::string fragmentPrelude(const ShaderVariant& variant);

@@ -5,7 +5,7 @@
 #include "common/math/float_bits.h"
 #include "common/render/glossy_lobe.h"
 #include "common/render/optics.h"
-#include "common/render/shading.h"
+#include "common/scene/shading.h"
 #include "common/render/sphere_light.h"
 #include "common/render/surface_terms.h"
 

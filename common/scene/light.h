@@ -28,7 +28,7 @@ struct EnumWords<LightType> {
 //    and `v`, lighting the side u x v points to, as `samples` point lights of
 //    color / samples each (common/render/area_light.h says where).
 //  - spot: a point light whose light is scaled by spotFactor()
-//    (common/render/shading.h) of the angle off its axis `direction`: 1
+//    (common/scene/shading.h) of the angle off its axis `direction`: 1
 //    inside the inner cone, 0 outside the outer one.
 //  - directional: parallel light travelling along `direction`, the same
 //    `color` everywhere (no position, no attenuation).

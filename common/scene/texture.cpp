@@ -4,41 +4,14 @@
 #include <cmath>
 #include <cstdint>
 
+#include "common/scene/shading.h"
+
 namespace glint {
 namespace {
 
-// A texture coordinate in [0, 1] (repeat: [0, 1)) as the wrap mode reads
-// it; the raster's shaders compute it alike (client/raster/raster_shaders.cpp).
-float wrapped(float x, TextureWrap mode) {
-  switch (mode) {
-    case TextureWrap::kRepeat: {
-      const float w = x - std::floor(x);
-      return w < 1.0f ? w : 0.0f;
-    }
-    case TextureWrap::kMirroredRepeat: {
-      const float w = x - 2.0f * std::floor(x * 0.5f);  // [0, 2): forwards, then back
-      return w <= 1.0f ? w : 2.0f - w;
-    }
-    case TextureWrap::kClampToEdge:
-      return std::clamp(x, 0.0f, 1.0f);
-  }
-  return 0.0f;
-}
+float wrapped(float x, TextureWrap mode) { return glsl::wrapped(x, static_cast<int>(mode)); }
 
-// The texel index i of a row or column of n reads, by the wrap mode.
-int wrappedIndex(int i, int n, TextureWrap mode) {
-  switch (mode) {
-    case TextureWrap::kRepeat:
-      return ((i % n) + n) % n;
-    case TextureWrap::kMirroredRepeat: {
-      const int k = ((i % (2 * n)) + 2 * n) % (2 * n);
-      return k < n ? k : 2 * n - 1 - k;
-    }
-    case TextureWrap::kClampToEdge:
-      return std::clamp(i, 0, n - 1);
-  }
-  return 0;
-}
+int wrappedIndex(int i, int n, TextureWrap mode) { return glsl::wrappedIndex(i, n, static_cast<int>(mode)); }
 
 // byte / 255 for every byte, computed once.
 struct UnitTable {

@@ -1,4 +1,4 @@
-#include "common/render/shading.h"
+#include "common/scene/shading.h"
 
 #include <cmath>
 

@@ -1,5 +1,5 @@
-// The direct light's terms, written once in the subset GLSL 3.30 and C++
-// share: the tracer compiles them (common/render/shading.h, inline, with GLM's
+// The shading functions, written once in the subset GLSL 3.30 and C++
+// share: the tracer compiles them (common/scene/shading.h, inline, with GLM's
 // vec3 and the exact power() for pow) and the raster's fragment shaders get
 // them as source (client/raster/raster_shaders.cpp). Floats only: every
 // literal has its f, so that C++ computes in float as GLSL does. No
@@ -47,4 +47,30 @@ SHARED float spotFactor(vec3 axis, float cosInner, float cosOuter, vec3 l) {
   float c = -dot(axis, l);
   float t = clamp((c - cosOuter) / max(cosInner - cosOuter, HARD_SPOT_EDGE), 0.0f, 1.0f);
   return t * t;
+}
+
+// A texture coordinate in [0, 1] (repeat: [0, 1)) as the wrap mode (WRAP_*,
+// TextureWrap) reads it.
+SHARED float wrapped(float x, int mode) {
+  if (mode == WRAP_MIRRORED_REPEAT) {
+    float w = x - 2.0f * floor(x * 0.5f);  // [0, 2): forwards, then back
+    return w <= 1.0f ? w : 2.0f - w;
+  }
+  if (mode == WRAP_CLAMP_TO_EDGE) return clamp(x, 0.0f, 1.0f);
+  float w = x - floor(x);
+  return w < 1.0f ? w : 0.0f;
+}
+
+// i mod n in [0, n) for any i (GLSL leaves % of a negative operand
+// undefined; Mesa's llvmpipe took -1 % 3 as 0).
+SHARED int floorMod(int i, int n) { return i >= 0 ? i % n : n - 1 - (-1 - i) % n; }
+
+// The texel index i of a row or column of n reads, by the wrap mode.
+SHARED int wrappedIndex(int i, int n, int mode) {
+  if (mode == WRAP_MIRRORED_REPEAT) {
+    int k = floorMod(i, 2 * n);
+    return k < n ? k : 2 * n - 1 - k;
+  }
+  if (mode == WRAP_CLAMP_TO_EDGE) return clamp(i, 0, n - 1);
+  return floorMod(i, n);
 }

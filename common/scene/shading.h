@@ -1,30 +1,37 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 #include "common/math/power.h"
+#include "common/scene/texture.h"
 
 namespace glint {
 
 // Equal spot cones make a hard edge: the ramp this wide in cosine.
 constexpr float kHardSpotEdge = 1e-4f;
 
-// The direct light's terms (phongAmbient, phongDiffuse, phongSpecular,
-// attenuate, spotFactor), from shading.glsl, which the raster's shaders
-// compile too: read them there. Here GLSL's names are C++'s, in float.
+// The shading functions (the direct light's phongAmbient, phongDiffuse,
+// phongSpecular, attenuate and spotFactor; the textures' wrapped and
+// wrappedIndex), from shading.glsl, which the raster's shaders compile too:
+// read them there. Here GLSL's names are C++'s, in float.
 namespace glsl {
 
 using glm::vec3;
 constexpr float HARD_SPOT_EDGE = kHardSpotEdge;
+constexpr int WRAP_MIRRORED_REPEAT = static_cast<int>(TextureWrap::kMirroredRepeat);
+constexpr int WRAP_CLAMP_TO_EDGE = static_cast<int>(TextureWrap::kClampToEdge);
 inline float pow(float x, float y) { return power(x, y); }  // the same bits on every machine
+inline float floor(float x) { return std::floor(x); }
 inline float clamp(float x, float lo, float hi) { return std::clamp(x, lo, hi); }
+inline int clamp(int x, int lo, int hi) { return std::clamp(x, lo, hi); }
 inline float max(float a, float b) { return std::max(a, b); }
 
 #define SHARED inline
-#include "common/render/shading.glsl"
+#include "common/scene/shading.glsl"
 #undef SHARED
 
 }  // namespace glsl
