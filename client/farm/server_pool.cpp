@@ -25,8 +25,7 @@ ServerPool::ServerPool(asio::io_context& io, std::vector<ServerAddress> addresse
   adopt(addresses, 0);
 }
 
-bool ServerPool::adopt(const std::vector<ServerAddress>& wanted, int frame) {
-  bool changed = false;
+void ServerPool::adopt(const std::vector<ServerAddress>& wanted, int frame) {
   for (const ServerAddress& address : wanted) {
     auto it = std::find_if(servers_.begin(), servers_.end(),
                            [&](const FarmServer& s) { return s.address.endpoint == address.endpoint; });
@@ -41,7 +40,6 @@ bool ServerPool::adopt(const std::vector<ServerAddress>& wanted, int frame) {
     it->failures = 0;
     it->report = {};
     connect(static_cast<std::size_t>(it - servers_.begin()));
-    changed = true;
   }
   for (FarmServer& s : servers_) {
     const bool wantedStill = std::any_of(wanted.begin(), wanted.end(),
@@ -52,9 +50,7 @@ bool ServerPool::adopt(const std::vector<ServerAddress>& wanted, int frame) {
     s.link->close();
     s.report.state = ServerState::kLeft;
     s.report.why = "no longer listed: sent Goodbye";
-    changed = true;
   }
-  return changed;
 }
 
 void ServerPool::connect(std::size_t index) {

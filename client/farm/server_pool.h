@@ -36,8 +36,8 @@ class ServerPool {
   void closeAll();
   // Between frames: the servers of `wanted` not members join (connected
   // now), the members not in it leave (Goodbye); `frame` is the report
-  // that says so. True when anything changed.
-  bool adopt(const std::vector<ServerAddress>& wanted, int frame);
+  // that says so.
+  void adopt(const std::vector<ServerAddress>& wanted, int frame);
   // Servers lost earlier whose backoff has ended are connected again.
   void retryLost();
   // The earliest retry of a server that answered Busy, if it comes within
