@@ -102,9 +102,7 @@ void DistributedTileService::linkFailed(ServerLink& link, const LinkFailure& fai
   if (failure.kind != LinkFailure::Kind::kBadBytes) {
     dispatcher.lose(link.index());
   } else {
-    for (const std::size_t tile : dispatcher.distrust(link.index())) {
-      if (const auto from = frame_->drop(tile)) --servers_[*from].resultsHeld;
-    }
+    for (const std::size_t tile : dispatcher.distrust(link.index())) frame_->drop(tile);
     traced(frame_->held());
   }
   dispatchSoon();
@@ -125,7 +123,6 @@ void DistributedTileService::linkResult(ServerLink& link, std::uint32_t frameId,
   if (!d.first) return;
   for (const std::size_t other : d.cancelOn) servers_[other].link->cancel(frameId, std::span(&tileId, 1));
   frame_->hold(tileId, index, std::move(out));
-  ++servers_[index].resultsHeld;
   traced(frame_->held());
   dispatchSoon();
 }
@@ -139,7 +136,7 @@ void DistributedTileService::deliverFrame(FrameRun& frame) {
     s.report.rays += out.rays;
     s.report.busyMs += out.computeMs;
     report_.deliveredBy[frame.reportBase() + job] = s.reportRow;
-    costs_.record(frame.job(tile), frame.cost(tile), out.computeMs);
+    costs_.record(frame.job(tile), frame.dispatcher().cost(tile), out.computeMs);
   });
   for (std::size_t i = 0; i < servers_.size(); ++i) {
     if (frame.dispatcher().joined(i)) servers_[i].pace = frame.dispatcher().pace(i);
@@ -268,7 +265,6 @@ std::size_t DistributedTileService::startReport(std::span<const TileJob> jobs) {
   for (FarmServer& s : servers_.all()) {
     s.bytesInAtStart = s.link->bytesReceived();
     s.bytesOutAtStart = s.link->bytesSent();
-    s.resultsHeld = 0;
   }
   return base;
 }
@@ -298,10 +294,11 @@ void DistributedTileService::finishReport(const FrameRun& frame) {
 std::string DistributedTileService::tracedShares() const {
   if (!frame_ || frame_->held() == 0) return "";
   std::string shares;
-  for (const FarmServer& s : servers_.all()) {
-    if (s.resultsHeld == 0) continue;
+  for (std::size_t i = 0; i < servers_.size(); ++i) {
+    const std::size_t held = frame_->heldFrom(i);
+    if (held == 0) continue;
     if (!shares.empty()) shares += ", ";
-    shares += s.address.name + " " + std::to_string(s.resultsHeld * 100 / frame_->held()) + " %";
+    shares += servers_[i].address.name + " " + std::to_string(held * 100 / frame_->held()) + " %";
   }
   return shares;
 }

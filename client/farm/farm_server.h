@@ -44,7 +44,6 @@ struct FarmServer {
   int reportRow = -1;
   std::uint64_t bytesInAtStart = 0;
   std::uint64_t bytesOutAtStart = 0;
-  std::size_t resultsHeld = 0;  // this render()'s results held from it
 };
 
 }  // namespace glint

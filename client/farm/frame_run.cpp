@@ -10,23 +10,24 @@ FrameRun::FrameRun(std::uint32_t id, const FrameSettings& settings, std::span<co
       jobs_(jobs),
       done_(done),
       jobOf_(std::move(traced)),
-      costs_(std::move(costs)),
-      dispatcher_(costs_, servers, dispatch),
+      dispatcher_(std::move(costs), servers, dispatch),
       outputs_(jobOf_.size()),
       from_(jobOf_.size()),
+      heldFrom_(servers),
       reportBase_(reportBase) {}
 
 void FrameRun::hold(std::size_t tile, std::size_t server, TileOutput&& out) {
   outputs_[tile] = std::move(out);
   from_[tile] = server;
   ++held_;
+  ++heldFrom_[server];
 }
 
-std::optional<std::size_t> FrameRun::drop(std::size_t tile) {
-  if (!outputs_[tile]) return std::nullopt;
+void FrameRun::drop(std::size_t tile) {
+  if (!outputs_[tile]) return;
   outputs_[tile].reset();
   --held_;
-  return from_[tile];
+  --heldFrom_[from_[tile]];
 }
 
 void FrameRun::deliver(

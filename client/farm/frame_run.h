@@ -36,15 +36,15 @@ class FrameRun {
   std::size_t tiles() const { return jobOf_.size(); }
   std::size_t jobIndex(std::size_t tile) const { return jobOf_[tile]; }
   const TileJob& job(std::size_t tile) const { return jobs_[jobOf_[tile]]; }
-  double cost(std::size_t tile) const { return costs_[tile]; }
   std::size_t reportBase() const { return reportBase_; }
 
   // The first result of `tile` arrived, from `server`.
   void hold(std::size_t tile, std::size_t server, TileOutput&& out);
-  // Drops the result held for `tile`; returns the server it came from, none
-  // when none was held.
-  std::optional<std::size_t> drop(std::size_t tile);
+  // Drops the result held for `tile`, if one is.
+  void drop(std::size_t tile);
   std::size_t held() const { return held_; }
+  // Of those, how many came from `server`.
+  std::size_t heldFrom(std::size_t server) const { return heldFrom_[server]; }
 
   // The frame is whole: for each tile in order, `each(job, tile, server,
   // result)` (the report's bookkeeping), then the result to render()'s caller.
@@ -57,11 +57,11 @@ class FrameRun {
   std::span<const TileJob> jobs_;
   const Done& done_;
   std::vector<std::size_t> jobOf_;  // the dispatcher's tile -> the job's index
-  std::vector<double> costs_;
   TileDispatcher dispatcher_;
   std::vector<std::optional<TileOutput>> outputs_;  // by tile
   std::vector<std::size_t> from_;                   // by tile: the server of the held result
   std::size_t held_ = 0;
+  std::vector<std::size_t> heldFrom_;  // by server
   std::size_t reportBase_;
 };
 

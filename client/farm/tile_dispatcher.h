@@ -86,6 +86,7 @@ class TileDispatcher {
   double nextCheck(double now);
 
   bool done() const { return delivered_ == costs_.size(); }
+  double cost(std::size_t tile) const { return costs_[tile]; }
   // Joined servers not lost.
   std::size_t liveServers() const;
   bool joined(std::size_t server) const { return servers_[server].joined; }
