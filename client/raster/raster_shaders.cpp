@@ -140,17 +140,11 @@ vec3 texel(sampler2D image, ivec2 wrap, int x, int y) {
 // An image texture at uv, as Texture::evaluate reads it (`bilinear` is a
 // constant at each call, so the compiler keeps one filter).
 vec3 imageColour(sampler2D image, ivec2 wrap, vec2 uv, bool bilinear) {
-  vec2 size = vec2(textureSize(image, 0));
-  float x = wrapped(uv.x, wrap.x) * size.x;
-  float y = (1.0 - wrapped(uv.y, wrap.y)) * size.y;
-  if (!bilinear) return texel(image, wrap, int(x), int(y));
-  float fx = x - 0.5, fy = y - 0.5;
-  float x0 = floor(fx), y0 = floor(fy);
-  float tx = fx - x0, ty = fy - y0;
-  int ix = int(x0), iy = int(y0);
-  vec3 top = (1.0 - tx) * texel(image, wrap, ix, iy) + tx * texel(image, wrap, ix + 1, iy);
-  vec3 bottom = (1.0 - tx) * texel(image, wrap, ix, iy + 1) + tx * texel(image, wrap, ix + 1, iy + 1);
-  return (1.0 - ty) * top + ty * bottom;
+  vec2 p = imagePoint(uv, wrap, vec2(textureSize(image, 0)));
+  if (!bilinear) return texel(image, wrap, int(p.x), int(p.y));
+  ivec2 c = bilinearCorner(p);
+  return bilinearBlend(texel(image, wrap, c.x, c.y), texel(image, wrap, c.x + 1, c.y),
+                       texel(image, wrap, c.x, c.y + 1), texel(image, wrap, c.x + 1, c.y + 1), p);
 }
 #endif
 

@@ -74,3 +74,24 @@ SHARED int wrappedIndex(int i, int n, int mode) {
   if (mode == WRAP_CLAMP_TO_EDGE) return clamp(i, 0, n - 1);
   return floorMod(i, n);
 }
+
+// Where uv reads in an image of `size` texels, in texels: x to the right, y
+// down from the top row (u runs right and v up, so v = 1 is row 0); wrap
+// holds the wrap modes along u and v.
+SHARED vec2 imagePoint(vec2 uv, ivec2 wrap, vec2 size) {
+  return vec2(wrapped(uv.x, wrap.x) * size.x, (1.0f - wrapped(uv.y, wrap.y)) * size.y);
+}
+
+// The bilinear filter at image point p reads the four texel centres (at
+// i + 0.5) around it: the first of them (the others are one texel right,
+// below, and both) ...
+SHARED ivec2 bilinearCorner(vec2 p) { return ivec2(floor(p - 0.5f)); }
+
+// ... and blends them: c00 at the corner, c10 right of it, c01 below it.
+SHARED vec3 bilinearBlend(vec3 c00, vec3 c10, vec3 c01, vec3 c11, vec2 p) {
+  vec2 f = p - 0.5f;
+  vec2 t = f - floor(f);
+  vec3 top = (1.0f - t.x) * c00 + t.x * c10;
+  vec3 bottom = (1.0f - t.x) * c01 + t.x * c11;
+  return (1.0f - t.y) * top + t.y * bottom;
+}

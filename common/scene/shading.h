@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "common/math/power.h"
@@ -15,17 +17,20 @@ namespace glint {
 constexpr float kHardSpotEdge = 1e-4f;
 
 // The shading functions (the direct light's phongAmbient, phongDiffuse,
-// phongSpecular, attenuate and spotFactor; the textures' wrapped and
-// wrappedIndex), from shading.glsl, which the raster's shaders compile too:
-// read them there. Here GLSL's names are C++'s, in float.
+// phongSpecular, attenuate and spotFactor; the textures' wrapped,
+// wrappedIndex, imagePoint, bilinearCorner and bilinearBlend), from
+// shading.glsl, which the raster's shaders compile too: read them there. Here GLSL's names are C++'s, in float.
 namespace glsl {
 
+using glm::ivec2;
+using glm::vec2;
 using glm::vec3;
 constexpr float HARD_SPOT_EDGE = kHardSpotEdge;
 constexpr int WRAP_MIRRORED_REPEAT = static_cast<int>(TextureWrap::kMirroredRepeat);
 constexpr int WRAP_CLAMP_TO_EDGE = static_cast<int>(TextureWrap::kClampToEdge);
 inline float pow(float x, float y) { return power(x, y); }  // the same bits on every machine
 inline float floor(float x) { return std::floor(x); }
+inline vec2 floor(vec2 v) { return glm::floor(v); }
 inline float clamp(float x, float lo, float hi) { return std::clamp(x, lo, hi); }
 inline int clamp(int x, int lo, int hi) { return std::clamp(x, lo, hi); }
 inline float max(float a, float b) { return std::max(a, b); }

@@ -9,8 +9,6 @@
 namespace glint {
 namespace {
 
-float wrapped(float x, TextureWrap mode) { return glsl::wrapped(x, static_cast<int>(mode)); }
-
 int wrappedIndex(int i, int n, TextureWrap mode) { return glsl::wrappedIndex(i, n, static_cast<int>(mode)); }
 
 // byte / 255 for every byte, computed once.
@@ -28,26 +26,14 @@ glm::vec3 texel(const Image& image, const std::array<TextureWrap, 2>& wrap, int 
                      static_cast<std::size_t>(wrappedIndex(x, image.width, wrap[0])));
 }
 
-// u runs to the right and v up, so v = 1 is the top row (row 0).
 glm::vec3 lookup(const Image& image, ImageFilter filter, const std::array<TextureWrap, 2>& wrap, const glm::vec2& uv) {
   if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return texel(image, wrap, 0, 0);
-  const float x = wrapped(uv.x, wrap[0]) * static_cast<float>(image.width);
-  const float y = (1.0f - wrapped(uv.y, wrap[1])) * static_cast<float>(image.height);
-  if (filter == ImageFilter::kNearest) {
-    return texel(image, wrap, static_cast<int>(x), static_cast<int>(y));
-  }
-  // Bilinear between the four nearest texel centres (at i + 0.5).
-  const float fx = x - 0.5f;
-  const float fy = y - 0.5f;
-  const float x0 = std::floor(fx);
-  const float y0 = std::floor(fy);
-  const float tx = fx - x0;
-  const float ty = fy - y0;
-  const int ix = static_cast<int>(x0);
-  const int iy = static_cast<int>(y0);
-  const glm::vec3 top = (1.0f - tx) * texel(image, wrap, ix, iy) + tx * texel(image, wrap, ix + 1, iy);
-  const glm::vec3 bottom = (1.0f - tx) * texel(image, wrap, ix, iy + 1) + tx * texel(image, wrap, ix + 1, iy + 1);
-  return (1.0f - ty) * top + ty * bottom;
+  const glm::ivec2 modes(static_cast<int>(wrap[0]), static_cast<int>(wrap[1]));
+  const glm::vec2 p = glsl::imagePoint(uv, modes, glm::vec2(image.width, image.height));
+  if (filter == ImageFilter::kNearest) return texel(image, wrap, static_cast<int>(p.x), static_cast<int>(p.y));
+  const glm::ivec2 c = glsl::bilinearCorner(p);
+  return glsl::bilinearBlend(texel(image, wrap, c.x, c.y), texel(image, wrap, c.x + 1, c.y),
+                             texel(image, wrap, c.x, c.y + 1), texel(image, wrap, c.x + 1, c.y + 1), p);
 }
 
 }  // namespace
