@@ -7,6 +7,9 @@
 
 namespace glint {
 
+// The largest file (a scene, mesh or texture) read unless told otherwise.
+constexpr std::size_t kDefaultMaxFileBytes = std::size_t{1} << 30;
+
 // Where a scene's files (meshes, materials, textures) come from. Paths are
 // the ones written in the scene, relative to the scene file's folder (for a
 // file named inside an OBJ or MTL: already joined with that file's folder).

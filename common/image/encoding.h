@@ -6,7 +6,7 @@
 
 #include "common/image/frame_image.h"
 #include "common/image/linear_image.h"
-#include "common/scene/scene.h"
+#include "common/image/output_settings.h"
 
 namespace glint {
 

@@ -7,11 +7,11 @@
 #include <string>
 
 #include "common/base/error.h"
+#include "common/base/file_source.h"
+#include "common/image/decode_budget.h"
 #include "common/image/encoding.h"
-#include "common/scene/exr_decode.h"
-#include "common/scene/image_decode.h"
-#include "common/scene/load_limits.h"
-#include "common/scene/scene_budget.h"
+#include "common/image/exr_decode.h"
+#include "common/image/image_decode.h"
 
 namespace glint {
 namespace {
@@ -81,23 +81,22 @@ LinearImage decodePfm(std::string_view bytes, const std::string& place, std::siz
 }  // namespace
 
 ImageFile readImageFile(const std::filesystem::path& path) {
-  const LoadLimits limits;
   const std::string place = path.string();
-  const std::string bytes = readBytes(path, limits.maxFileBytes);
+  const std::string bytes = readBytes(path, kDefaultMaxFileBytes);
+  PixelLimit limit(kDefaultMaxTexturePixels);
   const auto admit = [&](int width, int height, std::size_t) {
-    admitSize(place, width, height, limits.maxTexturePixels);
+    admitSize(place, width, height, limit.maxTexturePixels());
   };
   if (looksLikeExr(bytes)) {
     FloatPixels pixels = decodeExrLinear(bytes, place, admit);
     return {{pixels.width, pixels.height, std::move(pixels.rgb)}, false};
   }
-  if (bytes.starts_with("PF") || bytes.starts_with("Pf")) return {decodePfm(bytes, place, limits.maxTexturePixels), false};
-  SceneBudget budget(limits);
+  if (bytes.starts_with("PF") || bytes.starts_with("Pf")) return {decodePfm(bytes, place, limit.maxTexturePixels()), false};
   if (looksLikeRadiance(bytes)) {
-    FloatPixels pixels = decodeLinearImage(bytes, place, budget);
+    FloatPixels pixels = decodeLinearImage(bytes, place, limit);
     return {{pixels.width, pixels.height, std::move(pixels.rgb)}, false};
   }
-  const Image decoded = decodeImage(bytes, place, budget);
+  const Image decoded = decodeImage(bytes, place, limit);
   LinearImage values{decoded.width, decoded.height, std::vector<float>(decoded.rgb.size())};
   for (std::size_t i = 0; i < decoded.rgb.size(); ++i) values.rgb[i] = static_cast<float>(decoded.rgb[i]) / 255.0f;
   return {std::move(values), true};

@@ -17,7 +17,7 @@
 
 #include "common/base/error.h"
 #include "common/scene/gltf_texture_transform.h"
-#include "common/scene/image_decode.h"
+#include "common/image/image_decode.h"
 
 namespace glint {
 namespace {

@@ -1,6 +1,6 @@
 #include "common/scene/image_cache.h"
 
-#include "common/scene/image_decode.h"
+#include "common/image/image_decode.h"
 
 namespace glint {
 

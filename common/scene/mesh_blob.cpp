@@ -153,7 +153,7 @@ Texture readTexture(Reader& r, const std::string& place, SceneBudget& budget) {
   if (width == 0 || height == 0 || std::size_t{width} * height > budget.limits().maxTexturePixels) {
     r.fail("has a texture of no pixels or over the limit of " + std::to_string(budget.limits().maxTexturePixels));
   }
-  budget.chargeImage(static_cast<int>(width), static_cast<int>(height), place);
+  budget.chargeImage(static_cast<int>(width), static_cast<int>(height), place, Image::kBytesPerTexel);
   auto image = std::make_shared<Image>();
   image->width = static_cast<int>(width);
   image->height = static_cast<int>(height);

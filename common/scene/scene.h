@@ -10,6 +10,7 @@
 #include "common/scene/camera.h"
 #include "common/base/enum_words.h"
 #include "common/geometry/geometry.h"
+#include "common/image/output_settings.h"
 #include "common/scene/environment.h"
 #include "common/scene/light.h"
 #include "common/scene/material.h"
@@ -34,9 +35,6 @@ enum class MaskRule { kAuto, kAll, kNone, kPerceptual };
 // rest); kPath, Monte Carlo path tracing of the light every surface sends
 // every other (common/render/path_tracer.h).
 enum class Transport { kWhitted, kPath };
-// How linear colour becomes an 8-bit value: kLinear stores it as it is (the
-// thesis's frame buffer), kSrgb applies the sRGB transfer function.
-enum class Encoding { kLinear, kSrgb };
 
 template <>
 struct EnumWords<SamplePattern> {
@@ -58,11 +56,6 @@ template <>
 struct EnumWords<Transport> {
   static constexpr std::array<std::pair<Transport, std::string_view>, 2> kWords{
       {{Transport::kWhitted, "whitted"}, {Transport::kPath, "path"}}};
-};
-template <>
-struct EnumWords<Encoding> {
-  static constexpr std::array<std::pair<Encoding, std::string_view>, 2> kWords{
-      {{Encoding::kLinear, "linear"}, {Encoding::kSrgb, "srgb"}}};
 };
 template <>
 struct EnumWords<MaskRule> {
@@ -98,16 +91,6 @@ struct MaskSettings {
   // Texels along a shadow map's face edge (client/raster/shadow_maps.h), 0: surfaces
   // OpenGL draws get no shadows (the thesis's frame).
   int shadowMap = 1024;
-};
-
-// What a frame's colour becomes in its output: scaled by 2^exposure (EV),
-// then, for 8-bit values, encoded (common/image/encoding.h). sRGB unless a
-// scene says otherwise: a PNG is shown through a display's sRGB response,
-// and assets (glTF's colours and textures) are authored for it; the thesis's
-// scenes in scenes/ name the linear frame buffer they were made for.
-struct OutputSettings {
-  Encoding encoding = Encoding::kSrgb;
-  float exposure = 0.0f;
 };
 
 // What may change from one frame of a scene to the next: the view and the

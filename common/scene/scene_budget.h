@@ -5,6 +5,7 @@
 
 #include "common/base/deadline.h"
 #include "common/base/memory_gauge.h"
+#include "common/image/decode_budget.h"
 #include "common/scene/load_limits.h"
 
 namespace glint {
@@ -15,7 +16,7 @@ namespace glint {
 // BVH's share of each primitive. A scene that would pass its limit (or the
 // shared gauge) fails at the item that crosses it, with an InputError that
 // names the place, the limit and by how much. Not thread-safe: one per load.
-class SceneBudget {
+class SceneBudget final : public DecodeBudget {
  public:
   // Bytes each item costs (Geometry's arrays; the BVH's nodes, and what its
   // builder holds meanwhile, per primitive).
@@ -23,8 +24,6 @@ class SceneBudget {
   static const std::size_t kBytesPerTriangle;
   static const std::size_t kBytesPerSphere;
   static const std::size_t kBvhBytesPerPrimitive;
-  static constexpr std::size_t kBytesPerTexel = 3;        // a texture's 8-bit RGB
-  static constexpr std::size_t kBytesPerFloatTexel = 12;  // an environment's float RGB
   // A parsed JSON document's bytes per value and per object member
   // (nlohmann::json: 31 bytes per element of a long array, 175 per object of
   // one member, measured with getrusage).
@@ -39,11 +38,12 @@ class SceneBudget {
   // --max-scene-mb"); `shared`, if any, is drawn from too.
   explicit SceneBudget(const LoadLimits& limits = {}, std::string limitName = "the limit for one scene",
                        MemoryGauge* shared = nullptr);
-  ~SceneBudget();
+  ~SceneBudget() override;
   SceneBudget(const SceneBudget&) = delete;
   SceneBudget& operator=(const SceneBudget&) = delete;
 
   const LoadLimits& limits() const { return limits_; }
+  std::size_t maxTexturePixels() const override { return limits_.maxTexturePixels; }
   std::size_t used() const { return used_; }
   // The build's time limit, checked at every charge (before each image,
   // mesh and sphere is taken) and by checkTime(); it outlives the budget.
@@ -53,14 +53,14 @@ class SceneBudget {
   }
 
   // `when` the scene would hold the bytes, in its error.
-  void charge(std::size_t bytes, const std::string& place, const char* when = "once built");
-  void chargeImage(int width, int height, const std::string& place, std::size_t bytesPerTexel = kBytesPerTexel);
+  void charge(std::size_t bytes, const std::string& place, const char* when = "once built") override;
+  void chargeImage(int width, int height, const std::string& place, std::size_t bytesPerTexel) override;
   void chargeMesh(std::size_t vertices, std::size_t triangles, const std::string& place);
   void chargeSphere(const std::string& place);
   // What parsing a document of this shape takes, held until refund() (the
   // document lives while the scene is loaded from it); returns the bytes.
   std::size_t chargeJson(std::size_t values, std::size_t members, const std::string& place);
-  void refund(std::size_t bytes);
+  void refund(std::size_t bytes) override;
 
  private:
   LoadLimits limits_;

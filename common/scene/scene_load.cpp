@@ -13,7 +13,7 @@
 #include "common/math/circular.h"
 #include "common/math/power.h"
 #include "common/scene/frame_limits.h"
-#include "common/scene/image_decode.h"
+#include "common/image/image_decode.h"
 #include "common/scene/mesh_import.h"
 #include "common/scene/smooth_normals.h"
 #include "common/scene/transform.h"

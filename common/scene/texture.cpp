@@ -11,15 +11,6 @@ namespace {
 
 int wrappedIndex(int i, int n, TextureWrap mode) { return glsl::wrappedIndex(i, n, static_cast<int>(mode)); }
 
-// byte / 255 for every byte, computed once.
-struct UnitTable {
-  float value[256];
-  constexpr UnitTable() : value() {
-    for (int i = 0; i < 256; ++i) value[i] = static_cast<float>(i) / 255.0f;
-  }
-};
-constexpr UnitTable kUnit;
-
 glm::vec3 texel(const Image& image, const std::array<TextureWrap, 2>& wrap, int x, int y) {
   return image.texel(static_cast<std::size_t>(wrappedIndex(y, image.height, wrap[1])) *
                          static_cast<std::size_t>(image.width) +
@@ -37,16 +28,6 @@ glm::vec3 lookup(const Image& image, ImageFilter filter, const std::array<Textur
 }
 
 }  // namespace
-
-std::uint8_t linearTexelByte(float linear) {
-  const float v = std::isfinite(linear) ? std::clamp(linear, 0.0f, 1.0f) : 0.0f;
-  return static_cast<std::uint8_t>(std::lround(v * 255.0f));
-}
-
-glm::vec3 Image::texel(std::size_t index) const {
-  const std::uint8_t* t = &rgb[3 * index];
-  return {kUnit.value[t[0]], kUnit.value[t[1]], kUnit.value[t[2]]};
-}
 
 int checkerIndex(const glm::vec2& uv, float scale) {
   const double u = std::floor(double(uv.x) * scale);

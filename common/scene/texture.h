@@ -1,8 +1,6 @@
 #pragma once
 
 #include <array>
-#include <cstddef>
-#include <cstdint>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -12,22 +10,9 @@
 #include <glm/vec3.hpp>
 
 #include "common/base/enum_words.h"
+#include "common/image/texel_image.h"
 
 namespace glint {
-
-// Decoded texture image: 8-bit RGB texels as the file held them (3 bytes a
-// texel, a quarter of floats), row 0 at the top. A texel reads as byte / 255.
-struct Image {
-  int width = 0;
-  int height = 0;
-  std::vector<std::uint8_t> rgb;  // width * height * 3
-
-  glm::vec3 texel(std::size_t index) const;
-};
-
-// A linear value (an HDR or EXR image's) as a texel byte: clamped to [0, 1]
-// and rounded to the nearest of 255 steps; a value that is not finite is 0.
-std::uint8_t linearTexelByte(float linear);
 
 enum class TextureType { kSolid, kChecker, kImage };
 enum class ImageFilter { kNearest, kBilinear };

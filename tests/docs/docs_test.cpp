@@ -13,7 +13,7 @@
 #include "common/base/error.h"
 #include "common/render/frame.h"
 #include "common/render/prepared_scene.h"
-#include "common/scene/image_decode.h"
+#include "common/image/image_decode.h"
 #include "common/scene/scene_load.h"
 #include "tests/support/test_support.h"
 

@@ -6,7 +6,7 @@
 #include <string_view>
 
 #include "common/base/error.h"
-#include "common/scene/image_decode.h"
+#include "common/image/image_decode.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   glint::LoadLimits limits;

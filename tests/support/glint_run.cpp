@@ -7,7 +7,7 @@
 #include <fstream>
 #include <iterator>
 
-#include "common/scene/image_decode.h"
+#include "common/image/image_decode.h"
 #include "common/scene/scene_budget.h"
 
 namespace glint::test {

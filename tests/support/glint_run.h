@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "common/image/encoding.h"
+#include "common/image/texel_image.h"
 
 namespace glint::test {
 

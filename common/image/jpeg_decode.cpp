@@ -1,4 +1,4 @@
-#include "common/scene/jpeg_decode.h"
+#include "common/image/jpeg_decode.h"
 
 #include <csetjmp>
 #include <cstdio>

@@ -1,4 +1,4 @@
-#include "common/scene/exr_decode.h"
+#include "common/image/exr_decode.h"
 
 #include <algorithm>
 #include <cstring>

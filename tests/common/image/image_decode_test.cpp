@@ -3,7 +3,7 @@
 // reaches the decoder, and memory follows the bytes that arrived: a file
 // that claims more than it holds is refused before the decoder allocates
 // for the claim.
-#include "common/scene/image_decode.h"
+#include "common/image/image_decode.h"
 #include "common/image/image_write.h"
 
 #include <filesystem>
@@ -14,7 +14,8 @@
 #include <stb_image_write.h>
 
 #include "common/base/error.h"
-#include "common/scene/jpeg_decode.h"
+#include "common/image/jpeg_decode.h"
+#include "common/scene/scene_budget.h"
 #include "tests/support/hostile_images.h"
 #include "tests/support/test_support.h"
 
@@ -214,7 +215,7 @@ TEST(ImageDecode, DecodersBuffersAreChargedWhileTheyDecode) {
   std::string png, hdr;
   ASSERT_NE(stbi_write_png_to_func(appendTo, &png, kSide, kSide, 3, rgb.data(), kSide * 3), 0);
   ASSERT_NE(stbi_write_hdr_to_func(appendTo, &hdr, kSide, kSide, 3, linear.data()), 0);
-  const std::size_t texels = std::size_t{kSide} * kSide * SceneBudget::kBytesPerTexel;
+  const std::size_t texels = std::size_t{kSide} * kSide * Image::kBytesPerTexel;
   for (const auto& [name, bytes] : {std::pair<const char*, std::string>{"png", png}, {"hdr", hdr},
                                     {"progressive jpeg", test::progressiveJpeg(kSide, 0)}}) {
     LoadLimits tight;

@@ -3,8 +3,8 @@
 #include <string>
 #include <string_view>
 
-#include "common/scene/decode_admit.h"
-#include "common/scene/texture.h"
+#include "common/image/decode_admit.h"
+#include "common/image/texel_image.h"
 
 namespace glint {
 

@@ -2,22 +2,14 @@
 
 #include <string>
 #include <string_view>
-#include <vector>
 
-#include "common/scene/decode_admit.h"
-#include "common/scene/texture.h"
+#include "common/image/decode_admit.h"
+#include "common/image/texel_image.h"
 
 namespace glint {
 
 // Whether the bytes start with OpenEXR's magic number.
 bool looksLikeExr(std::string_view bytes);
-
-// An image's linear values as floats, row 0 at the top.
-struct FloatPixels {
-  int width = 0;
-  int height = 0;
-  std::vector<float> rgb;  // width * height * 3
-};
 
 // Decodes a single-part, flat (not deep) OpenEXR image held in memory, its
 // scanlines or its tiles' first level, into its linear R, G and B (or Y for

@@ -3,9 +3,9 @@
 #include <string>
 #include <string_view>
 
-#include "common/scene/exr_decode.h"
-#include "common/scene/scene_budget.h"
-#include "common/scene/texture.h"
+#include "common/image/exr_decode.h"
+#include "common/image/decode_budget.h"
+#include "common/image/texel_image.h"
 
 namespace glint {
 
@@ -17,7 +17,7 @@ namespace glint {
 // keeps and the decoder's working buffers, which it holds until the decode
 // returns. Images wider or taller than their data, corrupt, or over a limit
 // are rejected with an InputError that starts with `place`.
-Image decodeImage(std::string_view bytes, const std::string& place, SceneBudget& budget);
+Image decodeImage(std::string_view bytes, const std::string& place, DecodeBudget& budget);
 
 // Whether the bytes start as a Radiance HDR file does.
 bool looksLikeRadiance(std::string_view bytes);
@@ -26,6 +26,6 @@ bool looksLikeRadiance(std::string_view bytes);
 // file holds them (an environment's light: nothing clamped), under the same
 // checks, its floats charged to the budget. Any other format is an
 // InputError starting with `place`.
-FloatPixels decodeLinearImage(std::string_view bytes, const std::string& place, SceneBudget& budget);
+FloatPixels decodeLinearImage(std::string_view bytes, const std::string& place, DecodeBudget& budget);
 
 }  // namespace glint

@@ -1,4 +1,4 @@
-#include "common/scene/image_decode.h"
+#include "common/image/image_decode.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,9 +10,9 @@
 #include <stb_image.h>
 
 #include "common/base/error.h"
-#include "common/scene/exr_decode.h"
-#include "common/scene/image_checks.h"
-#include "common/scene/jpeg_decode.h"
+#include "common/image/exr_decode.h"
+#include "common/image/image_checks.h"
+#include "common/image/jpeg_decode.h"
 
 namespace glint {
 namespace {
@@ -107,14 +107,14 @@ std::size_t stbHeldBytesPerTexel(ImageFormat format, std::string_view bytes, int
 // the Admission ends with the decode.
 class Admission {
  public:
-  Admission(SceneBudget& budget, const std::string& place, std::size_t keptPerTexel)
+  Admission(DecodeBudget& budget, const std::string& place, std::size_t keptPerTexel)
       : budget_(budget), place_(place), keptPerTexel_(keptPerTexel) {}
   ~Admission() { budget_.refund(held_); }
   Admission(const Admission&) = delete;
   Admission& operator=(const Admission&) = delete;
 
   void admit(int w, int h) {
-    const std::size_t maxPixels = budget_.limits().maxTexturePixels;
+    const std::size_t maxPixels = budget_.maxTexturePixels();
     if (w <= 0 || h <= 0 || static_cast<std::size_t>(w) * static_cast<std::size_t>(h) > maxPixels) {
       throw InputError(place_ + ": image of " + std::to_string(w) + "x" + std::to_string(h) +
                        " pixels is over the limit of " + std::to_string(maxPixels) + " pixels");
@@ -133,7 +133,7 @@ class Admission {
   }
 
  private:
-  SceneBudget& budget_;
+  DecodeBudget& budget_;
   const std::string& place_;
   std::size_t keptPerTexel_;
   std::size_t held_ = 0;
@@ -168,14 +168,14 @@ bool looksLikeRadiance(std::string_view bytes) {
   return bytes.starts_with("#?RADIANCE") || bytes.starts_with("#?RGBE");
 }
 
-Image decodeImage(std::string_view bytes, const std::string& place, SceneBudget& budget) {
+Image decodeImage(std::string_view bytes, const std::string& place, DecodeBudget& budget) {
   checkDecodable(bytes, place);
   // Only the formats read here reach a decoder (stb_image would try others:
   // GIF, PSD, PIC, PNM); JPEG goes to libjpeg-turbo (jpeg_decode.h) and
   // OpenEXR to OpenEXR's core library (exr_decode.h).
   const std::optional<ImageFormat> format = imageFormat(bytes);
   if (!format) throw InputError(place + ": not a " + kFormats + " image");
-  Admission admission(budget, place, SceneBudget::kBytesPerTexel);
+  Admission admission(budget, place, Image::kBytesPerTexel);
   if (*format == ImageFormat::kJpeg) return decodeJpeg(bytes, place, admission.callback());
   if (*format == ImageFormat::kExr) return decodeExr(bytes, place, admission.callback());
   int w = 0, h = 0;
@@ -187,7 +187,7 @@ Image decodeImage(std::string_view bytes, const std::string& place, SceneBudget&
   return image;
 }
 
-FloatPixels decodeLinearImage(std::string_view bytes, const std::string& place, SceneBudget& budget) {
+FloatPixels decodeLinearImage(std::string_view bytes, const std::string& place, DecodeBudget& budget) {
   checkDecodable(bytes, place);
   const std::optional<ImageFormat> format = imageFormat(bytes);
   if (format != ImageFormat::kHdr && format != ImageFormat::kExr) {
@@ -195,7 +195,7 @@ FloatPixels decodeLinearImage(std::string_view bytes, const std::string& place, 
                      ": not a Radiance HDR or OpenEXR image (an environment's values are linear light; "
                      "convert an 8-bit image to one of these)");
   }
-  Admission admission(budget, place, SceneBudget::kBytesPerFloatTexel);
+  Admission admission(budget, place, FloatPixels::kBytesPerTexel);
   if (*format == ImageFormat::kExr) return decodeExrLinear(bytes, place, admission.callback());
   int w = 0, h = 0;
   admitStb(bytes, *format, admission, w, h, place);

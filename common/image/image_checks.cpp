@@ -1,4 +1,4 @@
-#include "common/scene/image_checks.h"
+#include "common/image/image_checks.h"
 
 #include <cstdint>
 #include <optional>

@@ -2,7 +2,7 @@
 // here with OpenEXR's own writer, decode to the texels their linear values
 // round to; a file cut short, a deep or multi-part file, or one over the
 // texture limit is refused with the texture's name.
-#include "common/scene/image_decode.h"
+#include "common/image/image_decode.h"
 
 #include <filesystem>
 #include <fstream>
@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "common/base/error.h"
+#include "common/scene/scene_budget.h"
 #include "tests/support/hostile_images.h"
 #include "tests/support/test_support.h"
 
@@ -160,7 +161,7 @@ TEST(ExrDecode, MoreChunksThanTheFileHoldsAreRefusedBeforeAnythingIsAllocated) {
 // scene's limit while the file decodes, beside the texels the image keeps;
 // the texture is decoded straight to its bytes, with no float image held.
 TEST(ExrDecode, TheChunksBuffersAreChargedWhileItDecodes) {
-  const std::size_t texels = std::size_t{kWidth} * kHeight * SceneBudget::kBytesPerTexel;
+  const std::size_t texels = std::size_t{kWidth} * kHeight * Image::kBytesPerTexel;
   LoadLimits tight;
   tight.maxSceneBytes = texels;
   SceneBudget budget(tight);
