@@ -42,26 +42,32 @@ float smithG1(float c, float alpha) {
 
 }  // namespace
 
+LobeWeights lobeWeights(const Material& m, const glm::vec3& color) {
+  LobeWeights w{glm::max(color * m.diffuse, glm::vec3(0.0f)), m.specular, m.reflectivity, m.transparency};
+  const float sum = maxOf(w.albedo) + w.specular + w.reflectivity + w.transparency;
+  if (sum > 1.0f) {
+    w.albedo /= sum;
+    w.specular /= sum;
+    w.reflectivity /= sum;
+    w.transparency /= sum;
+  }
+  return w;
+}
+
 Bsdf::Bsdf(const Material& m, const glm::vec3& color, const glm::vec3& ns, const glm::vec3& ng, const glm::vec3& wo,
            float eta)
     : ns_(ns),
       ng_(ng),
       wo_(wo),
       cosO_(std::max(glm::dot(wo, ns), 0.0f)),
-      albedo_(glm::max(color * m.diffuse, glm::vec3(0.0f))),
-      specular_(m.specular),
       shininess_(m.shininess),
-      reflectivity_(m.reflectivity),
       alpha_(m.roughness * m.roughness),
-      transparency_(m.transparency),
       eta_(eta) {
-  const float sum = maxOf(albedo_) + specular_ + reflectivity_ + transparency_;
-  if (sum > 1.0f) {
-    albedo_ /= sum;
-    specular_ /= sum;
-    reflectivity_ /= sum;
-    transparency_ /= sum;
-  }
+  const LobeWeights w = lobeWeights(m, color);
+  albedo_ = w.albedo;
+  specular_ = w.specular;
+  reflectivity_ = w.reflectivity;
+  transparency_ = w.transparency;
   const bool rough = m.roughness > 0.0f;
   const float d = maxOf(albedo_), g = rough ? reflectivity_ : 0.0f, r = rough ? 0.0f : reflectivity_;
   total_ = d + specular_ + reflectivity_ + transparency_;

@@ -23,6 +23,15 @@ namespace glint {
 // albedo plus specular, reflectivity and transparency exceeds 1, all four
 // are divided by that sum. The mirror and the dielectric are delta lobes:
 // only sample() produces them.
+// The lobes' weights of a material whose colour at a point is `color`,
+// renormalised as the class comment says: the diffuse albedo and the
+// specular, reflectivity and transparency terms.
+struct LobeWeights {
+  glm::vec3 albedo;
+  float specular, reflectivity, transparency;
+};
+LobeWeights lobeWeights(const Material& m, const glm::vec3& color);
+
 class Bsdf {
  public:
   // At a point of unit shading normal ns and geometric normal ng (both on

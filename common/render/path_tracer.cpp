@@ -111,9 +111,9 @@ std::optional<PathTracer::LightSample> PathTracer::sampleLight(const Vertex& v, 
   return std::nullopt;
 }
 
-std::optional<PathTracer::LightSample> PathTracer::sampleEmitters(const Vertex& v, const glm::vec2& u) const {
+std::optional<PathTracer::LightSample> PathTracer::sampleEmitters(const glm::vec3& p, const glm::vec2& u) const {
   const Emitters::Point e = emitters_.sample(u);
-  const glm::vec3 to = e.p - v.s.p;
+  const glm::vec3 to = e.p - p;
   const float d = glm::length(to);
   if (!(d > 0.0f)) return std::nullopt;
   const glm::vec3 wi = to / d;
@@ -122,7 +122,7 @@ std::optional<PathTracer::LightSample> PathTracer::sampleEmitters(const Vertex& 
   const std::uint32_t material = scene_.geometry.materialOf(e.prim);
   glm::vec2 uv(0.0f);
   if (plan_.materials[material].textured) {
-    const Ray toward(v.s.p, wi);
+    const Ray toward(p, wi);
     uv = scene_.geometry.surface(toward, Hit{d, e.prim, 1.0f - e.b1 - e.b2, e.b1, e.b2}, true, false).uv;
   }
   const glm::vec3 radiance = surfaceEmission(scene_, scene_.materials[material], uv);
@@ -163,7 +163,7 @@ glm::vec3 PathTracer::directLight(const Vertex& v, const Bsdf& bsdf, const Sampl
   }
   if (!emitters_.empty()) {
     ++stats.lightSamples;
-    const std::optional<LightSample> l = sampleEmitters(v, key.stratified(pair(bounce, kEmitterPair)));
+    const std::optional<LightSample> l = sampleEmitters(v.s.p, key.stratified(pair(bounce, kEmitterPair)));
     if (l) sum += contribution(v, bsdf, *l, last, stats);
   }
   return sum;
@@ -204,13 +204,27 @@ glm::vec3 PathTracer::emittedAt(const Ray& ray, const Hit& hit, const SurfaceHit
   return radiance * powerHeuristic(bsdfPdf, lightPdf);
 }
 
-glm::vec3 PathTracer::radiance(const Ray& cameraRay, const SampleKey& key, RayStats& stats) const {
+std::optional<PathTracer::PointSample> PathTracer::emitterSample(const glm::vec3& p, const SampleKey& key,
+                                                                 float otherPdf, RayStats& stats) const {
+  if (emitters_.empty()) return std::nullopt;
+  ++stats.lightSamples;
+  const std::optional<LightSample> l = sampleEmitters(p, key.stratified(pair(maxBounces_ + 1, kEmitterPair)));
+  if (!l || l->arriving == glm::vec3(0.0f)) return std::nullopt;
+  ++stats.shadow;
+  if (bvh_.occluded(Ray(p, l->wi), l->distance)) {
+    ++stats.shadowBlocked;
+    return std::nullopt;
+  }
+  return PointSample{l->wi, l->arriving * (powerHeuristic(l->pdf, otherPdf) / l->pdf)};
+}
+
+glm::vec3 PathTracer::radiance(const Ray& cameraRay, const SampleKey& key, RayStats& stats, float firstPdf) const {
   ++stats.primary;
   ++stats.paths;
   glm::vec3 sum(0.0f), throughput(1.0f);
   Ray ray = cameraRay;
   bool inside = false;
-  float bsdfPdf = 0.0f;  // the density the last bounce drew the ray with (0: the camera's, or a delta lobe)
+  float bsdfPdf = firstPdf;  // the density the last bounce drew the ray with (0: the camera's, or a delta lobe)
   int bounce = 0;        // the bounce rays traced
   for (;; ++bounce) {
     const std::optional<Hit> hit = bvh_.intersect(ray, kInfinity);
@@ -223,7 +237,7 @@ glm::vec3 PathTracer::radiance(const Ray& cameraRay, const SampleKey& key, RaySt
     const Material& m = scene_.materials[material];
     const MaterialEffects& e = plan_.materials[material];
     const SurfaceHit s = scene_.geometry.surface(ray, *hit, e.textured, plan_.vertexColors);
-    if (e.emits) sum += throughput * emittedAt(ray, *hit, s, m, bsdfPdf, bounce > 0);
+    if (e.emits) sum += throughput * emittedAt(ray, *hit, s, m, bsdfPdf, bounce > 0 || firstPdf > 0.0f);
     const Bsdf bsdf(m, surfaceColor(scene_, m, e, s, plan_.vertexColors), s.ns, s.ng, -ray.d,
                     inside ? m.ior : 1.0f / m.ior);
     if (bsdf.black()) break;

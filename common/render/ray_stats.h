@@ -21,6 +21,9 @@ struct RayStats {
   std::uint64_t paths = 0;
   std::uint64_t longestPath = 0;
   std::uint64_t lightSamples = 0;
+  // Samples of the hybrid frame's tracer that the irradiance field could
+  // not decide, traced as paths instead.
+  std::uint64_t fieldUndecided = 0;
 
   RayStats& operator+=(const RayStats& o) {
     primary += o.primary;
@@ -32,6 +35,7 @@ struct RayStats {
     paths += o.paths;
     longestPath = std::max(longestPath, o.longestPath);
     lightSamples += o.lightSamples;
+    fieldUndecided += o.fieldUndecided;
     return *this;
   }
   std::uint64_t total() const { return primary + shadow + reflection + refraction; }

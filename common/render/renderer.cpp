@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <new>
+#include <stdexcept>
 
 #include "common/image/encoding.h"
 #include "common/image/flip_colour.h"
@@ -16,17 +17,34 @@ Renderer::Renderer(const PreparedScene& prepared, const FrameSettings& frame)
     : Renderer(prepared, frame, EffectPlan::derive(prepared.scene(), frame)) {}
 
 Renderer::Renderer(const PreparedScene& prepared, const FrameSettings& frame, const EffectPlan& plan)
+    : Renderer(prepared, frame, plan, nullptr) {}
+
+Renderer::Renderer(const PreparedScene& prepared, const FrameSettings& frame, const EffectPlan& plan,
+                   const IrradianceField& field)
+    : Renderer(prepared, frame, plan, &field) {
+  if (!path_) throw std::logic_error("an irradiance field is read under path transport only");
+  withField_ = true;
+}
+
+Renderer::Renderer(const PreparedScene& prepared, const FrameSettings& frame, const EffectPlan& plan,
+                   const IrradianceField* field)
     : prepared_(prepared),
       frame_(frame),
       plan_(plan),
       camera_(frame.camera, frame.width, frame.height),
       filter_(frame.sampling.filter),
       sampleLayout_(frame.sampling),
-      tracer_(prepared.scene(), prepared.bvh(), frame_, plan_) {
+      tracer_(prepared.scene(), prepared.bvh(), frame_, plan_, field) {
   if (frame.tracing.transport == Transport::kPath) {
     path_.emplace(prepared.scene(), prepared.bvh(), plan_.environment ? prepared.environmentLight() : nullptr, frame_,
                   plan_);
   }
+}
+
+glm::vec3 Renderer::fieldRadiance(const Ray& ray, const SampleKey& key, RayStats& stats) const {
+  if (const std::optional<glm::vec3> c = tracer_.radianceWithField(ray, key, stats)) return *c;
+  ++stats.fieldUndecided;
+  return path_->radiance(ray, key, stats);
 }
 
 Ray Renderer::cameraRay(const glm::vec2& film, const SampleKey& key) const {

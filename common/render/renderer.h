@@ -29,6 +29,11 @@ class Renderer {
   Renderer(const PreparedScene& prepared, const FrameSettings& frame);
   // With a given plan (the one above derives it from the scene and frame).
   Renderer(const PreparedScene& prepared, const FrameSettings& frame, const EffectPlan& plan);
+  // Under path transport, with the scene's irradiance field: a sample is
+  // traced as Whitted's with the field's indirect light (as the hybrid
+  // frame's raster shades it), and as a path where the field cannot decide.
+  Renderer(const PreparedScene& prepared, const FrameSettings& frame, const EffectPlan& plan,
+           const IrradianceField& field);
   // Its tracer refers to its own plan: a copy would trace with the original's.
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
@@ -82,8 +87,12 @@ class Renderer {
   void addCentreSample(int x, int y, PixelSamples& p, RayStats& stats) const;
   // The radiance of a camera sample, by the frame's transport.
   glm::vec3 radiance(const Ray& ray, const SampleKey& key, RayStats& stats) const {
-    return path_ ? path_->radiance(ray, key, stats) : tracer_.radiance(ray, key, stats);
+    if (!path_) return tracer_.radiance(ray, key, stats);
+    return withField_ ? fieldRadiance(ray, key, stats) : path_->radiance(ray, key, stats);
   }
+  glm::vec3 fieldRadiance(const Ray& ray, const SampleKey& key, RayStats& stats) const;
+  Renderer(const PreparedScene& prepared, const FrameSettings& frame, const EffectPlan& plan,
+           const IrradianceField* field);
   void renderAdaptive(const TileRect& rect, std::span<const std::uint8_t> mask, std::vector<glm::vec3>& out,
                       RayStats& stats) const;
 
@@ -95,6 +104,7 @@ class Renderer {
   SampleLayout sampleLayout_;
   Tracer tracer_;
   std::optional<PathTracer> path_;  // under path transport, which then makes every sample
+  bool withField_ = false;          // but where the tracer reads the field
 };
 
 }  // namespace glint

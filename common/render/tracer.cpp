@@ -1,8 +1,11 @@
 #include "common/render/tracer.h"
 
+#include <numbers>
+
 #include <glm/geometric.hpp>
 
 #include "common/math/float_bits.h"
+#include "common/render/bsdf.h"
 #include "common/render/glossy_lobe.h"
 #include "common/render/optics.h"
 #include "common/scene/shading.h"
@@ -10,12 +13,15 @@
 #include "common/render/surface_terms.h"
 
 namespace glint {
-Tracer::Tracer(const Scene& scene, const Bvh& bvh, const FrameSettings& frame, const EffectPlan& plan)
+
+Tracer::Tracer(const Scene& scene, const Bvh& bvh, const FrameSettings& frame, const EffectPlan& plan,
+               const IrradianceField* field)
     : scene_(scene),
       bvh_(bvh),
       tracing_(frame.tracing),
       plan_(plan),
-      environment_(plan.environment ? scene.environment.get() : nullptr) {
+      environment_(plan.environment ? scene.environment.get() : nullptr),
+      field_(field) {
   for (const Light& l : scene.lights) {
     const int count = softLightSamples(l, frame.sampling.lightSamples);
     areas_.push_back(l.type == LightType::kArea ? std::optional<AreaLightPoints>(std::in_place, l, count)
@@ -49,6 +55,20 @@ glm::vec3 Tracer::radiance(const Ray& ray, const SampleKey& key, RayStats& stats
   ++stats.primary;
   Path path{key, stats};
   return trace(ray, 1, 1.0f, false, path);
+}
+
+std::optional<glm::vec3> Tracer::radianceWithField(const Ray& ray, const SampleKey& key, RayStats& stats) const {
+  ++stats.primary;
+  Path path{key, stats};
+  const glm::vec3 c = trace(ray, 1, 1.0f, false, path);
+  if (path.undecided) return std::nullopt;
+  return c;
+}
+
+glm::vec3 Tracer::fieldLight(const ShadingPoint& at, const Surface& f, Path& path) const {
+  const IrradianceField::Lookup light = field_->irradiance(at.s.p, at.s.ns);
+  if (!light.decided) path.undecided = true;
+  return lobeWeights(f.m, f.color).albedo * (light.irradiance * std::numbers::inv_pi_v<float>);
 }
 
 glm::vec3 Tracer::lightIntensity(const glm::vec3& color, const glm::vec3& attenuation, float distance) const {
@@ -199,7 +219,7 @@ float Tracer::visibleShare(const ShadingPoint& at, int light, int count, Path& p
 glm::vec3 Tracer::shade(const ShadingPoint& at, const Material& m, const MaterialEffects& e, Path& path) const {
   const SurfaceHit& s = at.s;
   const Surface f{surfaceColor(scene_, m, e, s, plan_.vertexColors), m, e};
-  glm::vec3 result = phongAmbient(f.color, m.ambient);
+  glm::vec3 result = field_ ? fieldLight(at, f, path) : phongAmbient(f.color, m.ambient);
   if (e.emits) result += emitted(m, s.uv);
   if (!e.direct) return result;
   for (int i = 0; i < static_cast<int>(scene_.lights.size()); ++i) {

@@ -8,6 +8,7 @@
 #include "common/geometry/bvh.h"
 #include "common/render/area_light.h"
 #include "common/render/effects.h"
+#include "common/render/irradiance_field.h"
 #include "common/render/ray_stats.h"
 #include "common/scene/scene.h"
 
@@ -22,12 +23,17 @@ namespace glint {
 // depth 1) or when a ray's path weight would fall below min_weight. Only the
 // paths the effect plan allows are run.
 //
+// With an irradiance field (the hybrid frame under path transport), the
+// light other surfaces send a diffuse surface comes from the field, read
+// as the raster reads it, in place of the constant ambient term.
+//
 // Sidedness comes from the path, not from stored normals: a ray refracted
 // into a transparent object is inside it until it refracts out again, so a
 // closed mesh renders the same whichever way its triangles are wound.
 class Tracer {
  public:
-  Tracer(const Scene& scene, const Bvh& bvh, const FrameSettings& frame, const EffectPlan& plan);
+  Tracer(const Scene& scene, const Bvh& bvh, const FrameSettings& frame, const EffectPlan& plan,
+         const IrradianceField* field = nullptr);
   // It refers to the scene, BVH and plan it was made with.
   Tracer(const Tracer&) = delete;
   Tracer& operator=(const Tracer&) = delete;
@@ -35,12 +41,16 @@ class Tracer {
   // Radiance along a primary ray (direction unit length) of the camera
   // sample `key`.
   glm::vec3 radiance(const Ray& ray, const SampleKey& key, RayStats& stats) const;
+  // The same with the field's light: none where the field could not decide
+  // at a surface the sample reached (its caller traces a path instead).
+  std::optional<glm::vec3> radianceWithField(const Ray& ray, const SampleKey& key, RayStats& stats) const;
 
  private:
   // What the rays of one camera sample share along its path.
   struct Path {
     SampleKey key;
     RayStats& stats;
+    bool undecided = false;  // the field could not decide at some surface
   };
   // Where a ray leaves a hit: the surface and the hit it came from, the
   // origin of rays on the side of its geometric normal (shadow and reflected
@@ -68,6 +78,9 @@ class Tracer {
   // the triangles around do not shadow it.
   const glm::vec3& shadowFrom(const ShadingPoint& at, const glm::vec3& d) const;
   glm::vec3 shade(const ShadingPoint& at, const Material& m, const MaterialEffects& e, Path& path) const;
+  // The light other surfaces send the point, as the field holds it: the
+  // diffuse albedo (the BSDF's) over pi times the irradiance.
+  glm::vec3 fieldLight(const ShadingPoint& at, const Surface& f, Path& path) const;
   // A light at `position` seen from the point: the unit direction and the
   // distance; none when it is behind the surface.
   struct Direction {
@@ -119,6 +132,7 @@ class Tracer {
   TracingSettings tracing_;
   const EffectPlan& plan_;
   const Environment* environment_;                     // what escaping rays see; none: the background
+  const IrradianceField* field_;                       // none: the ambient term
   std::vector<std::optional<AreaLightPoints>> areas_;  // per light: an area light's points
   std::vector<std::vector<Stratum>> sphereStrata_;     // per light: a sphere light's strata
   std::vector<int> lightDimensions_;                   // per light: its first dimension in a depth's block

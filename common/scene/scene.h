@@ -76,11 +76,24 @@ struct SamplingSettings {
   int lightSamples = 0;
 };
 
+// How dense the irradiance field is (common/render/irradiance_field.h): the
+// indirect light the hybrid frame reads under path transport.
+struct FieldSettings {
+  static constexpr int kMinProbes = 2;
+  static constexpr int kMaxProbes = 64;
+  static constexpr int kMinRays = 64;  // one a visibility texel
+  static constexpr int kMaxRays = 4096;
+
+  int probes = 8;   // along the scene's longest side; the others in proportion, at least kMinProbes
+  int rays = 256;   // a probe's, a power of two from kMinRays to kMaxRays
+};
+
 struct TracingSettings {
   int maxDepth = 5;         // primary ray = depth 1 (Whitted)
   float minWeight = 0.01f;  // rays whose path weight falls below this are not traced (Whitted)
   Transport transport = Transport::kWhitted;
   int maxBounces = 8;  // path: surfaces a path may bounce off after the first one it hits
+  FieldSettings field;  // path, in the hybrid frame
 };
 
 struct MaskSettings {

@@ -177,12 +177,23 @@ class SceneLoader {
   }
 
   void readTracing(const JsonReader& r) {
-    r.allowKeys({"max_depth", "min_weight", "transport", "max_bounces"});
+    r.allowKeys({"max_depth", "min_weight", "transport", "max_bounces", "field"});
     TracingSettings& t = scene_.frame.tracing;
     if (auto d = r.find("max_depth")) t.maxDepth = d->integer(1, FrameLimits::kMaxDepth);
     t.minWeight = r.number("min_weight", 0.01f, 0.0f, 1.0f);
     if (auto m = r.find("transport")) t.transport = choice<Transport>(*m);
     if (auto b = r.find("max_bounces")) t.maxBounces = b->integer(0, FrameLimits::kMaxBounces);
+    if (auto f = r.find("field")) readField(*f);
+  }
+
+  void readField(const JsonReader& r) {
+    r.allowKeys({"probes", "rays"});
+    FieldSettings& f = scene_.frame.tracing.field;
+    if (auto p = r.find("probes")) f.probes = p->integer(FieldSettings::kMinProbes, FieldSettings::kMaxProbes);
+    if (auto n = r.find("rays")) {
+      f.rays = n->integer(FieldSettings::kMinRays, FieldSettings::kMaxRays);
+      if ((f.rays & (f.rays - 1)) != 0) n->fail("must be a power of two (64, 128, 256 ...): each visibility texel gets as many rays");
+    }
   }
 
   void readMask(const JsonReader& r) {

@@ -95,3 +95,86 @@ SHARED vec3 bilinearBlend(vec3 c00, vec3 c10, vec3 c01, vec3 c11, vec2 p) {
   vec3 bottom = (1.0f - t.x) * c01 + t.x * c11;
   return (1.0f - t.y) * top + t.y * bottom;
 }
+
+// The irradiance field (common/render/irradiance_field.h): probes on a grid,
+// each holding the indirect light arriving at it as irradiance in
+// spherical harmonics to order 2 and, in an equal-area octahedral map, the
+// distances its rays travelled (mean and mean square, per texel).
+
+// atan(x) for x in [0, 1], within 2e-6 rad: a polynomial, the same bits in
+// C++ on every machine (no libm), close enough to pick a map's texel.
+SHARED float atanUnit(float x) {
+  float x2 = x * x;
+  return x * (0.99997726f + x2 * (-0.33262347f + x2 * (0.19354346f + x2 * (-0.11643287f +
+         x2 * (0.05265332f - 0.01172120f * x2)))));
+}
+
+// The point in [0, 1]^2 of unit direction d in the equal-area octahedral
+// map (Clarberg 2008: equal areas of the sphere, equal areas of the square).
+SHARED vec2 octahedralPoint(vec3 d) {
+  vec3 a = abs(d);
+  float r = sqrt(max(1.0f - a.z, 0.0f));
+  float big = max(a.x, a.y);
+  float small = min(a.x, a.y);
+  float phi = big > 0.0f ? atanUnit(small / big) * 0.63661977f : 0.0f;  // 2 / pi
+  if (a.x < a.y) phi = 1.0f - phi;
+  float v = phi * r;
+  float u = r - v;
+  if (d.z < 0.0f) {
+    float w = u;
+    u = 1.0f - v;
+    v = 1.0f - w;
+  }
+  u = d.x < 0.0f ? -u : u;
+  v = d.y < 0.0f ? -v : v;
+  return vec2(u, v) * 0.5f + 0.5f;
+}
+
+// Basis function k (0 to 8) of the real spherical harmonics to order 2 at
+// unit n (Ramamoorthi and Hanrahan 2001's constants).
+SHARED float shBasis(int k, vec3 n) {
+  if (k == 0) return 0.282095f;
+  if (k == 1) return 0.488603f * n.y;
+  if (k == 2) return 0.488603f * n.z;
+  if (k == 3) return 0.488603f * n.x;
+  if (k == 4) return 1.092548f * n.x * n.y;
+  if (k == 5) return 1.092548f * n.y * n.z;
+  if (k == 6) return 0.315392f * (3.0f * n.z * n.z - 1.0f);
+  if (k == 7) return 1.092548f * n.x * n.z;
+  return 0.546274f * (n.x * n.x - n.y * n.y);
+}
+
+// The cosine lobe's factor for order l's coefficients of the radiance:
+// irradiance E(n) = sum_k A_l(k) L_k Y_k(n), with A_0 = pi, A_1 = 2 pi / 3,
+// A_2 = pi / 4.
+SHARED float cosineLobe(int k) { return k == 0 ? 3.14159265f : (k < 4 ? 2.09439510f : 0.78539816f); }
+
+// A probe's share of a point's light before its visibility: the trilinear
+// weight t, times how far the probe lies on the normal's side (1 in front,
+// 0.2 behind: DDGI's smooth backface term, Majercik et al. 2019).
+SHARED float probeShare(float t, vec3 toProbe, vec3 n) {
+  float facing = (dot(toProbe, n) + 1.0f) * 0.5f;
+  return t * (facing * facing + 0.2f);
+}
+
+// Whether the probe sees a point at distance d, as its map's texel toward
+// the point says: 1 nearer than the mean distance its rays travelled, else
+// Chebyshev's bound var / (var + (d - mean)^2), cubed, as DDGI's
+// (moments: the mean and the mean square; minVariance keeps a flat texel's
+// bound from a step).
+SHARED float probeVisibility(vec2 moments, float d, float minVariance) {
+  if (d <= moments.x) return 1.0f;
+  float variance = max(moments.y - moments.x * moments.x, minVariance);
+  float away = d - moments.x;
+  float bound = variance / (variance + away * away);
+  return bound * bound * bound;
+}
+
+// A probe's irradiance toward unit normal n from its coefficients c (each
+// A_l L_k), never below zero (order 2 rings slightly under a light that
+// arrives from one side only).
+SHARED vec3 shIrradiance(const vec3 c[9], vec3 n) {
+  vec3 e = vec3(0.0f);
+  for (int k = 0; k < 9; ++k) e += c[k] * shBasis(k, n);
+  return max(e, vec3(0.0f));
+}

@@ -18,8 +18,11 @@ constexpr float kHardSpotEdge = 1e-4f;
 
 // The shading functions (the direct light's phongAmbient, phongDiffuse,
 // phongSpecular, attenuate and spotFactor; the textures' wrapped,
-// wrappedIndex, imagePoint, bilinearCorner and bilinearBlend), from
-// shading.glsl, which the raster's shaders compile too: read them there. Here GLSL's names are C++'s, in float.
+// wrappedIndex, imagePoint, bilinearCorner and bilinearBlend; the
+// irradiance field's octahedralPoint, shBasis, cosineLobe, probeShare,
+// probeVisibility and shIrradiance), from shading.glsl, which the raster's
+// shaders compile too: read them there. Here GLSL's names are C++'s, in
+// float.
 namespace glsl {
 
 using glm::ivec2;
@@ -34,6 +37,10 @@ inline vec2 floor(vec2 v) { return glm::floor(v); }
 inline float clamp(float x, float lo, float hi) { return std::clamp(x, lo, hi); }
 inline int clamp(int x, int lo, int hi) { return std::clamp(x, lo, hi); }
 inline float max(float a, float b) { return std::max(a, b); }
+inline float min(float a, float b) { return std::min(a, b); }
+inline float sqrt(float x) { return std::sqrt(x); }
+inline vec3 abs(vec3 v) { return glm::abs(v); }
+inline vec3 max(vec3 a, vec3 b) { return glm::max(a, b); }
 
 #define SHARED inline
 #include "common/scene/shading.glsl"

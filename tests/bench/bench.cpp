@@ -40,13 +40,14 @@
 #include "tests/bench/mesh_file_section.h"
 #include "tests/bench/perceptual_section.h"
 #include "tests/bench/soft_shadow_section.h"
+#include "tests/bench/indirect_section.h"
 #include "tests/bench/transport_section.h"
 
 namespace glint::bench {
 
 // The sections, in the order they run (all by default).
-constexpr std::array<const char*, 13> kSections{"bvh",  "room", "accuracy",    "protocol", "hybrid", "perceptual", "soft",
-                                                "gl",   "load", "distributed", "meshfile", "embree", "transport"};
+constexpr std::array<const char*, 14> kSections{"bvh",  "room", "accuracy",    "protocol", "hybrid",    "perceptual", "soft",
+                                                "gl",   "load", "distributed", "meshfile", "embree", "transport", "indirect"};
 
 namespace {
 
@@ -470,6 +471,7 @@ int main(int argc, char** argv) {
     if (o.wants("meshfile")) bench::meshFileSection(o.quick, o.runs);
     if (o.wants("embree")) bench::embreeSection(o.scenes, o.quick, o.runs);
     if (o.wants("transport")) bench::transportSection(o.scenes, o.quick);
+    if (o.wants("indirect")) bench::indirectSection(o.scenes, o.quick);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "glint-bench: %s\n", e.what());
     return 1;

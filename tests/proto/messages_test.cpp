@@ -38,7 +38,8 @@ FrameSettings someFrame() {
   f.height = 200;
   f.camera = {{1, 2, 3}, {0, 0.5f, 0}, {0, 1, 0}, 40.0f};
   f.sampling = {SamplePattern::kJittered, 5, FilterType::kMitchell, 77};
-  f.tracing = {7, 0.02f};
+  f.tracing.maxDepth = 7;
+  f.tracing.minWeight = 0.02f;
   return f;
 }
 

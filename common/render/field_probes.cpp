@@ -1,0 +1,126 @@
+#include "common/render/field_probes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <numbers>
+#include <optional>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "common/base/compute_pool.h"
+#include "common/base/error.h"
+#include "common/math/circular.h"
+#include "common/math/finite.h"
+#include "common/render/path_tracer.h"
+#include "common/render/sampling.h"
+#include "common/scene/shading.h"
+
+namespace glint {
+namespace {
+
+// The probes' keys: the probe's index as a pixel of a row no frame has.
+constexpr int kFieldRow = -1;
+// A probe's rays are uniform over the sphere.
+constexpr float kSphere = 4.0f * std::numbers::pi_v<float>;
+constexpr float kUniformPdf = 1.0f / kSphere;
+
+// What a probe's rays add up before they are scaled.
+struct ProbeSums {
+  std::array<glm::vec3, 9> harmonics{};
+  std::array<glm::vec2, IrradianceField::kMapTexels> moments{};
+  std::array<int, IrradianceField::kMapTexels> rays{};
+};
+
+// Light arriving from direction wi, over the density it was drawn with,
+// projected on the harmonics.
+void addLight(ProbeSums& sums, const glm::vec3& wi, const glm::vec3& light, RayStats& stats) {
+  if (!allFinite(light)) {
+    ++stats.nonFiniteSamples;
+    return;
+  }
+  for (int k = 0; k < 9; ++k) sums.harmonics[k] += light * glsl::shBasis(k, wi);
+}
+
+IrradianceField::Probe scaled(const ProbeSums& sums, int rays, float maxDistance) {
+  IrradianceField::Probe probe;
+  const float perRay = 1.0f / static_cast<float>(rays);
+  for (int k = 0; k < 9; ++k) probe.irradiance[k] = sums.harmonics[k] * (glsl::cosineLobe(k) * perRay);
+  for (int t = 0; t < IrradianceField::kMapTexels; ++t) {
+    probe.moments[t] = sums.rays[t] > 0 ? sums.moments[t] / static_cast<float>(sums.rays[t])
+                                        : glm::vec2(maxDistance, maxDistance * maxDistance);
+  }
+  return probe;
+}
+
+// One probe's rays, in order.
+IrradianceField::Probe traceProbe(const IrradianceField& field, int index, const PathTracer& path, const Bvh& bvh,
+                                  const SampleLayout& layout, RayStats& stats) {
+  const glm::vec3 origin = field.position(index);
+  const float maxDistance = field.maxDistance();
+  const int rays = field.settings().rays;
+  const SampleLayout::Pixel pixel = layout.pixel(index, kFieldRow);
+  ProbeSums sums;
+  for (int r = 0; r < rays; ++r) {
+    const SampleKey key = SampleLayout::key(pixel, r);
+    const glm::vec2 point = key.stratified(SampleKey::kPixelPair);
+    const Ray ray(origin, octahedralDirection(point));
+    const std::optional<Hit> hit = bvh.intersect(ray, kInfinity);
+    const float d = std::min(hit ? hit->t : maxDistance, maxDistance);
+    const int texel = IrradianceField::texel(point);
+    sums.moments[texel] += glm::vec2(d, d * d);
+    ++sums.rays[texel];
+    addLight(sums, ray.d, path.radiance(ray, key, stats, kUniformPdf) * kSphere, stats);
+    if (const std::optional<PathTracer::PointSample> e = path.emitterSample(origin, key, kUniformPdf, stats)) {
+      addLight(sums, e->wi, e->value, stats);
+    }
+  }
+  return scaled(sums, rays, maxDistance);
+}
+
+}  // namespace
+
+glm::vec3 octahedralDirection(const glm::vec2& point) {
+  const float u = 2.0f * point.x - 1.0f;
+  const float v = 2.0f * point.y - 1.0f;
+  const float up = std::abs(u);
+  const float vp = std::abs(v);
+  const float signedDistance = 1.0f - (up + vp);
+  const float r = 1.0f - std::abs(signedDistance);
+  // The azimuth within the octant, as a fraction of a turn.
+  const float azimuth = (r == 0.0f ? 1.0f : (vp - up) / r + 1.0f) * 0.125f;
+  const SineCosine sc = turn(azimuth);
+  const float z = std::copysign(1.0f - r * r, signedDistance);
+  const float s = r * std::sqrt(std::max(2.0f - r * r, 0.0f));
+  return {std::copysign(sc.cos, u) * s, std::copysign(sc.sin, v) * s, z};
+}
+
+void fillProbes(IrradianceField& field, const PreparedScene& prepared, const FrameSettings& frame, int first, int end,
+                RayStats& stats) {
+  FrameSettings probes = frame;
+  probes.tracing.maxBounces = std::max(0, frame.tracing.maxBounces - 1);
+  const EffectPlan plan = EffectPlan::derive(prepared.scene(), probes);
+  const PathTracer path(prepared.scene(), prepared.bvh(), plan.environment ? prepared.environmentLight() : nullptr,
+                        probes, plan);
+  const SampleLayout layout(frame.sampling);
+  std::mutex statsMutex;
+  computePool().parallelFor(static_cast<std::size_t>(end - first), [&](std::size_t i) {
+    RayStats own;
+    const int index = first + static_cast<int>(i);
+    field.probe(index) = traceProbe(field, index, path, prepared.bvh(), layout, own);
+    std::lock_guard lock(statsMutex);
+    stats += own;
+  });
+}
+
+IrradianceField buildField(const PreparedScene& prepared, const FrameSettings& frame, const FieldSettings& settings,
+                           RayStats& stats) {
+  const Bounds3 bounds = prepared.scene().geometry.bounds();
+  if (bounds.empty()) throw InputError("the irradiance field: the scene has no object to span");
+  IrradianceField field(bounds, settings);
+  fillProbes(field, prepared, frame, 0, field.probeCount(), stats);
+  return field;
+}
+
+}  // namespace glint

@@ -1,0 +1,38 @@
+#pragma once
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "common/render/irradiance_field.h"
+#include "common/render/prepared_scene.h"
+#include "common/render/ray_stats.h"
+#include "common/scene/scene.h"
+
+namespace glint {
+
+// The unit direction of a point of [0, 1]^2 in the equal-area octahedral
+// map (Clarberg 2008), octahedralPoint's inverse: uniform points of the
+// square are uniform directions.
+glm::vec3 octahedralDirection(const glm::vec2& point);
+
+// Fills probes [first, end) of the field with path transport's estimate of
+// the light arriving at each (path_tracer.h, with one bounce fewer than the
+// frame's, since the probe's rays stand for a surface's first bounce). A
+// probe's rays leave in the directions of the scrambled Sobol points of its
+// own key (the frame's seed and the probe's index), a power of two of them,
+// so each visibility texel gets the same number; each ray adds its radiance
+// to the harmonics and its distance to its texel's moments. The light the
+// emitting surfaces send the probe straight is sampled on them too, each
+// ray's emission and each such sample weighed against the other by MIS, so
+// that a small bright emitter most rays miss does not make the probes
+// noisy. The probes are
+// filled in parallel, each by one thread in a fixed order: the same bytes
+// for any threads and any split into batches.
+void fillProbes(IrradianceField& field, const PreparedScene& prepared, const FrameSettings& frame, int first, int end,
+                RayStats& stats);
+
+// A field over the scene's bounds, every probe filled.
+IrradianceField buildField(const PreparedScene& prepared, const FrameSettings& frame, const FieldSettings& settings,
+                           RayStats& stats);
+
+}  // namespace glint

@@ -1,0 +1,87 @@
+#include "common/render/irradiance_field.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "common/scene/shading.h"
+
+namespace glint {
+namespace {
+
+// Probes along each axis: settings.probes along the longest side, the
+// others in proportion to their length, at least kMinProbes.
+glm::ivec3 probeCounts(const glm::vec3& extent, int probes) {
+  const float longest = std::max({extent.x, extent.y, extent.z});
+  glm::ivec3 counts;
+  for (int a = 0; a < 3; ++a) {
+    const float share = longest > 0.0f ? extent[a] / longest : 0.0f;
+    counts[a] = std::max(FieldSettings::kMinProbes, static_cast<int>(std::lround(share * static_cast<float>(probes))));
+  }
+  return counts;
+}
+
+// A point's blend over the probes of its cell, as shading.glsl's functions
+// weigh them.
+struct Blend {
+  glm::vec3 sum{0.0f};
+  float weight = 0.0f;  // of the probes that see the point
+  float share = 0.0f;   // before visibility
+};
+
+}  // namespace
+
+IrradianceField::IrradianceField(const Bounds3& bounds, const FieldSettings& settings)
+    : settings_(settings), counts_(probeCounts(bounds.extent(), settings.probes)) {
+  step_ = bounds.extent() / glm::vec3(counts_);
+  origin_ = bounds.min + 0.5f * step_;
+  probes_.resize(static_cast<std::size_t>(probeCount()));
+}
+
+glm::vec3 IrradianceField::position(int probe) const {
+  const glm::ivec3 cell(probe % counts_.x, (probe / counts_.x) % counts_.y, probe / (counts_.x * counts_.y));
+  return origin_ + glm::vec3(cell) * step_;
+}
+
+float IrradianceField::maxDistance() const { return 2.0f * glm::length(step_); }
+
+int IrradianceField::texel(const glm::vec2& point) {
+  const int x = std::clamp(static_cast<int>(point.x * kMapSide), 0, kMapSide - 1);
+  const int y = std::clamp(static_cast<int>(point.y * kMapSide), 0, kMapSide - 1);
+  return y * kMapSide + x;
+}
+
+IrradianceField::Lookup IrradianceField::irradiance(const glm::vec3& p, const glm::vec3& n) const {
+  const float minStep = std::min({step_.x, step_.y, step_.z});
+  // Looked up a little off the surface, so that the probes beside it on its
+  // own side do not see it at a grazing distance.
+  const glm::vec3 q = p + (0.25f * minStep) * n;
+  const glm::vec3 at = glm::clamp((q - origin_) / step_, glm::vec3(0.0f), glm::vec3(counts_ - 1));
+  const glm::ivec3 base = glm::min(glm::ivec3(at), counts_ - 2);
+  const glm::vec3 alpha = at - glm::vec3(base);
+  const float minVariance = (0.05f * minStep) * (0.05f * minStep);
+  Blend blend;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::ivec3 offset(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+    const int i = index(base + offset);
+    const glm::vec3 toProbe = position(i) - q;
+    const float d = glm::length(toProbe);
+    const glm::vec3 dir = d > 0.0f ? toProbe / d : n;
+    const glm::vec3 t = glm::mix(1.0f - alpha, alpha, glm::vec3(offset));
+    const float share = glsl::probeShare(t.x * t.y * t.z, dir, n);
+    const Probe& probe = probes_[static_cast<std::size_t>(i)];
+    const glm::vec2 moments = probe.moments[static_cast<std::size_t>(texel(glsl::octahedralPoint(-dir)))];
+    const float w = share * glsl::probeVisibility(moments, d, minVariance);
+    blend.sum += w * glsl::shIrradiance(probe.irradiance.data(), n);
+    blend.weight += w;
+    blend.share += share;
+  }
+  Lookup out;
+  out.decided = blend.share > 0.0f && blend.weight >= kDecidedShare * blend.share;
+  if (blend.weight > 0.0f) out.irradiance = blend.sum / blend.weight;
+  return out;
+}
+
+}  // namespace glint

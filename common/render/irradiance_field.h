@@ -1,0 +1,72 @@
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "common/geometry/bounds.h"
+#include "common/scene/scene.h"
+
+namespace glint {
+
+// The indirect light of a scene as a field the raster and the tracer read:
+// probes on a regular grid over the scene's bounds (at the centres of equal
+// cells, so no probe lies on the bounds' walls), each holding
+//  - the irradiance the light from other surfaces brings it, as spherical
+//    harmonics to order 2 convolved with the cosine lobe (shIrradiance),
+//  - and, in an equal-area octahedral map of kMapSide^2 texels, the mean
+//    and mean square distance its rays travelled (clamped to maxDistance()),
+//    the visibility DDGI keeps (Majercik et al., JCGT 2019).
+// A point's irradiance blends its cell's eight probes by their trilinear
+// weights, their side of the normal and whether they see the point
+// (shading.glsl's probeShare and probeVisibility), so that light does not
+// leak through a wall. Where too little of the weight sees the point, the
+// field cannot decide, and the point is traced instead.
+class IrradianceField {
+ public:
+  static constexpr int kMapSide = 8;
+  static constexpr int kMapTexels = kMapSide * kMapSide;
+  // A lookup the field decides: the probes that see the point carry at
+  // least this share of its weight before visibility.
+  static constexpr float kDecidedShare = 0.1f;
+
+  struct Probe {
+    std::array<glm::vec3, 9> irradiance{};  // A_l L_k per basis function
+    std::array<glm::vec2, kMapTexels> moments{};  // mean, mean square distance per texel
+  };
+  struct Lookup {
+    glm::vec3 irradiance{0.0f};
+    bool decided = false;
+  };
+
+  IrradianceField(const Bounds3& bounds, const FieldSettings& settings);
+
+  const FieldSettings& settings() const { return settings_; }
+  const glm::ivec3& counts() const { return counts_; }
+  int probeCount() const { return counts_.x * counts_.y * counts_.z; }
+  glm::vec3 position(int probe) const;
+  // Where a ray's distance is clamped to in the visibility map.
+  float maxDistance() const;
+  Probe& probe(int i) { return probes_[static_cast<std::size_t>(i)]; }
+  const Probe& probe(int i) const { return probes_[static_cast<std::size_t>(i)]; }
+
+  // The irradiance at p toward unit normal n (p on a surface, n on the side
+  // the light is wanted).
+  Lookup irradiance(const glm::vec3& p, const glm::vec3& n) const;
+
+  // The visibility texel of a point of the map (octahedralPoint's).
+  static int texel(const glm::vec2& point);
+
+ private:
+  int index(const glm::ivec3& cell) const { return (cell.z * counts_.y + cell.y) * counts_.x + cell.x; }
+
+  FieldSettings settings_;
+  glm::ivec3 counts_;
+  glm::vec3 origin_;  // probe (0, 0, 0)
+  glm::vec3 step_;    // between neighbouring probes
+  std::vector<Probe> probes_;
+};
+
+}  // namespace glint

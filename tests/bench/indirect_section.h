@@ -1,0 +1,18 @@
+#pragma once
+
+#include <string>
+
+namespace glint::bench {
+
+// The irradiance field against path tracing, at equal error: on
+// scenes/cornell.json and scenes/room-path.json, the path trace's mean FLIP
+// against its own converged frame at 1, 2, 4 ... samples (each time the
+// median of three runs), and the tracer's frame with the irradiance field
+// (the hybrid frame's shading: Whitted's direct light, the field's indirect
+// light, a path where the field cannot decide; every pixel traced) for
+// several field densities and samples, its time the field's and the frame's
+// apart. Each field row gives the path trace's time to the same FLIP
+// (between the two sample counts around it, log-linear) and the ratio.
+void indirectSection(const std::string& scenes, bool quick);
+
+}  // namespace glint::bench
