@@ -7,6 +7,7 @@
 
 #include "common/math/circular.h"
 #include "common/math/float_bits.h"
+#include "common/render/surface_terms.h"
 
 namespace glint {
 namespace {
@@ -61,6 +62,25 @@ Emitters::Point Emitters::sample(const glm::vec2& pickAndPlace) const {
   const auto& p = geometry_.positions();
   const glm::vec3 q = (1.0f - b1 - b2) * p[t.v[0]] + b1 * p[t.v[1]] + b2 * p[t.v[2]];
   return {q, geometry_.faceNormals()[prim], prim, b1, b2};
+}
+
+std::optional<Emitters::Seen> Emitters::seenFrom(const Scene& scene, const EffectPlan& plan, const glm::vec3& p,
+                                                 const glm::vec2& pickAndPlace) const {
+  const Point e = sample(pickAndPlace);
+  const glm::vec3 to = e.p - p;
+  const float d = glm::length(to);
+  if (!(d > 0.0f)) return std::nullopt;
+  const glm::vec3 wi = to / d;
+  const float cosE = std::abs(glm::dot(e.n, wi));
+  if (!(cosE > 0.0f)) return std::nullopt;
+  const std::uint32_t material = geometry_.materialOf(e.prim);
+  glm::vec2 uv(0.0f);
+  if (plan.materials[material].textured) {
+    const Ray toward(p, wi);
+    uv = geometry_.surface(toward, Hit{d, e.prim, 1.0f - e.b1 - e.b2, e.b1, e.b2}, true, false).uv;
+  }
+  const glm::vec3 radiance = surfaceEmission(scene, scene.materials[material], uv);
+  return Seen{wi, d * (1.0f - kShortOfEmitter), radiance, d * d / (cosE * total_)};
 }
 
 }  // namespace glint

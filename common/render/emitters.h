@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -8,11 +9,13 @@
 
 #include "common/geometry/geometry.h"
 #include "common/render/effects.h"
+#include "common/scene/scene.h"
 
 namespace glint {
 
 // The scene's emitting surfaces (every triangle and sphere whose material
-// has an emission) as one light for path transport: a point drawn uniformly
+// has an emission) as one light for path transport and for the tracer that
+// reads an irradiance field (which holds no emission): a point drawn uniformly
 // by area over all of them, so that its density is 1 / area() wherever it
 // lands.
 class Emitters {
@@ -35,6 +38,21 @@ class Emitters {
   // set of values spread evenly over the square stays spread evenly over
   // the emitters' whole area.
   Point sample(const glm::vec2& pickAndPlace) const;
+
+  // A point drawn on the emitters (sample()'s) as seen from p: the unit
+  // direction toward it, the distance a shadow ray goes (kShortOfEmitter
+  // short of it, so that the emitter does not block it), the radiance it
+  // sends p and the direction's density (solid angle); none where it sends
+  // p nothing.
+  struct Seen {
+    glm::vec3 wi;
+    float distance;
+    glm::vec3 radiance;
+    float pdf;
+  };
+  std::optional<Seen> seenFrom(const Scene& scene, const EffectPlan& plan, const glm::vec3& p,
+                               const glm::vec2& pickAndPlace) const;
+  static constexpr float kShortOfEmitter = 1e-3f;
 
  private:
   const Geometry& geometry_;

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <mutex>
 #include <numbers>
-#include <optional>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -22,9 +21,8 @@ namespace {
 
 // The probes' keys: the probe's index as a pixel of a row no frame has.
 constexpr int kFieldRow = -1;
-// A probe's rays are uniform over the sphere.
+// A probe's rays are uniform over the sphere: each over its density.
 constexpr float kSphere = 4.0f * std::numbers::pi_v<float>;
-constexpr float kUniformPdf = 1.0f / kSphere;
 
 // What a probe's rays add up before they are scaled.
 struct ProbeSums {
@@ -71,10 +69,7 @@ IrradianceField::Probe traceProbe(const IrradianceField& field, int index, const
     const int texel = IrradianceField::texel(point);
     sums.moments[texel] += glm::vec2(d, d * d);
     ++sums.rays[texel];
-    addLight(sums, ray.d, path.radiance(ray, key, stats, kUniformPdf) * kSphere, stats);
-    if (const std::optional<PathTracer::PointSample> e = path.emitterSample(origin, key, kUniformPdf, stats)) {
-      addLight(sums, e->wi, e->value, stats);
-    }
+    addLight(sums, ray.d, path.radiance(ray, key, stats, PathTracer::First::kReflected) * kSphere, stats);
   }
   return scaled(sums, rays, maxDistance);
 }

@@ -20,12 +20,10 @@ glm::vec3 octahedralDirection(const glm::vec2& point);
 // frame's, since the probe's rays stand for a surface's first bounce). A
 // probe's rays leave in the directions of the scrambled Sobol points of its
 // own key (the frame's seed and the probe's index), a power of two of them,
-// so each visibility texel gets the same number; each ray adds its radiance
-// to the harmonics and its distance to its texel's moments. The light the
-// emitting surfaces send the probe straight is sampled on them too, each
-// ray's emission and each such sample weighed against the other by MIS, so
-// that a small bright emitter most rays miss does not make the probes
-// noisy. The probes are
+// so each visibility texel gets the same number; each ray adds the light
+// the surface it meets reflects toward the probe (not what that surface
+// emits: a point the field lights samples the emitters itself, Tracer) to
+// the harmonics, and its distance to its texel's moments. The probes are
 // filled in parallel, each by one thread in a fixed order: the same bytes
 // for any threads and any split into batches.
 void fillProbes(IrradianceField& field, const PreparedScene& prepared, const FrameSettings& frame, int first, int end,

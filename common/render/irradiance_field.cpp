@@ -31,12 +31,22 @@ struct Blend {
   float share = 0.0f;   // before visibility
 };
 
+// The box the probes span: the bounds, a flat side (a scene of one plane)
+// widened about its centre to one cell of the longest side's.
+Bounds3 spanned(const Bounds3& bounds, int probes) {
+  const glm::vec3 extent = bounds.extent();
+  const float cell = std::max({extent.x, extent.y, extent.z}) / static_cast<float>(probes);
+  const glm::vec3 half = 0.5f * glm::max(extent, glm::vec3(cell));
+  return {bounds.centre() - half, bounds.centre() + half};
+}
+
 }  // namespace
 
-IrradianceField::IrradianceField(const Bounds3& bounds, const FieldSettings& settings)
-    : settings_(settings), counts_(probeCounts(bounds.extent(), settings.probes)) {
-  step_ = bounds.extent() / glm::vec3(counts_);
-  origin_ = bounds.min + 0.5f * step_;
+IrradianceField::IrradianceField(const Bounds3& bounds, const FieldSettings& settings) : settings_(settings) {
+  const Bounds3 box = spanned(bounds, settings.probes);
+  counts_ = probeCounts(box.extent(), settings.probes);
+  step_ = box.extent() / glm::vec3(counts_);
+  origin_ = box.min + 0.5f * step_;
   probes_.resize(static_cast<std::size_t>(probeCount()));
 }
 

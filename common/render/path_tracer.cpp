@@ -17,9 +17,6 @@ namespace glint {
 namespace {
 
 constexpr float kPi = 3.14159265358979f;
-// A shadow ray to a point on an emitting surface stops this share short of
-// it, so that the surface itself does not block it.
-constexpr float kShortOfEmitter = 1e-3f;
 // The pairs of sample dimensions a bounce draws (SampleKey::stratified),
 // from its first: the direction; the lobe and the roulette; the point on the
 // emitters; the environment's direction; then one a light.
@@ -111,24 +108,6 @@ std::optional<PathTracer::LightSample> PathTracer::sampleLight(const Vertex& v, 
   return std::nullopt;
 }
 
-std::optional<PathTracer::LightSample> PathTracer::sampleEmitters(const glm::vec3& p, const glm::vec2& u) const {
-  const Emitters::Point e = emitters_.sample(u);
-  const glm::vec3 to = e.p - p;
-  const float d = glm::length(to);
-  if (!(d > 0.0f)) return std::nullopt;
-  const glm::vec3 wi = to / d;
-  const float cosE = std::abs(glm::dot(e.n, wi));
-  if (!(cosE > 0.0f)) return std::nullopt;
-  const std::uint32_t material = scene_.geometry.materialOf(e.prim);
-  glm::vec2 uv(0.0f);
-  if (plan_.materials[material].textured) {
-    const Ray toward(p, wi);
-    uv = scene_.geometry.surface(toward, Hit{d, e.prim, 1.0f - e.b1 - e.b2, e.b1, e.b2}, true, false).uv;
-  }
-  const glm::vec3 radiance = surfaceEmission(scene_, scene_.materials[material], uv);
-  return LightSample{wi, d * (1.0f - kShortOfEmitter), radiance, d * d / (cosE * emitters_.area())};
-}
-
 glm::vec3 PathTracer::contribution(const Vertex& v, const Bsdf& bsdf, const LightSample& l, bool last,
                                    RayStats& stats) const {
   const float cosI = glm::dot(l.wi, v.s.ns);
@@ -163,8 +142,9 @@ glm::vec3 PathTracer::directLight(const Vertex& v, const Bsdf& bsdf, const Sampl
   }
   if (!emitters_.empty()) {
     ++stats.lightSamples;
-    const std::optional<LightSample> l = sampleEmitters(v.s.p, key.stratified(pair(bounce, kEmitterPair)));
-    if (l) sum += contribution(v, bsdf, *l, last, stats);
+    const std::optional<Emitters::Seen> l =
+        emitters_.seenFrom(scene_, plan_, v.s.p, key.stratified(pair(bounce, kEmitterPair)));
+    if (l) sum += contribution(v, bsdf, {l->wi, l->distance, l->radiance, l->pdf}, last, stats);
   }
   return sum;
 }
@@ -195,8 +175,8 @@ glm::vec3 PathTracer::lightsAlong(const Ray& ray, float tMax, float bsdfPdf) con
   return sum;
 }
 
-glm::vec3 PathTracer::emittedAt(const Ray& ray, const Hit& hit, const SurfaceHit& s, const Material& m,
-                                float bsdfPdf, bool weigh) const {
+glm::vec3 PathTracer::emittedAt(const Ray& ray, const Hit& hit, const SurfaceHit& s, const Material& m, float bsdfPdf,
+                                bool weigh) const {
   const glm::vec3 radiance = surfaceEmission(scene_, m, s.uv);
   if (!weigh || !(bsdfPdf > 0.0f)) return radiance;
   const float cosE = std::abs(glm::dot(s.ng, ray.d));
@@ -204,27 +184,13 @@ glm::vec3 PathTracer::emittedAt(const Ray& ray, const Hit& hit, const SurfaceHit
   return radiance * powerHeuristic(bsdfPdf, lightPdf);
 }
 
-std::optional<PathTracer::PointSample> PathTracer::emitterSample(const glm::vec3& p, const SampleKey& key,
-                                                                 float otherPdf, RayStats& stats) const {
-  if (emitters_.empty()) return std::nullopt;
-  ++stats.lightSamples;
-  const std::optional<LightSample> l = sampleEmitters(p, key.stratified(pair(maxBounces_ + 1, kEmitterPair)));
-  if (!l || l->arriving == glm::vec3(0.0f)) return std::nullopt;
-  ++stats.shadow;
-  if (bvh_.occluded(Ray(p, l->wi), l->distance)) {
-    ++stats.shadowBlocked;
-    return std::nullopt;
-  }
-  return PointSample{l->wi, l->arriving * (powerHeuristic(l->pdf, otherPdf) / l->pdf)};
-}
-
-glm::vec3 PathTracer::radiance(const Ray& cameraRay, const SampleKey& key, RayStats& stats, float firstPdf) const {
+glm::vec3 PathTracer::radiance(const Ray& cameraRay, const SampleKey& key, RayStats& stats, First first) const {
   ++stats.primary;
   ++stats.paths;
   glm::vec3 sum(0.0f), throughput(1.0f);
   Ray ray = cameraRay;
   bool inside = false;
-  float bsdfPdf = firstPdf;  // the density the last bounce drew the ray with (0: the camera's, or a delta lobe)
+  float bsdfPdf = 0.0f;  // the density the last bounce drew the ray with (0: the camera's, or a delta lobe)
   int bounce = 0;        // the bounce rays traced
   for (;; ++bounce) {
     const std::optional<Hit> hit = bvh_.intersect(ray, kInfinity);
@@ -237,7 +203,8 @@ glm::vec3 PathTracer::radiance(const Ray& cameraRay, const SampleKey& key, RaySt
     const Material& m = scene_.materials[material];
     const MaterialEffects& e = plan_.materials[material];
     const SurfaceHit s = scene_.geometry.surface(ray, *hit, e.textured, plan_.vertexColors);
-    if (e.emits) sum += throughput * emittedAt(ray, *hit, s, m, bsdfPdf, bounce > 0 || firstPdf > 0.0f);
+    if (e.emits && (bounce > 0 || first == First::kSeen))
+      sum += throughput * emittedAt(ray, *hit, s, m, bsdfPdf, bounce > 0);
     const Bsdf bsdf(m, surfaceColor(scene_, m, e, s, plan_.vertexColors), s.ns, s.ng, -ray.d,
                     inside ? m.ior : 1.0f / m.ior);
     if (bsdf.black()) break;

@@ -54,22 +54,12 @@ class PathTracer {
   PathTracer(const PathTracer&) = delete;
   PathTracer& operator=(const PathTracer&) = delete;
 
-  // The light arriving along a camera ray, or with firstPdf > 0 along a
-  // ray drawn with that density from a point in space (an irradiance
-  // probe's, field_probes.h): the emission it finds first is then weighed
-  // by MIS against emitterSample's.
-  glm::vec3 radiance(const Ray& ray, const SampleKey& key, RayStats& stats, float firstPdf = 0.0f) const;
-
-  // Next-event estimation from a point in space: a point drawn on the
-  // emitting surfaces (from the key's pairs past the last bounce's), the
-  // direction toward it and, if nothing blocks it, the radiance it sends
-  // weighed by MIS against rays of density otherPdf, over its density.
-  struct PointSample {
-    glm::vec3 wi;
-    glm::vec3 value;
-  };
-  std::optional<PointSample> emitterSample(const glm::vec3& p, const SampleKey& key, float otherPdf,
-                                           RayStats& stats) const;
+  // What the first surface a ray meets adds: its emission and what it
+  // reflects (a camera ray's), or what it reflects alone (an irradiance
+  // probe's, field_probes.h: the point the field lights samples the
+  // emitters itself).
+  enum class First { kSeen, kReflected };
+  glm::vec3 radiance(const Ray& ray, const SampleKey& key, RayStats& stats, First first = First::kSeen) const;
 
  private:
   // A surface the path found.
@@ -93,7 +83,6 @@ class PathTracer {
   glm::vec3 directLight(const Vertex& v, const Bsdf& bsdf, const SampleKey& key, int bounce, bool last,
                         RayStats& stats) const;
   std::optional<LightSample> sampleLight(const Vertex& v, int light, const glm::vec2& u) const;
-  std::optional<LightSample> sampleEmitters(const glm::vec3& p, const glm::vec2& u) const;
   glm::vec3 contribution(const Vertex& v, const Bsdf& bsdf, const LightSample& l, bool last, RayStats& stats) const;
   // Area and sphere lights a bounced ray meets before tMax, weighted against
   // light sampling for a ray drawn with density bsdfPdf (0: a delta lobe).

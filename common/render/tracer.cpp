@@ -8,9 +8,9 @@
 #include "common/render/bsdf.h"
 #include "common/render/glossy_lobe.h"
 #include "common/render/optics.h"
-#include "common/scene/shading.h"
 #include "common/render/sphere_light.h"
 #include "common/render/surface_terms.h"
+#include "common/scene/shading.h"
 
 namespace glint {
 
@@ -22,6 +22,7 @@ Tracer::Tracer(const Scene& scene, const Bvh& bvh, const FrameSettings& frame, c
       plan_(plan),
       environment_(plan.environment ? scene.environment.get() : nullptr),
       field_(field) {
+  if (field) emitters_.emplace(scene.geometry, plan);
   for (const Light& l : scene.lights) {
     const int count = softLightSamples(l, frame.sampling.lightSamples);
     areas_.push_back(l.type == LightType::kArea ? std::optional<AreaLightPoints>(std::in_place, l, count)
@@ -68,7 +69,24 @@ std::optional<glm::vec3> Tracer::radianceWithField(const Ray& ray, const SampleK
 glm::vec3 Tracer::fieldLight(const ShadingPoint& at, const Surface& f, Path& path) const {
   const IrradianceField::Lookup light = field_->irradiance(at.s.p, at.s.ns);
   if (!light.decided) path.undecided = true;
-  return lobeWeights(f.m, f.color).albedo * (light.irradiance * std::numbers::inv_pi_v<float>);
+  const glm::vec3 irradiance = light.irradiance + emitterIrradiance(at, path);
+  return lobeWeights(f.m, f.color).albedo * (irradiance * std::numbers::inv_pi_v<float>);
+}
+
+glm::vec3 Tracer::emitterIrradiance(const ShadingPoint& at, Path& path) const {
+  if (emitters_->empty()) return glm::vec3(0.0f);
+  // A pair of the key's points a depth, spread evenly over a pixel's samples.
+  const glm::vec2 u = path.key.stratified(SampleKey::kFirstPathPair + at.depth - 1);
+  const std::optional<Emitters::Seen> l = emitters_->seenFrom(scene_, plan_, at.s.p, u);
+  if (!l) return glm::vec3(0.0f);
+  const float cosI = glm::dot(l->wi, at.s.ns);
+  if (!(cosI > 0.0f)) return glm::vec3(0.0f);
+  ++path.stats.shadow;
+  if (bvh_.occluded(Ray(shadowFrom(at, l->wi), l->wi), l->distance)) {
+    ++path.stats.shadowBlocked;
+    return glm::vec3(0.0f);
+  }
+  return l->radiance * (cosI / l->pdf);
 }
 
 glm::vec3 Tracer::lightIntensity(const glm::vec3& color, const glm::vec3& attenuation, float distance) const {

@@ -8,6 +8,7 @@
 #include "common/geometry/bvh.h"
 #include "common/render/area_light.h"
 #include "common/render/effects.h"
+#include "common/render/emitters.h"
 #include "common/render/irradiance_field.h"
 #include "common/render/ray_stats.h"
 #include "common/scene/scene.h"
@@ -24,8 +25,10 @@ namespace glint {
 // paths the effect plan allows are run.
 //
 // With an irradiance field (the hybrid frame under path transport), the
-// light other surfaces send a diffuse surface comes from the field, read
-// as the raster reads it, in place of the constant ambient term.
+// light other surfaces reflect onto a diffuse surface comes from the field,
+// read as the raster reads it, in place of the constant ambient term; the
+// light the emitting surfaces send it straight, from one point drawn on
+// them a sample (shadowed as a shadow ray finds).
 //
 // Sidedness comes from the path, not from stored normals: a ray refracted
 // into a transparent object is inside it until it refracts out again, so a
@@ -78,9 +81,10 @@ class Tracer {
   // the triangles around do not shadow it.
   const glm::vec3& shadowFrom(const ShadingPoint& at, const glm::vec3& d) const;
   glm::vec3 shade(const ShadingPoint& at, const Material& m, const MaterialEffects& e, Path& path) const;
-  // The light other surfaces send the point, as the field holds it: the
-  // diffuse albedo (the BSDF's) over pi times the irradiance.
+  // The light other surfaces send the point: the diffuse albedo (the
+  // BSDF's) over pi times the irradiance, the field's and the emitters'.
   glm::vec3 fieldLight(const ShadingPoint& at, const Surface& f, Path& path) const;
+  glm::vec3 emitterIrradiance(const ShadingPoint& at, Path& path) const;
   // A light at `position` seen from the point: the unit direction and the
   // distance; none when it is behind the surface.
   struct Direction {
@@ -133,6 +137,7 @@ class Tracer {
   const EffectPlan& plan_;
   const Environment* environment_;                     // what escaping rays see; none: the background
   const IrradianceField* field_;                       // none: the ambient term
+  std::optional<Emitters> emitters_;                   // with a field
   std::vector<std::optional<AreaLightPoints>> areas_;  // per light: an area light's points
   std::vector<std::vector<Stratum>> sphereStrata_;     // per light: a sphere light's strata
   std::vector<int> lightDimensions_;                   // per light: its first dimension in a depth's block

@@ -7,6 +7,7 @@
 
 #include "common/base/error.h"
 #include "common/image/image_decode.h"
+#include "common/scene/scene_budget.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   glint::LoadLimits limits;
