@@ -42,7 +42,7 @@ LinearImage pathFrame(const PreparedScene& prepared, int samples, double& ms) {
 }
 
 // The path trace's time to reach `flip`, between the two measured sample
-// counts around it (log-linear in both); none past the curve's ends.
+// counts around it (log-linear in both); NaN past the curve's ends.
 double pathMsAt(const std::vector<Point>& curve, double flip) {
   for (std::size_t i = 1; i < curve.size(); ++i) {
     const Point& a = curve[i - 1];
@@ -74,9 +74,10 @@ void fieldRows(const PreparedScene& prepared, const LinearImage& reference, cons
       const double frameMs = msSince(start);
       const double flip = meanFlip(reference, image);
       const double pathMs = pathMsAt(curve, flip);
-      std::printf("| %d, %d | %d | %.0f | %.0f | %llu | %.4f | %.0f | %.2fx |\n", settings.probes, settings.rays,
-                  samples, fieldMs, frameMs, static_cast<unsigned long long>(stats.fieldUndecided), flip, pathMs,
-                  pathMs / (fieldMs + frameMs));
+      char path[64] = "past the curve | -";
+      if (!std::isnan(pathMs)) std::snprintf(path, sizeof path, "%.0f | %.2fx", pathMs, pathMs / (fieldMs + frameMs));
+      std::printf("| %d, %d | %d | %.0f | %.0f | %llu | %.4f | %s |\n", settings.probes, settings.rays, samples,
+                  fieldMs, frameMs, static_cast<unsigned long long>(stats.fieldUndecided), flip, path);
     }
   }
 }
