@@ -16,16 +16,6 @@ namespace glint {
 Renderer::Renderer(const PreparedScene& prepared, const FrameSettings& frame)
     : Renderer(prepared, frame, EffectPlan::derive(prepared.scene(), frame)) {}
 
-Renderer::Renderer(const PreparedScene& prepared, const FrameSettings& frame, const EffectPlan& plan)
-    : Renderer(prepared, frame, plan, nullptr) {}
-
-Renderer::Renderer(const PreparedScene& prepared, const FrameSettings& frame, const EffectPlan& plan,
-                   const IrradianceField& field)
-    : Renderer(prepared, frame, plan, &field) {
-  if (!path_) throw std::logic_error("an irradiance field is read under path transport only");
-  withField_ = true;
-}
-
 Renderer::Renderer(const PreparedScene& prepared, const FrameSettings& frame, const EffectPlan& plan,
                    const IrradianceField* field)
     : prepared_(prepared),
@@ -34,10 +24,13 @@ Renderer::Renderer(const PreparedScene& prepared, const FrameSettings& frame, co
       camera_(frame.camera, frame.width, frame.height),
       filter_(frame.sampling.filter),
       sampleLayout_(frame.sampling),
-      tracer_(prepared.scene(), prepared.bvh(), frame_, plan_, field) {
+      tracer_(prepared.scene(), prepared.bvh(), frame_, plan_, field),
+      withField_(field != nullptr) {
   if (frame.tracing.transport == Transport::kPath) {
     path_.emplace(prepared.scene(), prepared.bvh(), plan_.environment ? prepared.environmentLight() : nullptr, frame_,
                   plan_);
+  } else if (field) {
+    throw std::logic_error("an irradiance field is read under path transport only");
   }
 }
 

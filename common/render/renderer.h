@@ -28,12 +28,11 @@ class Renderer {
  public:
   Renderer(const PreparedScene& prepared, const FrameSettings& frame);
   // With a given plan (the one above derives it from the scene and frame).
-  Renderer(const PreparedScene& prepared, const FrameSettings& frame, const EffectPlan& plan);
-  // Under path transport, with the scene's irradiance field: a sample is
+  // With the scene's irradiance field (path transport only): a sample is
   // traced as Whitted's with the field's indirect light (as the hybrid
   // frame's raster shades it), and as a path where the field cannot decide.
   Renderer(const PreparedScene& prepared, const FrameSettings& frame, const EffectPlan& plan,
-           const IrradianceField& field);
+           const IrradianceField* field = nullptr);
   // Its tracer refers to its own plan: a copy would trace with the original's.
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
@@ -91,8 +90,6 @@ class Renderer {
     return withField_ ? fieldRadiance(ray, key, stats) : path_->radiance(ray, key, stats);
   }
   glm::vec3 fieldRadiance(const Ray& ray, const SampleKey& key, RayStats& stats) const;
-  Renderer(const PreparedScene& prepared, const FrameSettings& frame, const EffectPlan& plan,
-           const IrradianceField* field);
   void renderAdaptive(const TileRect& rect, std::span<const std::uint8_t> mask, std::vector<glm::vec3>& out,
                       RayStats& stats) const;
 
@@ -104,7 +101,7 @@ class Renderer {
   SampleLayout sampleLayout_;
   Tracer tracer_;
   std::optional<PathTracer> path_;  // under path transport, which then makes every sample
-  bool withField_ = false;          // but where the tracer reads the field
+  bool withField_;                  // but where the tracer reads the field
 };
 
 }  // namespace glint

@@ -68,7 +68,7 @@ void fieldRows(const PreparedScene& prepared, const LinearImage& reference, cons
       Clock::time_point start = Clock::now();
       const IrradianceField field = buildField(prepared, frame, settings, fieldStats);
       const double fieldMs = msSince(start);
-      const Renderer renderer(prepared, frame, EffectPlan::derive(scene, frame), field);
+      const Renderer renderer(prepared, frame, EffectPlan::derive(scene, frame), &field);
       start = Clock::now();
       const LinearImage image = renderLinear(renderer, computePool(), stats, LinearRange::kUnbounded);
       const double frameMs = msSince(start);

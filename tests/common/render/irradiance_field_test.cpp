@@ -176,7 +176,7 @@ TEST(IrradianceField, BatchesFillTheSameBytes) {
 // with the field's indirect light (a path where the field cannot decide).
 LinearImage renderWithField(const Scene& scene, const IrradianceField& field, RayStats& stats) {
   const PreparedScene prepared(scene, BvhSettings{});
-  const Renderer renderer(prepared, scene.frame, EffectPlan::derive(scene, scene.frame), field);
+  const Renderer renderer(prepared, scene.frame, EffectPlan::derive(scene, scene.frame), &field);
   ThreadPool pool(2);
   return renderLinear(renderer, pool, stats, LinearRange::kUnbounded, {});
 }
