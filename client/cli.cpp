@@ -42,6 +42,19 @@ constexpr const char* kViewHelp =
     "traced pixel by the server that traced it, Q or Escape closes. While the camera "
     "moves each frame is a one-sample preview; at rest the scene's samples follow. The window may be resized.";
 
+FieldSettings parseField(const std::string& text) {
+  static const std::regex pattern(R"((\d{1,6}),(\d{1,6}))");
+  std::smatch m;
+  if (!std::regex_match(text, m, pattern)) throw UsageError("--field " + text + ": expected PROBES,RAYS, e.g. 8,256");
+  const FieldSettings f{std::stoi(m[1]), std::stoi(m[2])};
+  if (f.probes < FieldSettings::kMinProbes || f.probes > FieldSettings::kMaxProbes) {
+    throw UsageError("--field " + text + ": probes must be in [" + std::to_string(FieldSettings::kMinProbes) + ", " +
+                     std::to_string(FieldSettings::kMaxProbes) + "]");
+  }
+  if (const auto problem = FieldSettings::raysProblem(f.rays)) throw UsageError("--field " + text + ": rays " + *problem);
+  return f;
+}
+
 void parseSize(const std::string& text, std::optional<int>& width, std::optional<int>& height) {
   static const std::regex pattern(R"((\d+)x(\d+))");
   std::smatch m;
@@ -230,6 +243,12 @@ void addFrameOptions(CLI::App* app, FrameOverrides& o) {
                 "between surfaces too); default: the scene's");
   app->add_option("--max-bounces", o.maxBounces, "Under path transport: bounces after a path's first hit")
       ->check(CLI::Range(0, FrameLimits::kMaxBounces));
+  app->add_option_function<std::string>(
+         "--field", [&o](const std::string& text) { asUsageError([&] { o.field = parseField(text); }); },
+         "Under path transport: the hybrid frame draws the light between surfaces from an irradiance field of "
+         "PROBES along the scene's longest side, RAYS each (a power of two), e.g. 8,256 (default: the scene's "
+         "tracing.field; none: every pixel is traced)")
+      ->type_name("PROBES,RAYS");
   app->add_option_function<std::string>(
          "--size", [&o](const std::string& text) { asUsageError([&] { parseSize(text, o.width, o.height); }); },
          "Image size WIDTHxHEIGHT (the camera's fov_y is kept; default: the scene's)")

@@ -4,11 +4,13 @@
 #include <string>
 
 #include "common/base/error.h"
+#include "common/render/effects.h"
+#include "common/render/emitter_patches.h"
 #include "common/scene/load_limits.h"
 
 namespace glint {
 
-void applyFrameOverrides(const FrameOverrides& o, Scene& scene) {
+void applyFrameOverrides(const FrameOverrides& o, Scene& scene, bool fieldInRaster) {
   FrameSettings& f = scene.frame;
   if (o.eye) f.camera.eye = *o.eye;
   if (o.lookAt) f.camera.lookAt = *o.lookAt;
@@ -56,10 +58,18 @@ void applyFrameOverrides(const FrameOverrides& o, Scene& scene) {
   if (o.mask) scene.mask.rule = *o.mask;
   if (o.maskThreshold) scene.mask.minReflectivity = *o.maskThreshold;
   if (o.shadowMap) scene.mask.shadowMap = *o.shadowMap;
-  if (f.tracing.transport == Transport::kPath && scene.mask.rule != MaskRule::kAll) {
-    scene.mask.rule = MaskRule::kAll;
-    std::fprintf(stderr, "note: path transport: every pixel is traced (OpenGL's pass draws direct light only)\n");
-  }
+  if (o.field) f.tracing.field = *o.field;
+  if (f.tracing.transport != Transport::kPath || scene.mask.rule == MaskRule::kAll) return;
+  const bool drawable = EmitterPatches::of(scene, EffectPlan::derive(scene, f), 0).has_value();
+  if (fieldInRaster && f.tracing.field && drawable) return;
+  scene.mask.rule = MaskRule::kAll;
+  const char* why = !f.tracing.field ? "for the hybrid frame to draw the light between surfaces from an irradiance "
+                                       "field, give --field or the scene's tracing.field"
+                    : !fieldInRaster ? "the hybrid frame draws the irradiance field's light in glint render in "
+                                       "process only"
+                                     : "the hybrid frame draws the irradiance field's light only for a few flat "
+                                       "emitters of plain emission";
+  std::fprintf(stderr, "note: path transport: every pixel is traced (%s)\n", why);
 }
 
 }  // namespace glint

@@ -36,10 +36,15 @@ struct FrameOverrides {
   std::optional<int> height;
   std::optional<Encoding> encoding;  // 8-bit outputs
   std::optional<float> exposure;     // EV
+  std::optional<FieldSettings> field;  // --field
 };
 
 // The scene with the overrides applied, its frame checked (an error names
-// the option).
-void applyFrameOverrides(const FrameOverrides& overrides, Scene& scene);
+// the option). Under path transport, the hybrid frame draws indirect light
+// where the scene or --field asks for an irradiance field, the command can
+// give its raster one (`fieldInRaster`: glint render in process) and the
+// scene's emitters are few flat ones (EmitterPatches); elsewhere every pixel
+// is traced (the mask rule becomes all), and a note says so.
+void applyFrameOverrides(const FrameOverrides& overrides, Scene& scene, bool fieldInRaster = false);
 
 }  // namespace glint

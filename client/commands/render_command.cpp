@@ -202,7 +202,7 @@ void checkCrop(const TileRect& crop, const FrameSettings& frame) {
 }  // namespace
 
 void applyOverrides(const RenderOptions& o, Scene& scene) {
-  applyFrameOverrides(o.frame, scene);
+  applyFrameOverrides(o.frame, scene, !o.remote.any());
   if (o.crop) checkCrop(*o.crop, scene.frame);
 }
 
@@ -242,6 +242,7 @@ std::optional<LinearImage> renderFrames(const RenderRun& run, TileBackend& backe
   if (hybridPath) {
     context.emplace(frame.width, frame.height, options.gl);
     raster.emplace(context->api(), scene);
+    if (backend.field()) raster->useField(*backend.field());
   }
   std::optional<StatsWriter> stats;
   if (!options.statsPath.empty()) stats.emplace(options.statsPath);
@@ -328,7 +329,11 @@ void runRender(const RenderOptions& options) {
   if (!options.provenanceOut.empty() && options.crop) {
     throw UsageError("--provenance-out " + options.provenanceOut + ": shows the whole frame; it cannot go with --crop");
   }
-  TileBackend backend({options.remote, options.bvh, true}, std::move(loaded));
+  // The hybrid frame under path transport reads the irradiance field, filled here once for every frame
+  // (applyOverrides left a rule other than all only where the raster can draw it).
+  const bool field =
+      loaded.scene.frame.tracing.transport == Transport::kPath && loaded.scene.mask.rule != MaskRule::kAll;
+  TileBackend backend({options.remote, options.bvh, true, field}, std::move(loaded));
   run.prepareMs = msSince(prepareStart);
 
   std::vector<HybridTimes> frameTimes;

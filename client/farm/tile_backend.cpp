@@ -3,6 +3,7 @@
 #include "client/farm/distributed_tile_service.h"
 #include "common/base/compute_pool.h"
 #include "common/base/error.h"
+#include "common/render/field_probes.h"
 
 namespace glint {
 
@@ -36,7 +37,12 @@ TileBackend::TileBackend(const Options& options, proto::LoadedBundle loaded) : l
   bvh.builder = options.bvh.value_or(bvh.builder);
   prepared_ = std::make_unique<PreparedScene>(std::move(loaded_.scene), bvh);
   pool_ = &computePool();
-  service_ = std::make_unique<LocalTileService>(*prepared_, *pool_);
+  if (options.field) {
+    const FrameSettings& frame = prepared_->scene().frame;
+    RayStats stats;
+    field_.emplace(buildField(*prepared_, frame, *frame.tracing.field, stats));
+  }
+  service_ = std::make_unique<LocalTileService>(*prepared_, *pool_, field());
 }
 
 TileBackend::~TileBackend() = default;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "common/geometry/bvh.h"
+#include "common/render/irradiance_field.h"
 #include "common/render/prepared_scene.h"
 #include "common/base/thread_pool.h"
 #include "common/render/tile_service.h"
@@ -43,6 +44,10 @@ class TileBackend {
     RemoteOptions remote;
     std::optional<BvhBuilder> bvh;
     bool awaitServer = true;  // wait for a server to be ready (view does not)
+    // In process: fill the scene's irradiance field (its tracing.field
+    // settings, which it must have) once, for the hybrid frame under path
+    // transport, and trace with it.
+    bool field = false;
   };
 
   // Prepares the scene or connects and uploads it; throws InputError.
@@ -59,6 +64,9 @@ class TileBackend {
   // nullptr through servers.
   const PreparedScene* prepared() const { return prepared_.get(); }
   ThreadPool* pool() { return pool_; }
+  // The irradiance field the tiles are traced with (Options::field); none
+  // otherwise.
+  const IrradianceField* field() const { return field_ ? &*field_ : nullptr; }
   // "4 threads", "server HOST:PORT" or "3 servers", for summaries.
   std::string where() const;
 
@@ -67,6 +75,7 @@ class TileBackend {
   proto::LoadedBundle loaded_;
   std::unique_ptr<PreparedScene> prepared_;  // in process only
   ThreadPool* pool_ = nullptr;               // the compute pool, in process only
+  std::optional<IrradianceField> field_;
   std::unique_ptr<TileService> service_;
 };
 

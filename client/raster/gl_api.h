@@ -45,8 +45,10 @@ namespace glint::gl {
   X(GetUniformLocation) \
   X(Uniform1i) \
   X(Uniform2i) \
+  X(Uniform3i) \
   X(Uniform1iv) \
   X(Uniform1f) \
+  X(Uniform2f) \
   X(Uniform1fv) \
   X(Uniform2fv) \
   X(Uniform3fv) \

@@ -8,6 +8,7 @@
 
 #include "common/geometry/region_query.h"
 #include "common/math/basis.h"
+#include "common/render/emitters.h"
 
 namespace glint::gl {
 namespace {
@@ -17,6 +18,10 @@ namespace {
 // the region query's slack. An occluder nearer the surface than this is
 // missed (a contact shadow thinner than 1/1000 of the distances).
 constexpr float kLift = 1e-3f;
+// Where a point counts as in an emitter's plane, as a share of its distance:
+// every point of the emitter sends it light at a cosine below this, not a
+// visible share of a byte.
+constexpr float kInPlane = 1e-4f;
 
 // The pyramid from a lifted point to a light: its five corners (the apex
 // first) and eight edges.
@@ -113,6 +118,16 @@ PenumbraProof::PenumbraProof(const Scene& scene, const EffectPlan& plan) : geome
   if (!lights_.empty()) bvh_ = Bvh::build(scene.geometry, BvhSettings{});
 }
 
+void PenumbraProof::addEmitters(const EmitterPatches& patches) {
+  for (const EmitterPatches::Patch& t : patches.patches()) {
+    const glm::vec3 a = t.corner, b = a + t.edge1, c = a + t.edge2;
+    // A triangle as a four-cornered base: its third edge's midpoint the
+    // fourth corner (two sides of the pyramid in one plane).
+    lights_.push_back({{a, b, c, 0.5f * (c + a)}, (a + b + c) / 3.0f, t.normal, 0.0f, true});
+  }
+  if (!lights_.empty() && bvh_.nodes().empty()) bvh_ = Bvh::build(geometry_, BvhSettings{});
+}
+
 std::optional<PenumbraProof::Base> PenumbraProof::baseFrom(const SoftLight& light, const glm::vec3& apex,
                                                            float distance) {
   if (light.radius == 0.0f) {
@@ -156,14 +171,26 @@ bool PenumbraProof::clear(const glm::vec3& apex, const Base& base, const glm::ve
 }
 
 bool PenumbraProof::seesWhole(const glm::vec3& p, const glm::vec3& eye) const {
-  for (const SoftLight& light : lights_) {
-    // Behind an area light: no light, nothing to prove.
-    if (light.radius == 0.0f && glm::dot(p - light.centre, light.normal) <= 0.0f) continue;
+  for (SoftLight light : lights_) {
     const glm::vec3 toLight = light.centre - p;
     const float distance = glm::length(toLight);
+    const float side = glm::dot(p - light.centre, light.normal);
+    // An emitter lights the side p is on; a point in its plane (a ceiling
+    // around a lamp set in it) gets next to nothing from it.
+    if (light.emitter && std::abs(side) <= kInPlane * distance) continue;
+    if (light.emitter && side < 0.0f) light.normal = -light.normal;
+    // Behind an area light: no light, nothing to prove.
+    if (light.radius == 0.0f && !light.emitter && side <= 0.0f) continue;
     const glm::vec3 apex = p + (kLift * (distance + glm::length(p - eye)) / distance) * toLight;
-    const std::optional<Base> base = baseFrom(light, apex, distance);
-    if (!base || !clear(apex, *base, light.centre)) return false;
+    std::optional<Base> base = baseFrom(light, apex, distance);
+    if (!base) return false;
+    glm::vec3 centre = light.centre;
+    if (light.emitter) {
+      const float keep = 1.0f - Emitters::kShortOfEmitter;
+      for (glm::vec3& corner : base->corners) corner = apex + keep * (corner - apex);
+      centre = apex + keep * (centre - apex);
+    }
+    if (!clear(apex, *base, centre)) return false;
   }
   return true;
 }

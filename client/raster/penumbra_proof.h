@@ -10,6 +10,7 @@
 #include "common/geometry/bvh.h"
 #include "common/geometry/region_query.h"
 #include "common/render/effects.h"
+#include "common/render/emitter_patches.h"
 #include "common/scene/scene.h"
 
 namespace glint::gl {
@@ -33,6 +34,12 @@ class PenumbraProof {
   // For the soft lights the plan lets cast shadows (none: active() false).
   PenumbraProof(const Scene& scene, const EffectPlan& plan);
   bool active() const { return !lights_.empty(); }
+  // The emitters' triangles too (path transport's light drawn from an
+  // irradiance field): each lights both its sides, and the pyramid to it
+  // stops short of it as the tracer's shadow rays do
+  // (Emitters::kShortOfEmitter), so that neither it nor its neighbours in
+  // its plane count as blocking.
+  void addEmitters(const EmitterPatches& patches);
 
   // Whether every soft light reaches the whole of p's view of it.
   bool seesWhole(const glm::vec3& p, const glm::vec3& eye) const;
@@ -46,6 +53,7 @@ class PenumbraProof {
     glm::vec3 centre;
     glm::vec3 normal;     // an area light's: unit, towards the lit side
     float radius = 0.0f;  // a sphere light's (0: an area light)
+    bool emitter = false;  // an emitting triangle: both sides lit, the pyramid short of it
   };
   // A pyramid's base: four corners in order around it, and the unit normal
   // of their plane towards the apex.

@@ -21,7 +21,14 @@ namespace glint::gl {
 namespace {
 
 // The texture units the fragment shaders read.
-enum TextureUnit : int { kImageUnit = 0, kShadowMapUnit = 1, kEmissionUnit = 2, kAreaPointsUnit = 3 };
+enum TextureUnit : int {
+  kImageUnit = 0,
+  kShadowMapUnit = 1,
+  kEmissionUnit = 2,
+  kAreaPointsUnit = 3,
+  kFieldUnit = 4,
+  kEmitterPointsUnit = 5
+};
 
 unsigned compile(const Api& gl, GLenum type, std::initializer_list<const char*> parts) {
   const unsigned shader = gl.CreateShader(type);
@@ -314,6 +321,7 @@ ShaderVariant RasterScene::variantOf(const Batch& batch, const FrameSettings& fr
   v.srgb = frame.output.encoding == Encoding::kSrgb;
   v.spotLights = v.lit && spotLights_;
   v.directionalLights = v.lit && directionalLights_;
+  v.field = field_ != nullptr;
   return v;
 }
 
@@ -337,6 +345,7 @@ void RasterScene::setFrameUniforms(unsigned program, const FrameSettings& frame,
   gl_.Uniform1i(at("uImage"), kImageUnit);
   gl_.Uniform1i(at("uEmissionImage"), kEmissionUnit);
   shadowMaps_.setUniforms(program, kShadowMapUnit, punctualLights_.size(), shadows_);
+  if (field_) field_->setUniforms(program, kFieldUnit, kEmitterPointsUnit);
 }
 
 void RasterScene::setLightUniforms(unsigned program) {
@@ -401,6 +410,17 @@ void RasterScene::uploadAreaPoints(const FrameSettings& frame) {
   }
 }
 
+void RasterScene::useField(const IrradianceField& field) {
+  const std::optional<EmitterPatches> patches = EmitterPatches::of(scene_, plan_, 0);
+  if (!patches) {
+    throw InputError("the hybrid frame cannot draw the emitters' light of this scene (more than " +
+                     std::to_string(EmitterPatches::kMaxPatches) +
+                     " emitting triangles, an emitting sphere or an emission texture): --mask all traces every pixel");
+  }
+  field_ = std::make_unique<FieldLight>(gl_, field);
+  penumbra_.addEmitters(*patches);
+}
+
 bool RasterScene::objectLit(std::uint32_t object) const {
   // Objects are numbered from 1 (0: the background): the models, then the
   // spheres (uploadMeshes, uploadSpheres).
@@ -434,6 +454,7 @@ void RasterScene::setMaterialUniforms(unsigned program, const Material& m) {
   gl_.Uniform3fv(at("uColor"), 1, glm::value_ptr(m.color));
   const glm::vec4 terms(m.ambient, m.diffuse, m.specular, m.shininess);
   gl_.Uniform4fv(at("uTerms"), 1, glm::value_ptr(terms));
+  gl_.Uniform2f(at("uOtherLobes"), m.reflectivity, m.transparency);
   gl_.Uniform3fv(at("uEmission"), 1, glm::value_ptr(m.emission));
   if (m.emissionTexture >= 0) {
     const Texture& e = scene_.textures[static_cast<std::size_t>(m.emissionTexture)];
@@ -576,6 +597,7 @@ double RasterScene::draw(const FrameSettings& frame, const MaskSettings& mask) {
   shadows_ = prepareShadows(mask);
   const double shadowMs = msSince(start);
   uploadAreaPoints(frame);
+  if (field_) field_->prepare(*EmitterPatches::of(scene_, plan_, frame.sampling.lightSamples));
   target_.bind(frame.width, frame.height);
   gl_.Viewport(0, 0, frame.width, frame.height);
   const Encoder encoder(frame.output);

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>
@@ -9,6 +10,7 @@
 
 #include <glm/mat4x4.hpp>
 
+#include "client/raster/field_light.h"
 #include "client/raster/gl_api.h"
 #include "client/raster/light_proof.h"
 #include "client/raster/penumbra_proof.h"
@@ -38,6 +40,12 @@ class RasterScene {
   RasterScene(const RasterScene&) = delete;
   RasterScene& operator=(const RasterScene&) = delete;
 
+  // Path transport's light from an irradiance field in place of ambient (the
+  // tracer's Tracer::fieldLight), for every frame drawn after; the field
+  // must outlive the scene. The emitters' direct light is drawn unshadowed
+  // and their penumbra proved (penumbra()). Throws InputError when the
+  // scene's emitters are not few flat ones (EmitterPatches).
+  void useField(const IrradianceField& field);
   // Draws the frame into target() and marks each pixel (PixelMark). Returns
   // the milliseconds spent drawing shadow maps (0 but on the first frame
   // that needs them, or another map size).
@@ -166,6 +174,7 @@ class RasterScene {
   bool spotLights_ = false;          // the scene has spot lights (ShaderVariant::spotLights)
   bool directionalLights_ = false;   // and directional ones
   PenumbraProof penumbra_;
+  std::unique_ptr<FieldLight> field_;  // none: ambient
 };
 
 }  // namespace glint::gl

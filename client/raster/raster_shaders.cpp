@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <string>
 
+#include "client/raster/field_light.h"
 #include "client/raster/shading_source.h"
 #include "common/scene/shading.h"
 #include "common/scene/light.h"
@@ -14,7 +15,7 @@ int ShaderVariant::key() const {
   return (sphere ? 1 : 0) | (traced ? 2 : 0) | static_cast<int>(texture) << 2 | (lit ? 16 : 0) |
          (specular ? 32 : 0) | (shadows ? 64 : 0) | (srgb ? 128 : 0) | (depthMap ? 256 : 0) | (emits ? 512 : 0) |
          static_cast<int>(emission) << 10 | (vertexColors ? 4096 : 0) | (spotLights ? 8192 : 0) |
-         (directionalLights ? 16384 : 0);
+         (directionalLights ? 16384 : 0) | (field ? 32768 : 0);
 }
 
 std::string ShaderVariant::defines() const {
@@ -37,6 +38,7 @@ std::string ShaderVariant::defines() const {
   define(depthMap, "DEPTH_MAP");
   define(spotLights, "SPOT_LIGHTS");
   define(directionalLights, "DIRECTIONAL_LIGHTS");
+  define(field, "FIELD");
   return d;
 }
 
@@ -63,7 +65,13 @@ std::string fragmentPrelude(const ShaderVariant& variant) {
          define("LIGHT_DIRECTIONAL", std::to_string(static_cast<int>(LightType::kDirectional))) +
          define("WRAP_MIRRORED_REPEAT", std::to_string(static_cast<int>(TextureWrap::kMirroredRepeat))) +
          define("WRAP_CLAMP_TO_EDGE", std::to_string(static_cast<int>(TextureWrap::kClampToEdge))) +
-         define("HARD_SPOT_EDGE", floatLiteral(kHardSpotEdge)) + variant.defines() + define("SHARED", "") +
+         define("HARD_SPOT_EDGE", floatLiteral(kHardSpotEdge)) +
+         define("FIELD_PROBE_TEXELS", std::to_string(kFieldProbeTexels)) +
+         define("FIELD_PROBES_PER_ROW", std::to_string(kFieldProbesPerRow)) +
+         define("FIELD_MAP_SIDE", std::to_string(IrradianceField::kMapSide)) +
+         define("FIELD_DECIDED_SHARE", floatLiteral(IrradianceField::kDecidedShare)) +
+         define("FIELD_DOUBT_SHARE", floatLiteral(IrradianceField::kDoubtShare)) +
+         define("EMITTER_POINTS_PER_ROW", std::to_string(kEmitterPointsPerRow)) + variant.defines() + define("SHARED", "") +
          kSharedShading;
 }
 
@@ -110,11 +118,19 @@ uniform vec3 uDepthAxis;                     // a depth map's: non-zero for a di
 uniform vec3 uShadowFaceS[6];
 uniform vec3 uShadowFaceT[6];
 uniform vec3 uShadowFaceM[6];
+uniform vec2 uOtherLobes;                    // the material's reflectivity and transparency (diffuseAlbedo)
+uniform sampler2D uField;                    // the field's probes (client/raster/field_light.h)
+uniform vec3 uFieldOrigin;                   // probe (0, 0, 0)
+uniform vec3 uFieldStep;                     // between neighbouring probes
+uniform ivec3 uFieldCounts;                  // probes along each axis
+uniform sampler2D uEmitterPoints;            // per point: position, power, normal
+uniform int uEmitterCount;
 uniform bool uMarkUndecided;                 // a pixel the maps cannot decide is traced (rule auto)
 uniform bool uSelfShadowing;                 // the tracer casts shadow rays (EffectPlan::shadows)
 layout(location = 0) out vec4 fragColor;
 layout(location = 1) out uint fragSurface;   // object << 2 | PixelMark
 bool gShadowUndecided = false;               // set by shadowVisibility() and behindTriangle()
+bool gFieldUndecided = false;                // set by fieldIrradiance()
 
 vec3 encodeOutput(vec3 linear) {
   vec3 v = clamp(linear * uExposureScale, 0.0, 1.0);
@@ -126,9 +142,9 @@ vec3 encodeOutput(vec3 linear) {
 }
 
 // The surface value of a fragment OpenGL shades: traced where the shadow
-// maps could not decide (and the rule says so).
+// maps or the field could not decide (and the rule says so).
 uint surfaceOf(int object) {
-  return uint(object) << 2 | (gShadowUndecided && uMarkUndecided ? 2u : 0u);
+  return uint(object) << 2 | ((gShadowUndecided || gFieldUndecided) && uMarkUndecided ? 2u : 0u);
 }
 
 #if defined(TEXTURE_IMAGE) || defined(EMISSION_IMAGE)
@@ -322,18 +338,90 @@ bool behindTriangle(vec3 l, vec3 ng) {
 }
 #endif
 
+#ifdef FIELD
+// Probe i's texel k (its coefficients, then its map's moments).
+vec3 fieldTexel(int i, int k) {
+  return texelFetch(uField, ivec2((i % FIELD_PROBES_PER_ROW) * FIELD_PROBE_TEXELS + k, i / FIELD_PROBES_PER_ROW), 0).rgb;
+}
+
+// The field's irradiance at p toward unit n, its cell's eight probes blended
+// as IrradianceField::irradiance blends them; gFieldUndecided where too
+// little of their weight sees p, or too much is in doubt.
+vec3 fieldIrradiance(vec3 p, vec3 n) {
+  float minStep = min(uFieldStep.x, min(uFieldStep.y, uFieldStep.z));
+  vec3 q = p + (0.25 * minStep) * n;
+  vec3 at = clamp((q - uFieldOrigin) / uFieldStep, vec3(0.0), vec3(uFieldCounts - 1));
+  ivec3 base = min(ivec3(at), uFieldCounts - 2);
+  vec3 alpha = at - vec3(base);
+  float minVariance = (0.05 * minStep) * (0.05 * minStep);
+  vec3 sum = vec3(0.0);
+  float weight = 0.0, share = 0.0, doubt = 0.0;
+  for (int corner = 0; corner < 8; ++corner) {
+    ivec3 offset = ivec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+    ivec3 cell = base + offset;
+    int i = (cell.z * uFieldCounts.y + cell.y) * uFieldCounts.x + cell.x;
+    vec3 toProbe = uFieldOrigin + vec3(cell) * uFieldStep - q;
+    float d = length(toProbe);
+    vec3 dir = d > 0.0 ? toProbe / d : n;
+    vec3 t = mix(1.0 - alpha, alpha, vec3(offset));
+    float s = probeShare(t.x * t.y * t.z, dir, n);
+    ivec2 xy = clamp(ivec2(octahedralPoint(-dir) * float(FIELD_MAP_SIDE)), ivec2(0), ivec2(FIELD_MAP_SIDE - 1));
+    float v = probeVisibility(fieldTexel(i, 9 + xy.y * FIELD_MAP_SIDE + xy.x).rg, d, minVariance);
+    float w = s * v;
+    vec3 c[9];
+    for (int k = 0; k < 9; ++k) c[k] = fieldTexel(i, k);
+    sum += w * shIrradiance(c, n);
+    weight += w;
+    share += s;
+    if (visibilityInDoubt(v)) doubt += s;
+  }
+  if (!(share > 0.0 && weight >= FIELD_DECIDED_SHARE * share && doubt <= FIELD_DOUBT_SHARE * share)) {
+    gFieldUndecided = true;
+  }
+  return weight > 0.0 ? sum / weight : vec3(0.0);
+}
+
+// The emitters' light at p toward unit n, unshadowed: the sum over their
+// fixed points (where something may block it, the pixel is traced:
+// client/raster/penumbra_proof.h).
+vec3 emitterIrradiance(vec3 p, vec3 n) {
+  vec3 sum = vec3(0.0);
+  for (int i = 0; i < uEmitterCount; ++i) {
+    ivec2 at = ivec2(3 * (i % EMITTER_POINTS_PER_ROW), i / EMITTER_POINTS_PER_ROW);
+    sum += emitterPointIrradiance(texelFetch(uEmitterPoints, at + ivec2(1, 0), 0).rgb,
+                                  texelFetch(uEmitterPoints, at, 0).rgb,
+                                  texelFetch(uEmitterPoints, at + ivec2(2, 0), 0).rgb, p, n);
+  }
+  return sum;
+}
+
+// The light other surfaces send p, as the tracer's fieldLight: the diffuse
+// albedo over pi times the field's and the emitters' irradiance.
+vec3 fieldLight(vec3 p, vec3 ns, vec3 c) {
+  vec3 albedo = diffuseAlbedo(c, uTerms.y, uTerms.z, uOtherLobes.x, uOtherLobes.y);
+  if (albedo == vec3(0.0)) return albedo;
+  return albedo * ((fieldIrradiance(p, ns) + emitterIrradiance(p, ns)) * 0.318309886);
+}
+#endif
+
 vec3 shade(vec3 p, vec3 ng, vec3 ns, vec2 uv) {
   vec3 c = surfaceColour(uv);
-  vec3 result = phongAmbient(c, uTerms.x);
-#ifdef EMISSIVE
-  result += emitted(uv);
-#endif
-#ifdef LIT
+#if defined(LIT) || defined(FIELD)
   vec3 toViewer = normalize(uEye - p);
   if (dot(ng, toViewer) < 0.0) ng = -ng;
   float len = length(ns);
   ns = len > 0.0 ? ns / len : ng;
   if (dot(ns, ng) < 0.0) ns = -ns;
+#endif
+#ifdef FIELD
+  vec3 result = fieldLight(p, ns, c);
+#else
+  vec3 result = phongAmbient(c, uTerms.x);
+#endif
+#ifdef EMISSIVE
+  result += emitted(uv);
+#endif
+#ifdef LIT
   for (int i = 0; i < uLightCount; ++i) {
 #ifdef DIRECTIONAL_LIGHTS
     if (uLightKind[i] == LIGHT_DIRECTIONAL) {

@@ -31,6 +31,7 @@ struct ShaderVariant {
   bool srgb = false;      // the 8-bit encoding (else linear)
   bool spotLights = false;         // the scene has spot lights: their cones are applied
   bool directionalLights = false;  // it has directional lights
+  bool field = false;  // path transport's light from the irradiance field (client/raster/field_light.h), not ambient
   // Drawn into a shadow map: writes the distance from the eye / far, which
   // the maps hold. The frame's own depth is the projection's (reversed: 1 at
   // the near plane, falling as 1 / distance), so that OpenGL tests it before

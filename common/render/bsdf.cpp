@@ -8,6 +8,7 @@
 #include "common/math/basis.h"
 #include "common/math/circular.h"
 #include "common/math/power.h"
+#include "common/scene/shading.h"
 #include "common/render/glossy_lobe.h"
 #include "common/render/optics.h"
 
@@ -43,10 +44,10 @@ float smithG1(float c, float alpha) {
 }  // namespace
 
 LobeWeights lobeWeights(const Material& m, const glm::vec3& color) {
-  LobeWeights w{glm::max(color * m.diffuse, glm::vec3(0.0f)), m.specular, m.reflectivity, m.transparency};
-  const float sum = maxOf(w.albedo) + w.specular + w.reflectivity + w.transparency;
+  LobeWeights w{glsl::diffuseAlbedo(color, m.diffuse, m.specular, m.reflectivity, m.transparency), m.specular,
+                m.reflectivity, m.transparency};
+  const float sum = maxOf(glm::max(color * m.diffuse, glm::vec3(0.0f))) + w.specular + w.reflectivity + w.transparency;
   if (sum > 1.0f) {
-    w.albedo /= sum;
     w.specular /= sum;
     w.reflectivity /= sum;
     w.transparency /= sum;

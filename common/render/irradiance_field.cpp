@@ -29,6 +29,7 @@ struct Blend {
   glm::vec3 sum{0.0f};
   float weight = 0.0f;  // of the probes that see the point
   float share = 0.0f;   // before visibility
+  float doubt = 0.0f;   // of the probes in doubt whether they see it
 };
 
 // The box the probes span: the bounds, a flat side (a scene of one plane)
@@ -83,13 +84,16 @@ IrradianceField::Lookup IrradianceField::irradiance(const glm::vec3& p, const gl
     const float share = glsl::probeShare(t.x * t.y * t.z, dir, n);
     const Probe& probe = probes_[static_cast<std::size_t>(i)];
     const glm::vec2 moments = probe.moments[static_cast<std::size_t>(texel(glsl::octahedralPoint(-dir)))];
-    const float w = share * glsl::probeVisibility(moments, d, minVariance);
+    const float v = glsl::probeVisibility(moments, d, minVariance);
+    const float w = share * v;
     blend.sum += w * glsl::shIrradiance(probe.irradiance.data(), n);
     blend.weight += w;
     blend.share += share;
+    if (glsl::visibilityInDoubt(v)) blend.doubt += share;
   }
   Lookup out;
-  out.decided = blend.share > 0.0f && blend.weight >= kDecidedShare * blend.share;
+  out.decided = blend.share > 0.0f && blend.weight >= kDecidedShare * blend.share &&
+                blend.doubt <= kDoubtShare * blend.share;
   if (blend.weight > 0.0f) out.irradiance = blend.sum / blend.weight;
   return out;
 }

@@ -29,8 +29,11 @@ class IrradianceField {
   static constexpr int kMapSide = 8;
   static constexpr int kMapTexels = kMapSide * kMapSide;
   // A lookup the field decides: the probes that see the point carry at
-  // least this share of its weight before visibility.
+  // least kDecidedShare of its weight before visibility, and those in doubt
+  // (visibilityInDoubt) at most kDoubtShare (a probe across a thin wall
+  // holds the other room's light, which even a small weight would leak).
   static constexpr float kDecidedShare = 0.1f;
+  static constexpr float kDoubtShare = 0.01f;
 
   struct Probe {
     std::array<glm::vec3, 9> irradiance{};  // A_l L_k per basis function
@@ -46,7 +49,9 @@ class IrradianceField {
   const FieldSettings& settings() const { return settings_; }
   const glm::ivec3& counts() const { return counts_; }
   int probeCount() const { return counts_.x * counts_.y * counts_.z; }
-  glm::vec3 position(int probe) const;
+  glm::vec3 position(int probe) const;  // origin() + cell x step()
+  const glm::vec3& origin() const { return origin_; }
+  const glm::vec3& step() const { return step_; }
   // Where a ray's distance is clamped to in the visibility map.
   float maxDistance() const;
   Probe& probe(int i) { return probes_[static_cast<std::size_t>(i)]; }

@@ -9,7 +9,7 @@ namespace glint {
 
 void LocalTileService::render(const FrameSettings& frame, std::span<const TileJob> jobs,
                               const std::function<void(std::size_t, TileOutput&&)>& done) {
-  const Renderer renderer(prepared_, frame);
+  const Renderer renderer(prepared_, frame, EffectPlan::derive(prepared_.scene(), frame), field_);
   renderOnPool(renderer, pool_, jobs, done);
 }
 

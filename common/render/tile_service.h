@@ -5,6 +5,7 @@
 #include <span>
 #include <vector>
 
+#include "common/render/irradiance_field.h"
 #include "common/render/prepared_scene.h"
 #include "common/render/ray_stats.h"
 #include "common/scene/scene.h"
@@ -71,10 +72,12 @@ class TileService {
   std::function<void(std::size_t)> traced_;
 };
 
-// Tiles rendered on this machine's thread pool.
+// Tiles rendered on this machine's thread pool; with an irradiance field
+// (path transport), by the tracer that reads it (Renderer).
 class LocalTileService : public TileService {
  public:
-  LocalTileService(const PreparedScene& prepared, ThreadPool& pool) : prepared_(prepared), pool_(pool) {}
+  LocalTileService(const PreparedScene& prepared, ThreadPool& pool, const IrradianceField* field = nullptr)
+      : prepared_(prepared), pool_(pool), field_(field) {}
   void render(const FrameSettings& frame, std::span<const TileJob> jobs,
               const std::function<void(std::size_t, TileOutput&&)>& done) override;
   int parallelism() const override { return pool_.size(); }
@@ -82,6 +85,7 @@ class LocalTileService : public TileService {
  private:
   const PreparedScene& prepared_;
   ThreadPool& pool_;
+  const IrradianceField* field_;
 };
 
 }  // namespace glint

@@ -22,7 +22,6 @@ Tracer::Tracer(const Scene& scene, const Bvh& bvh, const FrameSettings& frame, c
       plan_(plan),
       environment_(plan.environment ? scene.environment.get() : nullptr),
       field_(field) {
-  if (field) emitters_.emplace(scene.geometry, plan);
   for (const Light& l : scene.lights) {
     const int count = softLightSamples(l, frame.sampling.lightSamples);
     areas_.push_back(l.type == LightType::kArea ? std::optional<AreaLightPoints>(std::in_place, l, count)
@@ -34,11 +33,20 @@ Tracer::Tracer(const Scene& scene, const Bvh& bvh, const FrameSettings& frame, c
     lightDimensions_.push_back(lightDimensionsPerDepth_);
     if (softLight(l)) lightDimensionsPerDepth_ += 2 * count;
   }
+  if (!field) return;
+  patches_ = EmitterPatches::of(scene, plan, frame.sampling.lightSamples);
+  if (!patches_) {
+    emitters_.emplace(scene.geometry, plan);
+    return;
+  }
+  for (const EmitterPatches::Patch& p : patches_->patches()) {
+    patchDimensions_.push_back(lightDimensionsPerDepth_);
+    lightDimensionsPerDepth_ += 2 * static_cast<int>(p.strata.size());
+  }
 }
 
-int Tracer::lightDimension(int depth, int light) const {
-  return SampleKey::kFirstLightDimension + (depth - 1) * lightDimensionsPerDepth_ +
-         lightDimensions_[static_cast<std::size_t>(light)];
+int Tracer::lightDimension(int depth, int offset) const {
+  return SampleKey::kFirstLightDimension + (depth - 1) * lightDimensionsPerDepth_ + offset;
 }
 
 int Tracer::lobeDimension(int depth) const {
@@ -67,13 +75,20 @@ std::optional<glm::vec3> Tracer::radianceWithField(const Ray& ray, const SampleK
 }
 
 glm::vec3 Tracer::fieldLight(const ShadingPoint& at, const Surface& f, Path& path) const {
+  const glm::vec3 albedo = lobeWeights(f.m, f.color).albedo;
+  if (albedo == glm::vec3(0.0f)) return albedo;  // no lookup: nothing to decide
   const IrradianceField::Lookup light = field_->irradiance(at.s.p, at.s.ns);
   if (!light.decided) path.undecided = true;
   const glm::vec3 irradiance = light.irradiance + emitterIrradiance(at, path);
-  return lobeWeights(f.m, f.color).albedo * (irradiance * std::numbers::inv_pi_v<float>);
+  return albedo * (irradiance * std::numbers::inv_pi_v<float>);
 }
 
 glm::vec3 Tracer::emitterIrradiance(const ShadingPoint& at, Path& path) const {
+  if (patches_) {
+    glm::vec3 sum(0.0f);
+    for (int k = 0; k < static_cast<int>(patches_->patches().size()); ++k) sum += patchIrradiance(at, k, path);
+    return sum;
+  }
   if (emitters_->empty()) return glm::vec3(0.0f);
   // A pair of the key's points a depth, spread evenly over a pixel's samples.
   const glm::vec2 u = path.key.stratified(SampleKey::kFirstPathPair + at.depth - 1);
@@ -87,6 +102,25 @@ glm::vec3 Tracer::emitterIrradiance(const ShadingPoint& at, Path& path) const {
     return glm::vec3(0.0f);
   }
   return l->radiance * (cosI / l->pdf);
+}
+
+glm::vec3 Tracer::patchIrradiance(const ShadingPoint& at, int patch, Path& path) const {
+  const EmitterPatches::Patch& e = patches_->patches()[static_cast<std::size_t>(patch)];
+  glm::vec3 open(0.0f);
+  for (const glm::vec3& c : e.centres) open += e.irradianceFrom(c, at.s.p, at.s.ns);
+  if (open == glm::vec3(0.0f)) return open;
+  const auto target = [&](int k, const glm::vec2& u) -> std::optional<Direction> {
+    const glm::vec3 q = e.at(stratumPoint(e.strata[static_cast<std::size_t>(k)], u));
+    const glm::vec3 fromOrigin = q - shadowFrom(at, q - at.outside);
+    const float distance = glm::length(fromOrigin);
+    if (!(distance > 0.0f)) return std::nullopt;
+    return Direction{fromOrigin / distance, distance * (1.0f - Emitters::kShortOfEmitter)};
+  };
+  const auto weight = [&](const Direction& d, float cosine) {
+    return cosine * std::abs(glm::dot(e.normal, d.l)) / (d.distance * d.distance);
+  };
+  const int first = lightDimension(at.depth, patchDimensions_[static_cast<std::size_t>(patch)]);
+  return open * visibleShare(at, first, static_cast<int>(e.strata.size()), path, target, weight);
 }
 
 glm::vec3 Tracer::lightIntensity(const glm::vec3& color, const glm::vec3& attenuation, float distance) const {
@@ -178,10 +212,11 @@ void Tracer::addAreaLight(const ShadingPoint& at, const Surface& f, int light, P
     if (!(distance > 0.0f) || !a.lights(q, at.s.p)) return std::nullopt;
     return Direction{fromOrigin / distance, distance};
   };
-  const auto weight = [&](float cosine, float distance) {
-    return attenuate(glm::vec3(cosine), l.attenuation, distance).x;
+  const auto weight = [&](const Direction& d, float cosine) {
+    return attenuate(glm::vec3(cosine), l.attenuation, d.distance).x;
   };
-  result += lit * visibleShare(at, light, static_cast<int>(a.strata.size()), path, target, weight);
+  const int first = lightDimension(at.depth, lightDimensions_[static_cast<std::size_t>(light)]);
+  result += lit * visibleShare(at, first, static_cast<int>(a.strata.size()), path, target, weight);
 }
 
 void Tracer::addSphereLight(const ShadingPoint& at, const Surface& f, int light, Path& path, glm::vec3& result) const {
@@ -204,14 +239,14 @@ void Tracer::addSphereLight(const ShadingPoint& at, const Surface& f, int light,
     if (!(s.distance > 0.0f)) return std::nullopt;
     return Direction{s.direction, s.distance};
   };
-  const auto weight = [](float cosine, float) { return cosine; };
-  result += lit * visibleShare(at, light, static_cast<int>(strata.size()), path, target, weight);
+  const auto weight = [](const Direction&, float cosine) { return cosine; };
+  const int first = lightDimension(at.depth, lightDimensions_[static_cast<std::size_t>(light)]);
+  result += lit * visibleShare(at, first, static_cast<int>(strata.size()), path, target, weight);
 }
 
 template <typename Target, typename Weight>
-float Tracer::visibleShare(const ShadingPoint& at, int light, int count, Path& path, const Target& target,
+float Tracer::visibleShare(const ShadingPoint& at, int first, int count, Path& path, const Target& target,
                            const Weight& weight) const {
-  const int first = lightDimension(at.depth, light);
   float open = 0.0f;
   float total = 0.0f;
   for (int k = 0; k < count; ++k) {
@@ -220,7 +255,7 @@ float Tracer::visibleShare(const ShadingPoint& at, int light, int count, Path& p
     if (!d) continue;
     const float cosine = glm::dot(d->l, at.s.ns);
     if (cosine <= 0.0f) continue;
-    const float w = weight(cosine, d->distance);
+    const float w = weight(*d, cosine);
     total += w;
     ++path.stats.shadow;
     if (bvh_.occluded(Ray(shadowFrom(at, d->l), d->l), d->distance)) {

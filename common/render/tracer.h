@@ -8,6 +8,7 @@
 #include "common/geometry/bvh.h"
 #include "common/render/area_light.h"
 #include "common/render/effects.h"
+#include "common/render/emitter_patches.h"
 #include "common/render/emitters.h"
 #include "common/render/irradiance_field.h"
 #include "common/render/ray_stats.h"
@@ -27,8 +28,9 @@ namespace glint {
 // With an irradiance field (the hybrid frame under path transport), the
 // light other surfaces reflect onto a diffuse surface comes from the field,
 // read as the raster reads it, in place of the constant ambient term; the
-// light the emitting surfaces send it straight, from one point drawn on
-// them a sample (shadowed as a shadow ray finds).
+// light the emitting surfaces send it straight, from their fixed points
+// (common/render/emitter_patches.h) where they are few flat ones, else from
+// one point drawn on them a sample (shadowed as a shadow ray finds).
 //
 // Sidedness comes from the path, not from stored normals: a ray refracted
 // into a transparent object is inside it until it refracts out again, so a
@@ -85,6 +87,7 @@ class Tracer {
   // BSDF's) over pi times the irradiance, the field's and the emitters'.
   glm::vec3 fieldLight(const ShadingPoint& at, const Surface& f, Path& path) const;
   glm::vec3 emitterIrradiance(const ShadingPoint& at, Path& path) const;
+  [[gnu::noinline]] glm::vec3 patchIrradiance(const ShadingPoint& at, int patch, Path& path) const;
   // A light at `position` seen from the point: the unit direction and the
   // distance; none when it is behind the surface.
   struct Direction {
@@ -114,15 +117,17 @@ class Tracer {
                                         glm::vec3& result) const;
   // The share of a soft light's unshadowed light that reaches the point: one
   // shadow ray for each of `count` strata, to target(k, u) (none: the
-  // stratum's point gives nothing), its verdict weighted by weight(cosine,
-  // distance), what the point gives a diffuse surface.
+  // stratum's point gives nothing; u from the key's dimensions from
+  // `first` on, two a stratum), its verdict weighted by weight(direction,
+  // cosine), what the point gives a diffuse surface.
   template <typename Target, typename Weight>
-  float visibleShare(const ShadingPoint& at, int light, int count, Path& path, const Target& target,
+  float visibleShare(const ShadingPoint& at, int first, int count, Path& path, const Target& target,
                      const Weight& weight) const;
   // The sample key's dimensions (SampleKey): from kFirstLightDimension, for
-  // each depth, each soft light's two per stratum; after max_depth such
-  // blocks, two per depth for a glossy reflection's lobe.
-  int lightDimension(int depth, int light) const;
+  // each depth, each soft light's two per stratum, then each emitter patch's;
+  // after max_depth such blocks, two per depth for a glossy reflection's lobe.
+  // A soft light's or patch's first, `offset` into its depth's block.
+  int lightDimension(int depth, int offset) const;
   int lobeDimension(int depth) const;
   // The mirror direction, or a rough material's drawn from its lobe.
   glm::vec3 reflectedDirection(const Ray& ray, const ShadingPoint& at, const Material& m, const MaterialEffects& e,
@@ -137,7 +142,9 @@ class Tracer {
   const EffectPlan& plan_;
   const Environment* environment_;                     // what escaping rays see; none: the background
   const IrradianceField* field_;                       // none: the ambient term
-  std::optional<Emitters> emitters_;                   // with a field
+  std::optional<EmitterPatches> patches_;              // with a field, where the emitters are few flat ones
+  std::optional<Emitters> emitters_;                   // with a field, where they are not
+  std::vector<int> patchDimensions_;                   // per patch: its first dimension in a depth's block
   std::vector<std::optional<AreaLightPoints>> areas_;  // per light: an area light's points
   std::vector<std::vector<Stratum>> sphereStrata_;     // per light: a sphere light's strata
   std::vector<int> lightDimensions_;                   // per light: its first dimension in a depth's block

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -86,6 +87,16 @@ struct FieldSettings {
 
   int probes = 8;   // along the scene's longest side; the others in proportion, at least kMinProbes
   int rays = 256;   // a probe's, a power of two from kMinRays to kMaxRays
+
+  // Why a count of rays cannot be (out of range, or not a power of two, as
+  // each visibility texel gets as many); none when it can.
+  static std::optional<std::string> raysProblem(int rays) {
+    if (rays < kMinRays || rays > kMaxRays || (rays & (rays - 1)) != 0) {
+      return "must be a power of two from " + std::to_string(kMinRays) + " to " + std::to_string(kMaxRays) +
+             " (64, 128, 256 ...): each visibility texel gets as many rays";
+    }
+    return std::nullopt;
+  }
 };
 
 struct TracingSettings {
@@ -93,7 +104,9 @@ struct TracingSettings {
   float minWeight = 0.01f;  // rays whose path weight falls below this are not traced (Whitted)
   Transport transport = Transport::kWhitted;
   int maxBounces = 8;  // path: surfaces a path may bounce off after the first one it hits
-  FieldSettings field;  // path, in the hybrid frame
+  // Path: the hybrid frame draws the light between surfaces from an
+  // irradiance field of these settings; none: every pixel is traced.
+  std::optional<FieldSettings> field;
 };
 
 struct MaskSettings {

@@ -188,11 +188,11 @@ class SceneLoader {
 
   void readField(const JsonReader& r) {
     r.allowKeys({"probes", "rays"});
-    FieldSettings& f = scene_.frame.tracing.field;
+    FieldSettings& f = scene_.frame.tracing.field.emplace();
     if (auto p = r.find("probes")) f.probes = p->integer(FieldSettings::kMinProbes, FieldSettings::kMaxProbes);
     if (auto n = r.find("rays")) {
       f.rays = n->integer(FieldSettings::kMinRays, FieldSettings::kMaxRays);
-      if ((f.rays & (f.rays - 1)) != 0) n->fail("must be a power of two (64, 128, 256 ...): each visibility texel gets as many rays");
+      if (const auto problem = FieldSettings::raysProblem(f.rays)) n->fail(*problem);
     }
   }
 

@@ -170,6 +170,13 @@ SHARED float probeVisibility(vec2 moments, float d, float minVariance) {
   return bound * bound * bound;
 }
 
+// Whether a probe's visibility leaves it in doubt whether the probe sees
+// the point: neither about seen (0.9) nor about hidden (1/1000). A point
+// near a thin wall or in an object's contact shadow is such for the probes
+// across: the coarse map blurs the edge between what they see and what they
+// do not, and blending them would leak their light.
+SHARED bool visibilityInDoubt(float v) { return v > 0.001f && v < 0.9f; }
+
 // A probe's irradiance toward unit normal n from its coefficients c (each
 // A_l L_k), never below zero (order 2 rings slightly under a light that
 // arrives from one side only).
@@ -177,4 +184,29 @@ SHARED vec3 shIrradiance(const vec3 c[9], vec3 n) {
   vec3 e = vec3(0.0f);
   for (int k = 0; k < 9; ++k) e += c[k] * shBasis(k, n);
   return max(e, vec3(0.0f));
+}
+
+// The diffuse albedo of a surface of colour c (the material's times its
+// texture) under path transport: c x diffuse, never below zero, divided by
+// the sum of the lobes' weights where it exceeds 1 (energy conserving:
+// common/render/bsdf.h's lobeWeights).
+SHARED vec3 diffuseAlbedo(vec3 c, float diffuse, float specular, float reflectivity, float transparency) {
+  vec3 a = max(c * diffuse, vec3(0.0f));
+  float sum = max(a.x, max(a.y, a.z)) + specular + reflectivity + transparency;
+  return sum > 1.0f ? a / sum : a;
+}
+
+// The irradiance a surface at p of unit normal n receives, unshadowed, from
+// one of the emitters' fixed points (common/render/emitter_patches.h): q on
+// a triangle of unit normal e, radiating `power` (the emission times the
+// area the point stands for) from both sides: power |cos_e| cos / d^2; zero
+// where n faces away.
+SHARED vec3 emitterPointIrradiance(vec3 power, vec3 q, vec3 e, vec3 p, vec3 n) {
+  vec3 to = q - p;
+  float d2 = dot(to, to);
+  if (!(d2 > 0.0f)) return vec3(0.0f);
+  vec3 l = to * (1.0f / sqrt(d2));
+  float cosine = dot(l, n);
+  if (!(cosine > 0.0f)) return vec3(0.0f);
+  return power * (abs(dot(e, l)) * cosine / d2);
 }

@@ -20,7 +20,8 @@ constexpr float kHardSpotEdge = 1e-4f;
 // phongSpecular, attenuate and spotFactor; the textures' wrapped,
 // wrappedIndex, imagePoint, bilinearCorner and bilinearBlend; the
 // irradiance field's octahedralPoint, shBasis, cosineLobe, probeShare,
-// probeVisibility and shIrradiance), from shading.glsl, which the raster's
+// probeVisibility and shIrradiance; diffuseAlbedo and
+// emitterPointIrradiance), from shading.glsl, which the raster's
 // shaders compile too: read them there. Here GLSL's names are C++'s, in
 // float.
 namespace glsl {
@@ -39,6 +40,7 @@ inline int clamp(int x, int lo, int hi) { return std::clamp(x, lo, hi); }
 inline float max(float a, float b) { return std::max(a, b); }
 inline float min(float a, float b) { return std::min(a, b); }
 inline float sqrt(float x) { return std::sqrt(x); }
+inline float abs(float x) { return std::abs(x); }
 inline vec3 abs(vec3 v) { return glm::abs(v); }
 inline vec3 max(vec3 a, vec3 b) { return glm::max(a, b); }
 

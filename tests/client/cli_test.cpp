@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "client/accuracy/accuracy_sweep.h"
 #include "common/image/encoding.h"
@@ -462,6 +463,42 @@ TEST_F(Cli, PathTransportIsTracedInFullAndSaysSo) {
   const Result room2 = glint("render " + scene("room.json") + " -q --transport path --max-bounces 2" + small +
                              path("room.png"));
   EXPECT_EQ(room2.status, 0) << room2.output;
+}
+
+// --field (or the scene's tracing.field) has the hybrid frame draw path
+// transport's light between surfaces from an irradiance field: OpenGL draws
+// most pixels, the tracer the emitter's penumbra and where the field cannot
+// decide; its mean light is the path trace's within the field's bias. Other
+// commands and bad values say what they do.
+TEST_F(Cli, TheFieldDrawsIndirectLightInTheHybridFrame) {
+  const std::string small = " --size 48x48 --samples 16 -o ";
+  const Result field = glint("render " + scene("cornell.json") + " --field 8,256 --stats " + path("stats.json") +
+                             small + path("field.png"));
+  ASSERT_EQ(field.status, 0) << field.output;
+  EXPECT_EQ(field.output.find("every pixel is traced"), std::string::npos) << field.output;
+  std::ifstream statsFile(path("stats.json"));
+  const auto stats = nlohmann::json::parse(statsFile);
+  const auto masked = stats["masked_pixels"].get<long>();
+  std::printf("field: %ld of %d pixels traced, %ld for the emitter's penumbra or the field\n", masked, 48 * 48,
+              stats["shadow_edge_pixels"].get<long>());
+  EXPECT_LT(masked, 48 * 48 * 3 / 4);
+  EXPECT_GT(stats["shadow_edge_pixels"].get<long>(), 0);
+  ASSERT_EQ(glint("render " + scene("cornell.json") + " -q --mask all" + small + path("all.png")).status, 0);
+  const auto mean = [](const std::vector<std::uint8_t>& rgb) {
+    double sum = 0.0;
+    for (const std::uint8_t v : rgb) sum += v;
+    return sum / static_cast<double>(rgb.size());
+  };
+  const double withField = mean(decodePng(path("field.png")).rgb), traced = mean(decodePng(path("all.png")).rgb);
+  std::printf("mean byte: %.2f with the field, %.2f path traced\n", withField, traced);
+  EXPECT_NEAR(withField, traced, 0.05 * traced);
+
+  const Result info = glint("info " + scene("cornell.json") + " --field 8,256 --no-raster");
+  EXPECT_NE(info.output.find("in glint render in process only"), std::string::npos) << info.output;
+  const Result bad = glint("render " + scene("cornell.json") + " --field 8,300 -o " + path("bad.png"));
+  EXPECT_EQ(bad.status, 2) << bad.output;
+  EXPECT_NE(bad.output.find("--field 8,300: rays must be a power of two"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(path("bad.png")));
 }
 
 // --fit frames every object as the scene's "fit": true does: the same image.

@@ -189,11 +189,11 @@ double meanOf(const LinearImage& image) {
 
 // Inside the emitting box of albedo 0.5, the camera sees a wall's emission
 // and what it reflects: 1 + 0.5 E / pi, E the walls' emission (pi, from the
-// points drawn on them) and the field's reflected light (0.9375 pi), the
-// 1.96875 of the path trace's four bounces.
+// fixed points on its 12 triangles, 64 each) and the field's reflected light
+// (0.9375 pi), the 1.96875 of the path trace's four bounces.
 TEST(IrradianceField, TheTracerAddsTheFieldsLightWherePathsWouldBring) {
   json box = emittingBox(1.0, 0.5);
-  box["sampling"] = {{"pattern", "sobol"}, {"samples", 64}};
+  box["sampling"] = {{"pattern", "sobol"}, {"samples", 64}, {"light_samples", 768}};
   const Scene scene = test::sceneFromJson(box.dump());
   const IrradianceField field = fieldOf(scene, {4, 256});
   RayStats stats;
@@ -202,7 +202,9 @@ TEST(IrradianceField, TheTracerAddsTheFieldsLightWherePathsWouldBring) {
   std::printf("emitting box: %.4f with the field, %.4f path traced, expected 1.96875\n", withField, paths);
   EXPECT_NEAR(withField, 1.96875, 0.02);
   EXPECT_NEAR(paths, 1.96875, 0.02);
-  EXPECT_EQ(stats.fieldUndecided, 0u);
+  // The field decides nearly everywhere: a few samples in the corners,
+  // where a probe's map is in doubt, go to the path tracer.
+  EXPECT_LE(stats.fieldUndecided, stats.primary / 100);
 }
 
 // Where the field cannot decide, the sample is the path trace's own: with

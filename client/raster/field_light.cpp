@@ -1,0 +1,77 @@
+#include "client/raster/field_light.h"
+
+#include <string>
+#include <vector>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "common/base/error.h"
+
+namespace glint::gl {
+namespace {
+
+// Fills texture `name` (made on first use) with rows of `perRow` records of
+// `fields` texels, the last row padded; `what` names them in an error.
+void upload(const Api& gl, unsigned& name, std::vector<glm::vec3> texels, int records, int fields, int perRow,
+            const char* what) {
+  const int rows = (records + perRow - 1) / perRow;
+  texels.resize(static_cast<std::size_t>(rows) * static_cast<std::size_t>(perRow * fields), glm::vec3(0.0f));
+  if (!name) gl.GenTextures(1, &name);
+  gl.BindTexture(GL_TEXTURE_2D, name);
+  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, perRow * fields, rows, 0, GL_RGB, GL_FLOAT, texels.data());
+  if (gl.GetError() != GL_NO_ERROR) {
+    throw InputError("OpenGL: cannot hold the " + std::to_string(records) + " " + what +
+                     " (a coarser field, fewer light samples, or --mask all traces every pixel)");
+  }
+}
+
+}  // namespace
+
+FieldLight::FieldLight(const Api& gl, const IrradianceField& field) : gl_(gl), field_(field) {
+  std::vector<glm::vec3> texels;
+  texels.reserve(static_cast<std::size_t>(field.probeCount() * kFieldProbeTexels));
+  for (int i = 0; i < field.probeCount(); ++i) {
+    const IrradianceField::Probe& p = field.probe(i);
+    texels.insert(texels.end(), p.irradiance.begin(), p.irradiance.end());
+    for (const glm::vec2& m : p.moments) texels.emplace_back(m, 0.0f);
+  }
+  if (texels.empty()) return;
+  upload(gl_, probes_, std::move(texels), field.probeCount(), kFieldProbeTexels, kFieldProbesPerRow,
+         "probes of the irradiance field");
+}
+
+FieldLight::~FieldLight() {
+  if (probes_) gl_.DeleteTextures(1, &probes_);
+  if (emitters_) gl_.DeleteTextures(1, &emitters_);
+}
+
+void FieldLight::prepare(const EmitterPatches& patches) {
+  std::vector<glm::vec3> texels;
+  for (const EmitterPatches::Patch& p : patches.patches()) {
+    for (const glm::vec3& c : p.centres) texels.insert(texels.end(), {c, p.power(), p.normal});
+  }
+  emitterCount_ = static_cast<int>(texels.size() / kEmitterPointFields);
+  if (emitterCount_ == 0) return;
+  upload(gl_, emitters_, std::move(texels), emitterCount_, kEmitterPointFields, kEmitterPointsPerRow,
+         "points of the emitters");
+}
+
+void FieldLight::setUniforms(unsigned program, int fieldUnit, int emitterUnit) const {
+  const auto at = [&](const char* name) { return gl_.GetUniformLocation(program, name); };
+  gl_.Uniform3fv(at("uFieldOrigin"), 1, glm::value_ptr(field_.origin()));
+  gl_.Uniform3fv(at("uFieldStep"), 1, glm::value_ptr(field_.step()));
+  const glm::ivec3& counts = field_.counts();
+  gl_.Uniform3i(at("uFieldCounts"), counts.x, counts.y, counts.z);
+  gl_.Uniform1i(at("uEmitterCount"), emitterCount_);
+  gl_.Uniform1i(at("uField"), fieldUnit);
+  gl_.Uniform1i(at("uEmitterPoints"), emitterUnit);
+  gl_.ActiveTexture(GL_TEXTURE0 + fieldUnit);
+  gl_.BindTexture(GL_TEXTURE_2D, probes_);
+  gl_.ActiveTexture(GL_TEXTURE0 + emitterUnit);
+  gl_.BindTexture(GL_TEXTURE_2D, emitters_);
+  gl_.ActiveTexture(GL_TEXTURE0);
+}
+
+}  // namespace glint::gl
