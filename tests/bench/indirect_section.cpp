@@ -131,8 +131,8 @@ void hybridRows(const PreparedScene& prepared, const LinearImage& displayedRefer
 
 void sceneRows(const fs::path& file, bool quick) {
   Scene scene = loadSceneFile(file);
-  scene.frame.width = quick ? 160 : 320;
-  scene.frame.height = quick ? 120 : 240;
+  scene.frame.width = quick ? 160 : 640;
+  scene.frame.height = quick ? 120 : 480;
   const PreparedScene prepared(std::move(scene), BvhSettings{});
   const Encoder encoder(prepared.scene().frame.output);
   const int referenceSamples = quick ? 256 : 1024;

@@ -11,8 +11,11 @@ namespace glint::bench {
 // (the hybrid frame's shading: Whitted's direct light, the field's indirect
 // light, a path where the field cannot decide; every pixel traced) for
 // several field densities and samples, its time the field's and the frame's
-// apart. Each field row gives the path trace's time to the same FLIP
-// (between the two sample counts around it, log-linear) and the ratio.
+// apart; then the hybrid frame that draws the field with OpenGL (FLIP as
+// displayed, against the path trace's curve as displayed), its first frame
+// (with the field's filling) and a later one apart. Each row gives the path
+// trace's time to the same FLIP (between the two sample counts around it,
+// log-linear) and the ratio. 640 x 480 (--quick: 160 x 120).
 void indirectSection(const std::string& scenes, bool quick);
 
 }  // namespace glint::bench
