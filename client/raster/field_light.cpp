@@ -1,31 +1,15 @@
 #include "client/raster/field_light.h"
 
-#include <string>
 #include <vector>
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include "common/base/error.h"
+#include "client/raster/float_texels.h"
 
 namespace glint::gl {
 namespace {
 
-// Fills texture `name` (made on first use) with rows of `perRow` records of
-// `fields` texels, the last row padded; `what` names them in an error.
-void upload(const Api& gl, unsigned& name, std::vector<glm::vec3> texels, int records, int fields, int perRow,
-            const char* what) {
-  const int rows = (records + perRow - 1) / perRow;
-  texels.resize(static_cast<std::size_t>(rows) * static_cast<std::size_t>(perRow * fields), glm::vec3(0.0f));
-  if (!name) gl.GenTextures(1, &name);
-  gl.BindTexture(GL_TEXTURE_2D, name);
-  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, perRow * fields, rows, 0, GL_RGB, GL_FLOAT, texels.data());
-  if (gl.GetError() != GL_NO_ERROR) {
-    throw InputError("OpenGL: cannot hold the " + std::to_string(records) + " " + what +
-                     " (a coarser field, fewer light samples, or --mask all traces every pixel)");
-  }
-}
+constexpr const char* kRemedy = "a coarser field, fewer light samples, or --mask all traces every pixel";
 
 }  // namespace
 
@@ -38,8 +22,8 @@ FieldLight::FieldLight(const Api& gl, const IrradianceField& field) : gl_(gl), f
     for (const glm::vec2& m : p.moments) texels.emplace_back(m, 0.0f);
   }
   if (texels.empty()) return;
-  upload(gl_, probes_, std::move(texels), field.probeCount(), kFieldProbeTexels, kFieldProbesPerRow,
-         "probes of the irradiance field");
+  uploadFloatTexels(gl_, probes_, std::move(texels), field.probeCount(), kFieldProbeTexels, kFieldProbesPerRow,
+                    "probes of the irradiance field", kRemedy);
 }
 
 FieldLight::~FieldLight() {
@@ -54,8 +38,8 @@ void FieldLight::prepare(const EmitterPatches& patches) {
   }
   emitterCount_ = static_cast<int>(texels.size() / kEmitterPointFields);
   if (emitterCount_ == 0) return;
-  upload(gl_, emitters_, std::move(texels), emitterCount_, kEmitterPointFields, kEmitterPointsPerRow,
-         "points of the emitters");
+  uploadFloatTexels(gl_, emitters_, std::move(texels), emitterCount_, kEmitterPointFields, kEmitterPointsPerRow,
+                    "points of the emitters", kRemedy);
 }
 
 void FieldLight::setUniforms(unsigned program, int fieldUnit, int emitterUnit) const {

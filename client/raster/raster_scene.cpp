@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "client/raster/float_texels.h"
 #include "client/raster/pixel_mark.h"
 #include "client/raster/shadow_rects.h"
 #include "common/render/area_light.h"
@@ -393,21 +394,11 @@ void RasterScene::uploadAreaPoints(const FrameSettings& frame) {
   }
   areaPoints_.count = static_cast<int>(fields.size() / kAreaPointFields);
   if (areaPoints_.count == 0) return;
-  // Whole rows of kAreaPointsPerRow points, the last padded.
-  const int rows = (areaPoints_.count + kAreaPointsPerRow - 1) / kAreaPointsPerRow;
-  fields.resize(static_cast<std::size_t>(rows) * kAreaPointsPerRow * kAreaPointFields, glm::vec3(0.0f));
-  if (!areaPoints_.texture) gl_.GenTextures(1, &areaPoints_.texture);
   gl_.ActiveTexture(GL_TEXTURE0 + kAreaPointsUnit);
-  gl_.BindTexture(GL_TEXTURE_2D, areaPoints_.texture);
-  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, kAreaPointsPerRow * kAreaPointFields, rows, 0, GL_RGB, GL_FLOAT,
-                 fields.data());
+  uploadFloatTexels(gl_, areaPoints_.texture, std::move(fields), areaPoints_.count, kAreaPointFields,
+                    kAreaPointsPerRow, "points of the area and sphere lights",
+                    "fewer light samples, or --mask all traces them all");
   gl_.ActiveTexture(GL_TEXTURE0);
-  if (gl_.GetError() != GL_NO_ERROR) {
-    throw InputError("OpenGL: cannot hold the " + std::to_string(areaPoints_.count) +
-                     " points of the area and sphere lights (fewer light samples, or --mask all traces them all)");
-  }
 }
 
 void RasterScene::useField(const IrradianceField& field) {
