@@ -2,7 +2,9 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
+#include <tuple>
 
 #include "client/accuracy/accuracy_report.h"
 #include "client/accuracy/accuracy_sweep.h"
@@ -17,6 +19,9 @@
 #include "common/image/encoding.h"
 #include "common/metrics/flip.h"
 #include "common/image/image_write.h"
+#include "common/render/effects.h"
+#include "common/render/emitter_patches.h"
+#include "common/render/field_probes.h"
 #include "common/render/linear_frame.h"
 #include "common/scene/load_limits.h"
 #include "common/base/timing.h"
@@ -46,7 +51,36 @@ struct Sweep {
   std::optional<gl::GlBackend> gl;                 // --gl
   std::unique_ptr<gl::OffscreenContext> context;  // made for the first hybrid row
   std::unique_ptr<gl::RasterScene> raster;
+  // Under path transport: rows may draw from an irradiance field (in
+  // process, the emitters few flat ones), each filled once for its settings.
+  bool fieldDrawable = false;
+  struct Filled {
+    std::optional<IrradianceField> field;
+    double ms = 0.0;  // what filling it took
+  };
+  std::map<std::tuple<int, int, int, std::uint32_t>, Filled> fields;  // by probes, rays, bounces, seed
 };
+
+// Whether a row is a hybrid frame: its key's (hybridKey), where OpenGL can
+// draw the row's light (under path transport, from its irradiance field).
+bool drawnWithGl(const Sweep& sweep, AccuracyKey key, const FrameSettings& frame) {
+  if (!hybridKey(key)) return false;
+  return frame.tracing.transport != Transport::kPath || (frame.tracing.field && sweep.fieldDrawable);
+}
+
+// The row's irradiance field, filled the first time its settings come.
+const Sweep::Filled& fieldOf(Sweep& sweep, const FrameSettings& frame) {
+  const FieldSettings& settings = *frame.tracing.field;
+  auto [at, fresh] =
+      sweep.fields.try_emplace({settings.probes, settings.rays, frame.tracing.maxBounces, frame.sampling.seed});
+  if (fresh) {
+    const auto start = Clock::now();
+    RayStats rays;
+    at->second.field.emplace(buildField(sweep.prepared, frame, settings, rays));
+    at->second.ms = msSince(start);
+  }
+  return at->second;
+}
 
 // Every setting checked as the frame would check it, before anything renders.
 void checkSetting(const std::string& place, FrameSettings frame) {
@@ -89,21 +123,28 @@ LinearImage traceRow(Sweep& sweep, const FrameSettings& frame, AccuracyRow& row)
   return image;
 }
 
-// A hybrid row (hybridKey): OpenGL draws, the tracer fills the mask.
+// A hybrid row (drawnWithGl): OpenGL draws, the tracer fills the mask. Under
+// path transport the row's time holds its field's fill beside one frame:
+// what a first frame costs.
 LinearImage hybridRow(Sweep& sweep, const FrameSettings& frame, const MaskSettings& mask, AccuracyRow& row) {
   if (!sweep.context) {
     sweep.context = std::make_unique<gl::OffscreenContext>(frame.width, frame.height, sweep.gl);
     sweep.raster = std::make_unique<gl::RasterScene>(sweep.context->api(), sweep.prepared.scene());
   }
-  LocalTileService local(sweep.prepared, sweep.pool);
-  TileService& service = sweep.remote ? *sweep.remote : local;
+  const Sweep::Filled* filled = frame.tracing.transport == Transport::kPath ? &fieldOf(sweep, frame) : nullptr;
+  if (filled) sweep.raster->useField(*filled->field);
+  // The rule all traces path transport in full, as glint render --mask all does.
+  const bool readsField = filled && mask.rule != MaskRule::kAll;
+  LocalTileService local(sweep.prepared, sweep.pool, readsField ? &*filled->field : nullptr);
+  TileService& service = sweep.remote && !filled ? *sweep.remote : local;
   std::vector<double> times;
   HybridResult result;
   for (int f = 0; f < sweep.frames + 1; ++f) {  // the first compiles the shaders
     renderHybrid(sweep.context->api(), *sweep.raster, service, frame, mask, sweep.tileSize, result);
     if (f > 0) times.push_back(result.times.totalMs);
   }
-  row.timeMs = median(times);
+  row.fieldMs = filled ? filled->ms : 0.0;
+  row.timeMs = median(times) + row.fieldMs;
   row.rays = result.rays;
   return decodeBytes(result.image, sweep.encoder);
 }
@@ -152,6 +193,10 @@ AccuracyReference renderReference(Sweep& sweep, const FrameSettings& frame, int 
   return r;
 }
 
+bool fieldDrawable(const Scene& scene) {
+  return EmitterPatches::of(scene, EffectPlan::derive(scene, scene.frame), 0).has_value();
+}
+
 // The scene's frame and mask with one setting changed.
 std::pair<FrameSettings, MaskSettings> withSetting(const Scene& scene, AccuracyKey key, const std::string& value) {
   std::pair<FrameSettings, MaskSettings> s{scene.frame, scene.mask};
@@ -159,11 +204,29 @@ std::pair<FrameSettings, MaskSettings> withSetting(const Scene& scene, AccuracyK
   return s;
 }
 
+// The field's rows need its light drawn: path transport, in process, few
+// flat emitters.
+void checkFieldRows(const Series& s, const Scene& scene, bool remote) {
+  if (!fieldKey(s.key)) return;
+  const std::string vary = "--vary " + std::string(enumWord(s.key));
+  if (scene.frame.tracing.transport != Transport::kPath) {
+    throw UsageError(vary + ": the irradiance field carries path transport's light; the scene's transport is "
+                            "whitted (give --transport path)");
+  }
+  if (remote) throw UsageError(vary + ": the irradiance field's rows are drawn in process; leave out --server");
+  if (!fieldDrawable(scene)) {
+    throw UsageError(vary + ": the hybrid frame draws the field's light only for at most " +
+                     std::to_string(EmitterPatches::kMaxPatches) +
+                     " flat emitting triangles of plain emission, and this scene has others");
+  }
+}
+
 std::vector<Series> sweepOf(const AccuracyOptions& o, const Scene& scene) {
   std::vector<Series> series;
   for (const std::string& v : o.vary) series.push_back(parseVary(v));
   if (series.empty()) series = defaultSweep(scene);
   for (const Series& s : series) {
+    checkFieldRows(s, scene, o.remote.any());
     for (const std::string& value : s.values) {
       checkSetting("--vary " + std::string(enumWord(s.key)) + "=" + value, withSetting(scene, s.key, value).first);
     }
@@ -181,7 +244,7 @@ void runAccuracy(const AccuracyOptions& o) {
   proto::LoadedBundle loaded = proto::loadSceneBundle(o.scene);
   printSceneWarnings(o.scene, loaded.scene);
   Scene& scene = loaded.scene;
-  applyFrameOverrides(o.frame, scene);
+  applyFrameOverrides(o.frame, scene, !o.remote.any());
   const std::vector<Series> series = sweepOf(o, scene);
   const fs::path dir(o.outDir);
   std::error_code ec;
@@ -192,7 +255,8 @@ void runAccuracy(const AccuracyOptions& o) {
   ThreadPool& pool = computePool();
   std::unique_ptr<DistributedTileService> remote;
   if (o.remote.any()) remote = connectServers(o.remote, loaded.bundle);
-  Sweep sweep{prepared, Encoder(scene.frame.output), pool, o.frames, o.frame.tileSize, remote.get(), o.gl, nullptr, nullptr};
+  Sweep sweep{prepared, Encoder(scene.frame.output), pool, o.frames, o.frame.tileSize, remote.get(), o.gl, nullptr,
+              nullptr, !remote && fieldDrawable(scene), {}};
   Reference reference;
   const AccuracyReference ref = renderReference(sweep, scene.frame, o.referenceSamples, dir, reference);
 
@@ -203,10 +267,9 @@ void runAccuracy(const AccuracyOptions& o) {
     for (const std::string& value : s.values) {
       const auto [frame, mask] = withSetting(scene, s.key, value);
       AccuracyRow row{std::string(enumWord(s.key)), value, value == currentValue(s.key, scene.frame, scene.mask),
-                      0.0, {}, {}, {}, std::string(enumWord(s.key)) + "-" + value + ".png"};
-      // Under path transport every pixel is traced, as glint render does.
-      const bool hybrid = hybridKey(s.key) && frame.tracing.transport != Transport::kPath;
-      const LinearImage image = hybrid ? hybridRow(sweep, frame, mask, row) : traceRow(sweep, frame, row);
+                      0.0, 0.0, {}, {}, {}, std::string(enumWord(s.key)) + "-" + value + ".png"};
+      const LinearImage image =
+          drawnWithGl(sweep, s.key, frame) ? hybridRow(sweep, frame, mask, row) : traceRow(sweep, frame, row);
       measureRow(dir, sweep.encoder, image, reference, row);
       std::fprintf(stderr, "[%zu/%zu] %s = %s: %.1f ms, FLIP %.4f, RMSE %.5f\n", ++done, total, row.name.c_str(),
                    row.value.c_str(), row.timeMs, row.flip.mean, row.error.rmse);

@@ -140,8 +140,13 @@ bool writePlot(const std::filesystem::path& dir, const std::vector<AccuracyRow>&
          << "set title 'What accuracy costs in time'\nnames = '" << titles << "'\n"
          << "plot for [i=1:words(names)] 'accuracy.dat' index (i-1) using 1:2 with linespoints lw 2 pt 7 "
             "title word(names, i), \\\n"
-         << "     'pareto.dat' using 1:2 with lines dt 2 lw 1 lc rgb 'black' title 'Pareto front', \\\n"
-         << "     'scene.dat' using 1:2 with points pt 6 ps 2.5 lc rgb 'black' title \"the scene's setting\"\n";
+         << "     'pareto.dat' using 1:2 with lines dt 2 lw 1 lc rgb 'black' title 'Pareto front'";
+  // scene.dat only where a row is the scene's own setting (gnuplot warns of an empty file).
+  const bool sceneRows = std::any_of(rows.begin(), rows.end(), [](const AccuracyRow& r) { return r.sceneSetting; });
+  if (sceneRows) {
+    script << ", \\\n     'scene.dat' using 1:2 with points pt 6 ps 2.5 lc rgb 'black' title \"the scene's setting\"";
+  }
+  script << "\n";
   script.close();
   if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) return false;
   const std::string command = "cd '" + dir.string() + "' && gnuplot accuracy.gp";
@@ -187,6 +192,20 @@ void writeSummary(std::ofstream& out, const std::vector<AccuracyRow>& rows, cons
       << " settings are on the Pareto front; every other one is beaten in both time and error by one of them.\n";
 }
 
+// The rows drawn from an irradiance field: how much of their time filled it.
+void writeFieldFills(std::ostream& out, const std::vector<AccuracyRow>& rows) {
+  std::string fills;
+  for (const AccuracyRow& row : rows) {
+    if (row.fieldMs <= 0.0) continue;
+    fills += (fills.empty() ? "" : ", ") + row.name + " = " + row.value + ": " + fixed(row.fieldMs, 1) + " of " +
+             fixed(row.timeMs, 1) + " ms";
+  }
+  if (fills.empty()) return;
+  out << "\nA row drawn from an irradiance field counts the field's fill in its time, as a first frame does; a "
+         "later frame of the same scene and settings reuses the field and skips it ("
+      << fills << ").\n";
+}
+
 }  // namespace
 
 void writeReport(const std::filesystem::path& dir, const std::string& scene, const AccuracyReference& reference,
@@ -202,6 +221,7 @@ void writeReport(const std::filesystem::path& dir, const std::string& scene, con
   if (plotted) out << "![error against time](accuracy.png)\n\n";
   writeTable(out, rows, front);
   if (!rows.empty()) writeSummary(out, rows, front, metric);
+  writeFieldFills(out, rows);
 }
 
 }  // namespace glint

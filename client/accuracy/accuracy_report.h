@@ -27,7 +27,8 @@ struct AccuracyRow {
   std::string name;   // the key varied ("samples")
   std::string value;  // its value in this row ("16")
   bool sceneSetting = false;  // the scene's own value
-  double timeMs = 0.0;        // median frame time
+  double timeMs = 0.0;        // median frame time, with fieldMs
+  double fieldMs = 0.0;       // filling the row's irradiance field (0: it reads none)
   RayStats rays;
   ImageError error;
   FlipStats flip;     // of the image as a display shows it (Encoder::displayed)

@@ -37,6 +37,12 @@ std::string allowed(AccuracyKey key) {
       return "one of " + enumWordsJoined<Transport>();
     case AccuracyKey::kMaxBounces:
       return "whole numbers in [0, " + std::to_string(FrameLimits::kMaxBounces) + "]";
+    case AccuracyKey::kFieldProbes:
+      return "whole numbers in [" + std::to_string(FieldSettings::kMinProbes) + ", " +
+             std::to_string(FieldSettings::kMaxProbes) + "]";
+    case AccuracyKey::kFieldRays:
+      return "powers of two from " + std::to_string(FieldSettings::kMinRays) + " to " +
+             std::to_string(FieldSettings::kMaxRays);
   }
   return "";
 }
@@ -82,8 +88,20 @@ bool takes(AccuracyKey key, const std::string& value) {
     case AccuracyKey::kMaxBounces:
       return parseNumber(value, number) && number == std::floor(number) && number >= 0 &&
              number <= FrameLimits::kMaxBounces;
+    case AccuracyKey::kFieldProbes:
+      return parseNumber(value, number) && number == std::floor(number) && number >= FieldSettings::kMinProbes &&
+             number <= FieldSettings::kMaxProbes;
+    case AccuracyKey::kFieldRays:
+      return parseNumber(value, number) && number == std::floor(number) && number >= FieldSettings::kMinRays &&
+             number <= FieldSettings::kMaxRays && !FieldSettings::raysProblem(static_cast<int>(number));
   }
   return false;
+}
+
+// The frame's field, the scene's own or the defaults, to change.
+FieldSettings& fieldOf(FrameSettings& frame) {
+  if (!frame.tracing.field) frame.tracing.field.emplace();
+  return *frame.tracing.field;
 }
 
 std::string formatNumber(double v) {
@@ -118,11 +136,16 @@ std::vector<Series> defaultSweep(const Scene& scene) {
   if (scene.frame.tracing.transport == Transport::kPath) {
     // Every pixel is traced: the model (Whitted's missing light, bounces
     // cut short) beside the sampling.
-    return {{AccuracyKey::kSamples, {"1", "4", "16", "64"}},
+    std::vector<Series> path{{AccuracyKey::kSamples, {"1", "4", "16", "64"}},
             {AccuracyKey::kPattern, {"jittered", "sobol"}},
             {AccuracyKey::kTransport, {"whitted", "path"}},
             {AccuracyKey::kMaxBounces, {"0", "1", "2", "4", "8"}},
             {AccuracyKey::kFilter, {"box", "tent", "gaussian", "mitchell"}}};
+    if (scene.frame.tracing.field) {  // the field's bias against its time
+      path.push_back({AccuracyKey::kFieldProbes, {"4", "8", "16"}});
+      path.push_back({AccuracyKey::kFieldRays, {"64", "256", "1024"}});
+    }
+    return path;
   }
   std::vector<Series> sweep{{AccuracyKey::kSamples, {"1", "4", "16", "64"}},
           {AccuracyKey::kPattern, {"regular", "jittered", "adaptive", "perceptual"}},
@@ -140,8 +163,10 @@ std::vector<Series> defaultSweep(const Scene& scene) {
 
 bool hybridKey(AccuracyKey key) {
   return key == AccuracyKey::kMaskThreshold || key == AccuracyKey::kShadowMap || key == AccuracyKey::kMaskRule ||
-         key == AccuracyKey::kPerceptualThreshold;
+         key == AccuracyKey::kPerceptualThreshold || fieldKey(key);
 }
+
+bool fieldKey(AccuracyKey key) { return key == AccuracyKey::kFieldProbes || key == AccuracyKey::kFieldRays; }
 
 void applySetting(AccuracyKey key, const std::string& value, FrameSettings& frame, MaskSettings& mask) {
   switch (key) {
@@ -185,6 +210,14 @@ void applySetting(AccuracyKey key, const std::string& value, FrameSettings& fram
       frame.tracing.transport = Transport::kPath;
       frame.tracing.maxBounces = std::stoi(value);
       return;
+    case AccuracyKey::kFieldProbes:
+      mask.rule = hybridRule(mask.rule);
+      fieldOf(frame).probes = std::stoi(value);
+      return;
+    case AccuracyKey::kFieldRays:
+      mask.rule = hybridRule(mask.rule);
+      fieldOf(frame).rays = std::stoi(value);
+      return;
   }
 }
 
@@ -214,6 +247,10 @@ std::string currentValue(AccuracyKey key, const FrameSettings& frame, const Mask
       return std::string(enumWord(frame.tracing.transport));
     case AccuracyKey::kMaxBounces:
       return frame.tracing.transport == Transport::kPath ? std::to_string(frame.tracing.maxBounces) : "";
+    case AccuracyKey::kFieldProbes:  // none: the scene has no field
+      return frame.tracing.field ? std::to_string(frame.tracing.field->probes) : "";
+    case AccuracyKey::kFieldRays:
+      return frame.tracing.field ? std::to_string(frame.tracing.field->rays) : "";
   }
   return "";
 }

@@ -24,12 +24,14 @@ enum class AccuracyKey {
   kPerceptualThreshold,
   kLightSamples,
   kTransport,
-  kMaxBounces
+  kMaxBounces,
+  kFieldProbes,
+  kFieldRays
 };
 
 template <>
 struct EnumWords<AccuracyKey> {
-  static constexpr std::array<std::pair<AccuracyKey, std::string_view>, 12> kWords{
+  static constexpr std::array<std::pair<AccuracyKey, std::string_view>, 14> kWords{
       {{AccuracyKey::kSamples, "samples"},
        {AccuracyKey::kPattern, "pattern"},
        {AccuracyKey::kFilter, "filter"},
@@ -41,7 +43,9 @@ struct EnumWords<AccuracyKey> {
        {AccuracyKey::kPerceptualThreshold, "perceptual_threshold"},
        {AccuracyKey::kLightSamples, "light_samples"},
        {AccuracyKey::kTransport, "transport"},
-       {AccuracyKey::kMaxBounces, "max_bounces"}}};
+       {AccuracyKey::kMaxBounces, "max_bounces"},
+       {AccuracyKey::kFieldProbes, "field_probes"},
+       {AccuracyKey::kFieldRays, "field_rays"}}};
 };
 
 // One series of a sweep: one key, the values it takes in turn, every other
@@ -56,18 +60,27 @@ struct Series {
 Series parseVary(const std::string& text);
 
 // Every key, around the thesis's settings (what `--vary` not given sweeps);
-// light_samples only for a scene with an area light.
+// light_samples only for a scene with an area light, the field's keys only
+// for one with an irradiance field.
 std::vector<Series> defaultSweep(const Scene& scene);
 
 // Whether a key's rows are hybrid frames (OpenGL draws, the tracer fills
-// the mask): mask_threshold, shadow_map, mask_rule and perceptual_threshold.
+// the mask): mask_threshold, shadow_map, mask_rule, perceptual_threshold and
+// the irradiance field's field_probes and field_rays.
 bool hybridKey(AccuracyKey key);
+
+// Whether a key sets the irradiance field (path transport's, in the hybrid
+// frame): field_probes and field_rays.
+bool fieldKey(AccuracyKey key);
 
 // Sets `value` of `key` in a frame and mask (mask_threshold: the material
 // rule's reflectivity threshold and shadow_map the shadow maps' size, 0 none,
 // under the scene's rule if it is auto or perceptual, else auto; mask_rule:
 // the rule; perceptual_threshold: the sampling's, under the perceptual
-// rule). Values are as parseVary checked them.
+// rule; field_probes and field_rays: the field's, the scene's own or the
+// defaults for the other, under the scene's rule if it draws with OpenGL
+// and traces by the materials, else auto). Values are as parseVary checked
+// them.
 void applySetting(AccuracyKey key, const std::string& value, FrameSettings& frame, MaskSettings& mask);
 
 // The scene's own value of `key`, written as the sweep writes values (none,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include <glm/trigonometric.hpp>
@@ -13,6 +14,7 @@
 #include "client/raster/raster_scene.h"
 #include "client/commands/scene_warnings.h"
 #include "common/render/effects.h"
+#include "common/render/field_probes.h"
 #include "common/render/mask_rule.h"
 #include "common/render/path_tracer.h"
 #include "common/scene/load_limits.h"
@@ -52,13 +54,26 @@ std::string percent(std::size_t part, std::size_t whole) {
   return text;
 }
 
-void printFrame(const FrameSettings& f) {
+// Under path transport, whether the hybrid frame draws the light between
+// surfaces from an irradiance field (applyFrameOverrides left the rule
+// other than all only where it can).
+bool drawsField(const Scene& scene) {
+  return scene.frame.tracing.transport == Transport::kPath && scene.mask.rule != MaskRule::kAll;
+}
+
+void printFrame(const Scene& scene) {
+  const FrameSettings& f = scene.frame;
   std::printf("  image      %dx%d, %d %s samples a pixel, %s filter\n", f.width, f.height, f.sampling.samples,
               std::string(enumWord(f.sampling.pattern)).c_str(), std::string(enumWord(f.sampling.filter)).c_str());
   if (f.tracing.transport == Transport::kPath) {
+    const std::string where =
+        drawsField(scene) ? "the hybrid frame draws it from an irradiance field (" +
+                                std::to_string(f.tracing.field->probes) + " probes along the longest side, " +
+                                std::to_string(f.tracing.field->rays) + " rays each) and traces what it cannot decide"
+                          : std::string("every pixel traced");
     std::printf("  transport  path: light between surfaces too, up to %d bounces after the first hit, Russian "
-                "roulette after %d; every pixel traced\n",
-                f.tracing.maxBounces, PathTracer::kRouletteFrom);
+                "roulette after %d; %s\n",
+                f.tracing.maxBounces, PathTracer::kRouletteFrom, where.c_str());
   } else {
     std::printf("  transport  whitted: direct light, mirror and refracted rays to max depth %d, min weight %g; "
                 "ambient for the rest\n",
@@ -156,8 +171,15 @@ void printHybrid(const Scene& scene, int tileSize, std::optional<gl::GlBackend> 
     std::printf("  hybrid     mask rule all: every pixel traced (%zu)\n", pixels);
     return;
   }
+  std::optional<IrradianceField> field;  // filled as glint render fills it: its marks depend on it
   gl::OffscreenContext context(f.width, f.height, backend);
   gl::RasterScene raster(context.api(), scene);
+  if (drawsField(scene)) {
+    const PreparedScene prepared(scene, BvhSettings{});
+    RayStats rays;
+    field.emplace(buildField(prepared, f, *f.tracing.field, rays));
+    raster.useField(*field);
+  }
   HybridResult r;
   markHybrid(context.api(), raster, f, scene.mask, tileSize, r);
   std::size_t marked[4] = {0, 0, 0, 0};  // by PixelMark
@@ -175,9 +197,9 @@ void printHybrid(const Scene& scene, int tileSize, std::optional<gl::GlBackend> 
 void runInfo(const InfoOptions& options) {
   Scene scene = loadSceneFile(options.scene);
   printSceneWarnings(options.scene, scene);
-  applyFrameOverrides(options.frame, scene);
+  applyFrameOverrides(options.frame, scene, true);
   std::printf("%s\n", options.scene.c_str());
-  printFrame(scene.frame);
+  printFrame(scene);
   printBounds(scene);
   printContents(scene);
   printPlan(scene);

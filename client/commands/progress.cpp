@@ -7,28 +7,30 @@ namespace {
 
 constexpr double kQuietSeconds = 1.0;          // kAuto: a frame shorter than this shows nothing
 constexpr std::chrono::seconds kLineEvery{1};  // kForced, not a terminal: at most a line a second
-// The time left is told once this many tiles have finished after the first
-// one seen: the pace is the rate of those, not the time from the start, which
+// The time left is told once this many units (tiles, probes) have finished
+// after the first one seen: the pace is the rate of those, not the time from the start, which
 // holds the set-up (the raster pass, the BVH, an upload) and the first
 // tiles' latency, and once made a 0.7 s frame say "about 38 s left".
-constexpr int kPaceTiles = 2;
+constexpr int kPaceUnits = 2;
 
 }  // namespace
 
-ProgressLine::ProgressLine(ProgressMode mode, std::FILE* out, bool terminal, std::string label, Clock::time_point start)
-    : mode_(mode), out_(out), terminal_(terminal), label_(std::move(label)), start_(start) {}
+ProgressLine::ProgressLine(ProgressMode mode, std::FILE* out, bool terminal, std::string label, Clock::time_point start,
+                           std::string unit)
+    : mode_(mode), out_(out), terminal_(terminal), label_(std::move(label)), start_(start), unit_(std::move(unit)) {}
 
-ProgressLine::~ProgressLine() {
+void ProgressLine::clear() {
   if (drawn_) std::fputs("\r\033[K", out_);
+  drawn_ = false;
 }
 
 std::string ProgressLine::text(int done, int total, const Shares& shares, Clock::time_point now) const {
   char numbers[128];
-  std::snprintf(numbers, sizeof numbers, ": %d/%d tiles (%d %%), %.1f s", done, total, done * 100 / total,
+  std::snprintf(numbers, sizeof numbers, ": %d/%d %s (%d %%), %.1f s", done, total, unit_.c_str(), done * 100 / total,
                 std::chrono::duration<double>(now - start_).count());
   std::string line = label_ + numbers;
   const int paced = done - paceDone_;
-  if (paceDone_ > 0 && paced >= kPaceTiles && done < total) {
+  if (paceDone_ > 0 && paced >= kPaceUnits && done < total) {
     const double perTile = std::chrono::duration<double>(now - paceStart_).count() / paced;
     std::snprintf(numbers, sizeof numbers, ", about %.0f s left", perTile * (total - done));
     line += numbers;
@@ -57,8 +59,9 @@ void ProgressLine::update(int done, int total, const Shares& shares, Clock::time
   std::fflush(out_);
 }
 
-ProgressLine stderrProgress(ProgressMode mode, std::string label) {
-  return ProgressLine(mode, stderr, isatty(STDERR_FILENO) == 1, std::move(label), ProgressLine::Clock::now());
+ProgressLine stderrProgress(ProgressMode mode, std::string label, std::string unit) {
+  return ProgressLine(mode, stderr, isatty(STDERR_FILENO) == 1, std::move(label), ProgressLine::Clock::now(),
+                      std::move(unit));
 }
 
 }  // namespace glint

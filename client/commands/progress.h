@@ -13,19 +13,22 @@ namespace glint {
 // a pipe) a line at most once a second; kQuiet (--quiet), never.
 enum class ProgressMode { kAuto, kForced, kQuiet };
 
-// One frame's progress line: tiles traced of the total, the share each
-// server traced, and, once the pace of the tiles is known, an estimate of
-// the time left.
+// One long step's progress line: units done of the total (a frame's tiles
+// traced, an irradiance field's probes filled), the share each server
+// traced, and, once the pace of the units is known, an estimate of the time
+// left.
 // Time is an input, so that what it prints can be tested.
 class ProgressLine {
  public:
   using Clock = std::chrono::steady_clock;
 
-  // `label` names the frame ("rendering", "frame 3 of 30"); `terminal`:
-  // `out` is one, where a line is redrawn in place.
-  ProgressLine(ProgressMode mode, std::FILE* out, bool terminal, std::string label, Clock::time_point start);
+  // `label` names the step ("rendering", "frame 3 of 30"), `unit` what it
+  // counts ("tiles"); `terminal`: `out` is one, where a line is redrawn in
+  // place.
+  ProgressLine(ProgressMode mode, std::FILE* out, bool terminal, std::string label, Clock::time_point start,
+               std::string unit = "tiles");
   // Clears a line drawn in place.
-  ~ProgressLine();
+  ~ProgressLine() { clear(); }
   ProgressLine(const ProgressLine&) = delete;
   ProgressLine& operator=(const ProgressLine&) = delete;
 
@@ -33,6 +36,8 @@ class ProgressLine {
   // when a line is printed, and may be empty.
   using Shares = std::function<std::string()>;
   void update(int done, int total, const Shares& shares, Clock::time_point now);
+  // Clears a line drawn in place, once the step is over.
+  void clear();
 
  private:
   std::string text(int done, int total, const Shares& shares, Clock::time_point now) const;
@@ -42,6 +47,7 @@ class ProgressLine {
   bool terminal_;
   std::string label_;
   Clock::time_point start_;
+  std::string unit_;
   Clock::time_point lastLine_{};  // when the last line was printed (not on a terminal)
   bool drawn_ = false;            // a line is drawn in place
   int paceDone_ = 0;              // the tiles done when the first was seen, and when
@@ -49,6 +55,6 @@ class ProgressLine {
 };
 
 // stderr, and whether it is a terminal.
-ProgressLine stderrProgress(ProgressMode mode, std::string label);
+ProgressLine stderrProgress(ProgressMode mode, std::string label, std::string unit = "tiles");
 
 }  // namespace glint

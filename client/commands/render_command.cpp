@@ -61,18 +61,22 @@ struct FrameProgress {
   std::string label;
 };
 
+ProgressMode progressMode(const RenderOptions& options) {
+  return options.quiet ? ProgressMode::kQuiet : options.progress ? ProgressMode::kForced : ProgressMode::kAuto;
+}
+
 FrameProgress frameProgress(const RenderOptions& options, int frame) {
-  const ProgressMode mode = options.quiet      ? ProgressMode::kQuiet
-                            : options.progress ? ProgressMode::kForced
-                                               : ProgressMode::kAuto;
+  const ProgressMode mode = progressMode(options);
   if (options.frames == 1) return {mode, "rendering"};
   return {mode, "frame " + std::to_string(frame + 1) + " of " + std::to_string(options.frames)};
 }
 
-// Shows a frame's traced tiles on `line`, with each server's share.
-std::function<void(int, int)> showOn(ProgressLine& line, TileBackend& backend) {
+// Shows a step's progress on `line`, with each server's share where `backend` has servers.
+std::function<void(int, int)> showOn(ProgressLine& line, const TileBackend* backend = nullptr) {
   ProgressLine::Shares shares;
-  if (const DistributedTileService* farm = backend.distributed()) shares = [farm] { return farm->tracedShares(); };
+  if (const DistributedTileService* farm = backend ? backend->distributed() : nullptr) {
+    shares = [farm] { return farm->tracedShares(); };
+  }
   return [&line, shares](int done, int total) { line.update(done, total, shares, ProgressLine::Clock::now()); };
 }
 
@@ -81,7 +85,7 @@ void renderHybridFrame(TileBackend& backend, gl::OffscreenContext& context, gl::
                        const FrameSettings& frame, const FrameProgress& shown, const RenderOptions& options,
                        HybridResult& r) {
   ProgressLine progress = stderrProgress(shown.mode, shown.label);
-  const HybridControl control{.cancelled = {}, .progress = showOn(progress, backend)};
+  const HybridControl control{.cancelled = {}, .progress = showOn(progress, &backend)};
   renderHybrid(context.api(), raster, backend.service(), frame, backend.scene().mask, options.frame.tileSize, r,
                options.crop, control);
 }
@@ -92,7 +96,7 @@ void renderFullTrace(TileBackend& backend, const FrameSettings& frame, FrameOpti
                      const FrameProgress& shown, HybridResult& r) {
   const Clock::time_point start = Clock::now();
   ProgressLine progress = stderrProgress(shown.mode, shown.label);
-  frameOptions.progress = showOn(progress, backend);
+  frameOptions.progress = showOn(progress, &backend);
   FrameResult full = renderFrame(backend.service(), frame, frameOptions);
   r.image = std::move(full.image);
   r.rays = full.stats;
@@ -108,7 +112,7 @@ LinearImage renderFullTraceLinear(TileBackend& backend, const FrameSettings& fra
                                   const FrameProgress& shown, HybridResult& r) {
   const Clock::time_point start = Clock::now();
   ProgressLine progress = stderrProgress(shown.mode, shown.label);
-  frameOptions.progress = showOn(progress, backend);
+  frameOptions.progress = showOn(progress, &backend);
   const Renderer renderer(*backend.prepared(), frame);
   r.rays = RayStats{};
   LinearImage image = renderLinear(renderer, *backend.pool(), r.rays, LinearRange::kUnbounded, frameOptions);
@@ -139,6 +143,15 @@ void printSummary(const RenderOptions& options, const FrameSettings& frame, cons
     std::fprintf(stderr, "warning: %llu samples were not finite and were discarded\n",
                  static_cast<unsigned long long>(rays.nonFiniteSamples));
   }
+}
+
+// The irradiance field, filled once before the first frame: what it cost.
+void printFieldFill(const TileBackend& backend) {
+  const IrradianceField* field = backend.field();
+  if (!field) return;
+  std::fprintf(stderr, "irradiance field: %d probes x %d rays, filled once for every frame: %.1f ms, %.2f M rays\n",
+               field->probeCount(), field->settings().rays, backend.fieldFill().ms,
+               static_cast<double>(backend.fieldFill().rays.total()) / 1e6);
 }
 
 // Each server's share of the last frame, and the provenance image's legend.
@@ -333,7 +346,9 @@ void runRender(const RenderOptions& options) {
   // (applyOverrides left a rule other than all only where the raster can draw it).
   const bool field =
       loaded.scene.frame.tracing.transport == Transport::kPath && loaded.scene.mask.rule != MaskRule::kAll;
-  TileBackend backend({options.remote, options.bvh, true, field}, std::move(loaded));
+  ProgressLine probes = stderrProgress(progressMode(options), "irradiance field", "probes");
+  TileBackend backend({options.remote, options.bvh, true, field, showOn(probes)}, std::move(loaded));
+  probes.clear();
   run.prepareMs = msSince(prepareStart);
 
   std::vector<HybridTimes> frameTimes;
@@ -342,6 +357,7 @@ void runRender(const RenderOptions& options) {
   writeOutputs(run, backend, r, linear);
   if (!options.quiet) {
     printSummary(options, run.frame, backend.where(), frameTimes, r.rays, drawsWithGl(backend.scene(), options));
+    printFieldFill(backend);
     if (backend.distributed()) printServers(backend.distributed()->lastFrame(), !options.provenanceOut.empty());
   }
 }

@@ -17,6 +17,7 @@
 #include "client/raster/gl_api.h"
 #include "client/raster/hybrid_frame.h"
 #include "client/raster/image_rows.h"
+#include "client/commands/progress.h"
 #include "client/commands/provenance.h"
 #include "client/raster/raster_scene.h"
 #include "client/commands/scene_warnings.h"
@@ -223,8 +224,11 @@ Shown showFrame(GLFWwindow* window, const gl::Api& api, gl::RasterScene& raster,
     progress.total = total;
     progress.done = done;
   };
+  // Under the rule all the field's frame traces path transport in full, as glint render --mask all does.
+  std::optional<LocalTileService> unlit;
+  if (backend.field() && mask.rule == MaskRule::kAll) unlit.emplace(*backend.prepared(), *backend.pool());
   try {
-    if (!renderHybrid(api, raster, backend.service(), frame, mask, tileSize, last, std::nullopt,
+    if (!renderHybrid(api, raster, unlit ? *unlit : backend.service(), frame, mask, tileSize, last, std::nullopt,
                       {.cancelled = preview ? CancelCheck{} : cameraMoved, .progress = told})) {
       return Shown::kAbandoned;
     }
@@ -320,7 +324,10 @@ void refreshFarm(GLFWwindow* window, TileBackend& backend, bool missing, Title& 
 void runView(const ViewOptions& options) {
   proto::LoadedBundle loaded = proto::loadSceneBundle(options.scene);
   printSceneWarnings(options.scene, loaded.scene);
-  applyFrameOverrides(options.frame, loaded.scene);
+  applyFrameOverrides(options.frame, loaded.scene, !options.remote.any());
+  // The hybrid frame under path transport reads the irradiance field, filled once for the whole view.
+  const bool field =
+      loaded.scene.frame.tracing.transport == Transport::kPath && loaded.scene.mask.rule != MaskRule::kAll;
 
   if (!glfwInit()) {
     throw InputError(
@@ -340,9 +347,15 @@ void runView(const ViewOptions& options) {
   glfwSwapInterval(0);
   const gl::Api api = gl::loadApi([](const char* name) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); });
 
-  TileBackend backend({options.remote, options.bvh, false}, std::move(loaded));
+  if (field) glfwSetWindowTitle(window, "glint view  |  filling the irradiance field");
+  ProgressLine probes = stderrProgress(ProgressMode::kAuto, "irradiance field", "probes");
+  TileBackend backend({options.remote, options.bvh, false, field,
+                       [&probes](int done, int total) { probes.update(done, total, {}, ProgressLine::Clock::now()); }},
+                      std::move(loaded));
+  probes.clear();
   const Scene& scene = backend.scene();
   gl::RasterScene raster(api, scene);
+  if (backend.field()) raster.useField(*backend.field());
 
   Controls controls;
   controls.camera = scene.frame.camera;

@@ -3,6 +3,7 @@
 #include "client/farm/distributed_tile_service.h"
 #include "common/base/compute_pool.h"
 #include "common/base/error.h"
+#include "common/base/timing.h"
 #include "common/render/field_probes.h"
 
 namespace glint {
@@ -39,8 +40,9 @@ TileBackend::TileBackend(const Options& options, proto::LoadedBundle loaded) : l
   pool_ = &computePool();
   if (options.field) {
     const FrameSettings& frame = prepared_->scene().frame;
-    RayStats stats;
-    field_.emplace(buildField(*prepared_, frame, *frame.tracing.field, stats));
+    const Clock::time_point start = Clock::now();
+    field_.emplace(buildField(*prepared_, frame, *frame.tracing.field, fieldFill_.rays, options.fieldProgress));
+    fieldFill_.ms = msSince(start);
   }
   service_ = std::make_unique<LocalTileService>(*prepared_, *pool_, field());
 }

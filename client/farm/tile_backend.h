@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -46,8 +47,15 @@ class TileBackend {
     bool awaitServer = true;  // wait for a server to be ready (view does not)
     // In process: fill the scene's irradiance field (its tracing.field
     // settings, which it must have) once, for the hybrid frame under path
-    // transport, and trace with it.
+    // transport, and trace with it; told, never concurrently, how many of
+    // its probes are filled.
     bool field = false;
+    std::function<void(int done, int total)> fieldProgress = {};
+  };
+  // What filling the field took.
+  struct FieldFill {
+    double ms = 0.0;
+    RayStats rays;
   };
 
   // Prepares the scene or connects and uploads it; throws InputError.
@@ -58,7 +66,7 @@ class TileBackend {
 
   TileService& service() { return *service_; }
   // The servers' service; nullptr in process.
-  DistributedTileService* distributed() { return distributed_; }
+  DistributedTileService* distributed() const { return distributed_; }
   const Scene& scene() const;
   // In process: the prepared scene and its pool (for linear renders);
   // nullptr through servers.
@@ -67,6 +75,7 @@ class TileBackend {
   // The irradiance field the tiles are traced with (Options::field); none
   // otherwise.
   const IrradianceField* field() const { return field_ ? &*field_ : nullptr; }
+  const FieldFill& fieldFill() const { return fieldFill_; }
   // "4 threads", "server HOST:PORT" or "3 servers", for summaries.
   std::string where() const;
 
@@ -76,6 +85,7 @@ class TileBackend {
   std::unique_ptr<PreparedScene> prepared_;  // in process only
   ThreadPool* pool_ = nullptr;               // the compute pool, in process only
   std::optional<IrradianceField> field_;
+  FieldFill fieldFill_;
   std::unique_ptr<TileService> service_;
 };
 

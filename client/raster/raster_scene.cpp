@@ -408,8 +408,8 @@ void RasterScene::useField(const IrradianceField& field) {
                      std::to_string(EmitterPatches::kMaxPatches) +
                      " emitting triangles, an emitting sphere or an emission texture): --mask all traces every pixel");
   }
+  if (!field_) penumbra_.addEmitters(*patches);
   field_ = std::make_unique<FieldLight>(gl_, field);
-  penumbra_.addEmitters(*patches);
 }
 
 bool RasterScene::objectLit(std::uint32_t object) const {

@@ -41,8 +41,8 @@ class RasterScene {
   RasterScene& operator=(const RasterScene&) = delete;
 
   // Path transport's light from an irradiance field in place of ambient (the
-  // tracer's Tracer::fieldLight), for every frame drawn after; the field
-  // must outlive the scene. The emitters' direct light is drawn unshadowed
+  // tracer's Tracer::fieldLight), for every frame drawn after (a later call
+  // replaces the field); the field must outlive the scene. The emitters' direct light is drawn unshadowed
   // and their penumbra proved (penumbra()). Throws InputError when the
   // scene's emitters are not few flat ones (EmitterPatches).
   void useField(const IrradianceField& field);

@@ -92,7 +92,7 @@ glm::vec3 octahedralDirection(const glm::vec2& point) {
 }
 
 void fillProbes(IrradianceField& field, const PreparedScene& prepared, const FrameSettings& frame, int first, int end,
-                RayStats& stats) {
+                RayStats& stats, const ProbeProgress& progress) {
   FrameSettings probes = frame;
   probes.tracing.maxBounces = std::max(0, frame.tracing.maxBounces - 1);
   const EffectPlan plan = EffectPlan::derive(prepared.scene(), probes);
@@ -100,21 +100,23 @@ void fillProbes(IrradianceField& field, const PreparedScene& prepared, const Fra
                         probes, plan);
   const SampleLayout layout(frame.sampling);
   std::mutex statsMutex;
+  int filled = 0;
   computePool().parallelFor(static_cast<std::size_t>(end - first), [&](std::size_t i) {
     RayStats own;
     const int index = first + static_cast<int>(i);
     field.probe(index) = traceProbe(field, index, path, prepared.bvh(), layout, own);
     std::lock_guard lock(statsMutex);
     stats += own;
+    if (progress) progress(++filled, end - first);
   });
 }
 
 IrradianceField buildField(const PreparedScene& prepared, const FrameSettings& frame, const FieldSettings& settings,
-                           RayStats& stats) {
+                           RayStats& stats, const ProbeProgress& progress) {
   const Bounds3 bounds = prepared.scene().geometry.bounds();
   if (bounds.empty()) throw InputError("the irradiance field: the scene has no object to span");
   IrradianceField field(bounds, settings);
-  fillProbes(field, prepared, frame, 0, field.probeCount(), stats);
+  fillProbes(field, prepared, frame, 0, field.probeCount(), stats, progress);
   return field;
 }
 

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <functional>
+
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -15,6 +17,10 @@ namespace glint {
 // square are uniform directions.
 glm::vec3 octahedralDirection(const glm::vec2& point);
 
+// Told, never concurrently, that `done` of `total` probes are filled, as
+// they are.
+using ProbeProgress = std::function<void(int done, int total)>;
+
 // Fills probes [first, end) of the field with path transport's estimate of
 // the light arriving at each (path_tracer.h, with one bounce fewer than the
 // frame's, since the probe's rays stand for a surface's first bounce). A
@@ -27,10 +33,10 @@ glm::vec3 octahedralDirection(const glm::vec2& point);
 // filled in parallel, each by one thread in a fixed order: the same bytes
 // for any threads and any split into batches.
 void fillProbes(IrradianceField& field, const PreparedScene& prepared, const FrameSettings& frame, int first, int end,
-                RayStats& stats);
+                RayStats& stats, const ProbeProgress& progress = {});
 
 // A field over the scene's bounds, every probe filled.
 IrradianceField buildField(const PreparedScene& prepared, const FrameSettings& frame, const FieldSettings& settings,
-                           RayStats& stats);
+                           RayStats& stats, const ProbeProgress& progress = {});
 
 }  // namespace glint

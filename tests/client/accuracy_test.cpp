@@ -19,6 +19,7 @@
 #include "common/metrics/image_metrics.h"
 #include "common/image/image_read.h"
 #include "common/scene/scene_load.h"
+#include "tests/support/glint_run.h"
 #include "tests/support/test_support.h"
 
 namespace glint {
@@ -198,6 +199,56 @@ TEST(Accuracy, UnderPathTransportTheModelsErrorShows) {
   fs::remove_all(dir);
 }
 
+// What runAccuracy refused `o` with ("(ran)" when it did not).
+std::string accuracyError(const AccuracyOptions& o) {
+  try {
+    runAccuracy(o);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(ran)";
+}
+
+// With an irradiance field the field's rows are hybrid frames drawn from it
+// (not the path trace every pixel traced, mask_rule all), each against the
+// converged path trace: more rays a probe err less, the field's bias stays
+// within 2x the full trace's error at the same samples, and each row's time
+// counts its field's fill. The field's keys refuse a Whitted scene.
+TEST(Accuracy, TheFieldsRowsAreHybridFramesDrawnFromIt) {
+  const fs::path dir = fs::temp_directory_path() / ("glint-accuracy-field-" + std::to_string(::getpid()));
+  AccuracyOptions o;
+  o.scene = test::sourcePath("scenes/cornell.json");
+  o.outDir = dir.string();
+  o.vary = {"field_rays=64,1024", "mask_rule=all"};
+  o.referenceSamples = 256;
+  o.frames = 1;
+  o.frame.width = 48;
+  o.frame.height = 48;
+  o.frame.samples = 16;
+  o.frame.field = FieldSettings{8, 256};
+  runAccuracy(o);
+  const std::vector<CsvRow> rows = readCsv(dir / "accuracy.csv");
+  ASSERT_EQ(rows.size(), 3u);  // 64 rays, 1,024 rays, every pixel traced
+  std::printf("FLIP: 64 rays %.4f, 1024 rays %.4f, path traced %.4f\n", rows[0].flip, rows[1].flip, rows[2].flip);
+  EXPECT_NE(test::decodePngFile((dir / "field_rays-64.png").string()).rgb,
+            test::decodePngFile((dir / "mask_rule-all.png").string()).rgb);
+  EXPECT_LT(rows[1].flip, rows[0].flip);
+  EXPECT_LT(rows[1].flip, 2.0 * rows[2].flip);
+  std::ifstream report(dir / "report.md");
+  const std::string text((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("counts the field's fill in its time"), std::string::npos) << text;
+  fs::remove_all(dir);
+
+  o.scene = test::sourcePath("scenes/room.json");
+  o.frame.field.reset();
+  o.vary = {"field_probes=4"};
+  const std::string whitted = accuracyError(o);
+  EXPECT_NE(whitted.find("--vary field_probes: the irradiance field carries path transport's light"),
+            std::string::npos)
+      << whitted;
+  EXPECT_FALSE(fs::exists(dir));
+}
+
 // --metric rmse: the plot's axis and the front judge RMSE.
 TEST(AccuracyReport, TheMetricChoosesThePlotAndTheFront) {
   std::vector<AccuracyRow> rows(2);
@@ -209,16 +260,6 @@ TEST(AccuracyReport, TheMetricChoosesThePlotAndTheFront) {
   rows[1].flip.mean = 0.1;
   EXPECT_EQ(paretoFront(rows, AccuracyMetric::kRmse), (std::vector<bool>{true, false}));
   EXPECT_EQ(paretoFront(rows, AccuracyMetric::kFlip), (std::vector<bool>{true, true}));
-}
-
-// What runAccuracy refused `o` with ("(ran)" when it did not).
-std::string accuracyError(const AccuracyOptions& o) {
-  try {
-    runAccuracy(o);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(ran)";
 }
 
 TEST(Accuracy, BadInputIsRefusedBeforeRendering) {

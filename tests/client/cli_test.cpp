@@ -468,8 +468,8 @@ TEST_F(Cli, PathTransportIsTracedInFullAndSaysSo) {
 // --field (or the scene's tracing.field) has the hybrid frame draw path
 // transport's light between surfaces from an irradiance field: OpenGL draws
 // most pixels, the tracer the emitter's penumbra and where the field cannot
-// decide; its mean light is the path trace's within the field's bias. Other
-// commands and bad values say what they do.
+// decide; its mean light is the path trace's within the field's bias. info
+// says so and counts the pixels render traced; bad values say what they take.
 TEST_F(Cli, TheFieldDrawsIndirectLightInTheHybridFrame) {
   const std::string small = " --size 48x48 --samples 16 -o ";
   const Result field = glint("render " + scene("cornell.json") + " --field 8,256 --stats " + path("stats.json") +
@@ -493,8 +493,13 @@ TEST_F(Cli, TheFieldDrawsIndirectLightInTheHybridFrame) {
   std::printf("mean byte: %.2f with the field, %.2f path traced\n", withField, traced);
   EXPECT_NEAR(withField, traced, 0.05 * traced);
 
-  const Result info = glint("info " + scene("cornell.json") + " --field 8,256 --no-raster");
-  EXPECT_NE(info.output.find("in glint render in process only"), std::string::npos) << info.output;
+  const Result info = glint("info " + scene("cornell.json") + " --field 8,256 --size 48x48 --samples 16");
+  EXPECT_NE(info.output.find("the hybrid frame draws it from an irradiance field (8 probes along the longest side, "
+                             "256 rays each)"),
+            std::string::npos)
+      << info.output;
+  EXPECT_NE(info.output.find("hybrid     traces " + std::to_string(masked) + " of 2304 pixels"), std::string::npos)
+      << info.output;
   const Result bad = glint("render " + scene("cornell.json") + " --field 8,300 -o " + path("bad.png"));
   EXPECT_EQ(bad.status, 2) << bad.output;
   EXPECT_NE(bad.output.find("--field 8,300: rays must be a power of two"), std::string::npos) << bad.output;

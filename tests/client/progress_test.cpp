@@ -83,6 +83,18 @@ TEST(ProgressLine, TheTimeLeftWaitsForThePaceOfTheTiles) {
             "rendering: 100/100 tiles (100 %), 5.7 s\n");
 }
 
+// An irradiance field's probes, counted in their own word; the line is
+// cleared when the step is over, before the frame's own line is drawn.
+TEST(ProgressLine, CountsItsOwnUnitsAndIsClearedWhenTheStepEnds) {
+  Written out;
+  ProgressLine line(ProgressMode::kForced, out.file(), true, "irradiance field", t0, "probes");
+  line.update(512, 1024, {}, t0 + milliseconds(1500));
+  line.clear();
+  EXPECT_EQ(out.text(), "\r\033[Kirradiance field: 512/1024 probes (50 %), 1.5 s\r\033[K");
+  line.clear();  // nothing drawn since: nothing to clear
+  EXPECT_EQ(out.text(), "\r\033[Kirradiance field: 512/1024 probes (50 %), 1.5 s\r\033[K");
+}
+
 TEST(ProgressLine, QuietPrintsNothingAnywhere) {
   Written out;
   {

@@ -3,7 +3,8 @@
 # colour), captured by the X server (xwd), not read back from OpenGL, holds
 # the same pixels as glint render's PNG of the same scene and size, once the
 # title says the frame (not the one-sample preview) is shown; under path
-# transport (cornell), once its passes have summed the frame's samples.
+# transport (cornell), once its passes have summed the frame's samples, and
+# with an irradiance field (cornell-field), the hybrid frame that reads it.
 # Usage: view_window.sh GLINT SCENES_DIR
 # Exit 77 (CTest: skipped) without xvfb-run, xwininfo, xwd or netpbm.
 set -euo pipefail
@@ -21,11 +22,18 @@ trap 'rm -rf "$work"' EXIT
 size=160x120
 pixels=$((160 * 120 * 3))
 
-# Each scene's options beyond the size: the Cornell box's, few samples.
-options() { [ "$1" = cornell ] && echo "--samples 16 --max-bounces 3" || true; }
-for name in room glass cornell; do
+# Each case's options beyond the size: the Cornell box's, few samples; its
+# field's, few probes. A case is its scene's name, or that and "-field".
+options() {
+  case $1 in
+    cornell) echo "--samples 16 --max-bounces 3" ;;
+    cornell-field) echo "--samples 16 --max-bounces 3 --field 8,256" ;;
+  esac
+}
+cases="room glass cornell cornell-field"
+for name in $cases; do
   # shellcheck disable=SC2046
-  "$glint" render "$scenes/$name.json" --size "$size" $(options "$name") -o "$work/$name.png" -q
+  "$glint" render "$scenes/${name%-field}.json" --size "$size" $(options "$name") -o "$work/$name.png" -q
   pngtopnm "$work/$name.png" | tail -c "$pixels" > "$work/$name.rgb"
 done
 
@@ -34,13 +42,18 @@ done
 # (the last WxHx3 bytes of the PPM) with the render's.
 xvfb-run -a -s "-screen 0 640x480x24" bash -c '
   set -u
-  glint=$1 scenes=$2 work=$3 size=$4 pixels=$5
+  glint=$1 scenes=$2 work=$3 size=$4 pixels=$5 cases=$6
   view=""
   trap "[ -n \"\$view\" ] && kill \$view 2> /dev/null; wait" EXIT
   window() { xwininfo -root -tree | grep -E "\"glint view[^\"]*\|  (frame |[0-9]+ of [0-9]+ spp)" | head -n 1 | awk "{print \$1}"; }
-  options() { [ "$1" = cornell ] && echo "--samples 16 --max-bounces 3" || true; }
-  for name in room glass cornell; do
-    "$glint" view "$scenes/$name.json" --size "$size" $(options "$name") > "$work/$name.log" 2>&1 &
+  options() {
+    case $1 in
+      cornell) echo "--samples 16 --max-bounces 3" ;;
+      cornell-field) echo "--samples 16 --max-bounces 3 --field 8,256" ;;
+    esac
+  }
+  for name in $cases; do
+    "$glint" view "$scenes/${name%-field}.json" --size "$size" $(options "$name") > "$work/$name.log" 2>&1 &
     view=$!
     same=0
     for _ in $(seq 1 300); do
@@ -54,11 +67,11 @@ xvfb-run -a -s "-screen 0 640x480x24" bash -c '
     title=$(xwininfo -root -tree | grep -o "\"glint view[^\"]*\"" | head -n 1)
     kill "$view"; wait "$view" 2> /dev/null || true; view=""
     if [ "$same" -ne 1 ]; then
-      echo "the window of $name.json never showed glint render'"'"'s pixels; its title: $title" >&2
+      echo "the window of $name never showed glint render'"'"'s pixels; its title: $title" >&2
       [ -s "$work/$name.window.rgb" ] && echo "its most common pixels (count, RGB): $(od -v -An -tu1 -w3 "$work/$name.window.rgb" | sort | uniq -c | sort -rn | head -n 3)" >&2
       cat "$work/$name.log" >&2
       exit 1
     fi
-    echo "view_window: the window of $name.json shows glint render'"'"'s pixels"
+    echo "view_window: the window of $name shows glint render'"'"'s pixels"
   done
-' bash "$glint" "$scenes" "$work" "$size" "$pixels"
+' bash "$glint" "$scenes" "$work" "$size" "$pixels" "$cases"
