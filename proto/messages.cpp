@@ -102,9 +102,13 @@ std::vector<std::uint8_t> encodeSceneReady(const SceneHash& hash, float buildMs)
                 wire::Body::SceneReady);
 }
 
-std::vector<std::uint8_t> encodeFrameSetup(std::uint32_t frameId, const SceneHash& hash, const FrameSettings& f) {
+std::vector<std::uint8_t> encodeFrameSetup(std::uint32_t frameId, const SceneHash& hash, const FrameSettings& f,
+                                           const FrameWork& work) {
   FlatBufferBuilder b;
   const auto hashVector = b.CreateVector(hash.data(), hash.size());
+  const auto field = work.field ? wire::CreateFieldSpec(b, static_cast<std::uint32_t>(work.field->probes),
+                                                        static_cast<std::uint32_t>(work.field->rays))
+                                : flatbuffers::Offset<wire::FieldSpec>();
   const wire::Vec3 eye = toWire(f.camera.eye), lookAt = toWire(f.camera.lookAt), up = toWire(f.camera.up);
   const auto setup = wire::CreateFrameSetup(
       b, frameId, hashVector, static_cast<std::uint32_t>(f.width), static_cast<std::uint32_t>(f.height), &eye,
@@ -115,7 +119,7 @@ std::vector<std::uint8_t> encodeFrameSetup(std::uint32_t frameId, const SceneHas
       f.output.encoding == Encoding::kSrgb, f.output.exposure, f.sampling.pattern == SamplePattern::kPerceptual,
       f.sampling.perceptualThreshold, static_cast<std::uint32_t>(f.sampling.lightSamples), f.camera.aperture,
       f.camera.focusDistance, static_cast<std::uint8_t>(f.tracing.transport),
-      static_cast<std::uint32_t>(f.tracing.maxBounces), f.sampling.pattern == SamplePattern::kSobol);
+      static_cast<std::uint32_t>(f.tracing.maxBounces), f.sampling.pattern == SamplePattern::kSobol, field, work.fill);
   return finish(b, setup, wire::Body::FrameSetup);
 }
 
@@ -131,13 +135,39 @@ std::vector<std::uint8_t> encodeTileRequest(std::uint32_t frameId, std::uint32_t
 
 std::vector<std::uint8_t> encodeTileResult(std::uint32_t frameId, std::uint32_t tileId,
                                            std::span<const std::uint8_t> rgb, const RayStats& r,
-                                           std::uint32_t computeMicros) {
-  FlatBufferBuilder b(rgb.size() + 128);
+                                           std::uint32_t computeMicros, std::span<const float> probes) {
+  FlatBufferBuilder b(rgb.size() + probes.size_bytes() + 128);
   const auto rgbVector = b.CreateVector(rgb.data(), rgb.size());
+  const auto probeVector = probes.empty() ? flatbuffers::Offset<flatbuffers::Vector<float>>()
+                                          : b.CreateVector(probes.data(), probes.size());
   const wire::RayCounts rays(r.primary, r.shadow, r.shadowBlocked, r.reflection, r.refraction, r.nonFiniteSamples,
                               r.paths, r.longestPath, r.lightSamples);
-  return finish(b, wire::CreateTileResult(b, frameId, tileId, rgbVector, &rays, computeMicros),
+  return finish(b, wire::CreateTileResult(b, frameId, tileId, rgbVector, &rays, computeMicros, probeVector),
                 wire::Body::TileResult);
+}
+
+std::vector<std::vector<std::uint8_t>> encodeFieldPieces(const SceneHash& hash, const IrradianceField& field,
+                                                         std::size_t maxBytes) {
+  constexpr int kFloats = IrradianceField::kProbeFloats;
+  const int perPiece = std::max<int>(1, static_cast<int>(maxBytes / (kFloats * sizeof(float))));
+  std::vector<std::vector<std::uint8_t>> pieces;
+  std::vector<float> values;
+  for (int first = 0; first < field.probeCount(); first += perPiece) {
+    const int end = std::min(field.probeCount(), first + perPiece);
+    values.assign(static_cast<std::size_t>(end - first) * kFloats, 0.0f);
+    for (int i = first; i < end; ++i) {
+      IrradianceField::writeProbe(field.probe(i),
+                                  std::span<float, kFloats>(values.data() + static_cast<std::size_t>(i - first) * kFloats, kFloats));
+    }
+    FlatBufferBuilder b(values.size() * sizeof(float) + 128);
+    const auto hashVector = b.CreateVector(hash.data(), hash.size());
+    const auto spec = wire::CreateFieldSpec(b, static_cast<std::uint32_t>(field.settings().probes),
+                                            static_cast<std::uint32_t>(field.settings().rays));
+    const auto valueVector = b.CreateVector(values.data(), values.size());
+    pieces.push_back(finish(b, wire::CreateFieldPiece(b, hashVector, spec, static_cast<std::uint32_t>(first), valueVector),
+                            wire::Body::FieldPiece));
+  }
+  return pieces;
 }
 
 RayStats decodeRays(const wire::RayCounts* r) {
@@ -225,6 +255,30 @@ FrameSettings decodeFrameSettings(const wire::FrameSetup& s, std::size_t maxPixe
   return f;
 }
 
+FieldSettings decodeFieldSpec(const wire::FieldSpec* spec, const char* field) {
+  if (!spec) throw InputError(std::string(field) + ": missing");
+  FieldSettings f;
+  if (spec->probes() < static_cast<std::uint32_t>(FieldSettings::kMinProbes) ||
+      spec->probes() > static_cast<std::uint32_t>(FieldSettings::kMaxProbes)) {
+    throw InputError(std::string(field) + ".probes: must be from " + std::to_string(FieldSettings::kMinProbes) +
+                     " to " + std::to_string(FieldSettings::kMaxProbes));
+  }
+  f.probes = static_cast<int>(spec->probes());
+  f.rays = static_cast<int>(std::min<std::uint32_t>(spec->rays(), INT_MAX));
+  if (const std::optional<std::string> why = FieldSettings::raysProblem(f.rays)) {
+    throw InputError(std::string(field) + ".rays: " + *why);
+  }
+  return f;
+}
+
+FrameWork decodeFrameWork(const wire::FrameSetup& setup) {
+  FrameWork work;
+  if (setup.field()) work.field = decodeFieldSpec(setup.field(), "frame_setup.field");
+  work.fill = setup.fill_field();
+  if (work.fill && !work.field) throw InputError("frame_setup.fill_field: names no field (frame_setup.field)");
+  return work;
+}
+
 SceneHash decodeHash32(const wire::Hash32* hash, const char* field) {
   if (!hash) throw InputError(std::string(field) + ": missing");
   SceneHash out{};
@@ -272,6 +326,19 @@ TileRect decodeTileRect(const wire::TileRequest& t, const FrameSettings& frame) 
                      " bytes, but the rectangle needs " + std::to_string(maskByteCount(rect)));
   }
   return rect;
+}
+
+TileRect decodeProbeBatch(const wire::TileRequest& t, int probeCount) {
+  const std::uint64_t first = t.x(), count = t.width();
+  const bool masked = t.mask() && t.mask()->size() > 0;
+  if (count == 0 || count > static_cast<std::uint64_t>(kMaxBatchProbes) ||
+      first + count > static_cast<std::uint64_t>(probeCount) || t.y() != 0 || t.height() != 1 || masked) {
+    throw InputError("tile " + std::to_string(t.tile_id()) + ": a batch of the field's " + std::to_string(probeCount) +
+                     " probes must be probes [x, x + width) with width 1 to " + std::to_string(kMaxBatchProbes) +
+                     ", y 0, height 1 and no mask (got " + std::to_string(count) + " from " + std::to_string(first) +
+                     ")");
+  }
+  return {static_cast<int>(first), 0, static_cast<int>(count), 1};
 }
 
 std::string bodyName(wire::Body body) {

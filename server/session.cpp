@@ -1,5 +1,7 @@
 #include "server/session.h"
 
+#include <cmath>
+
 #include "common/base/error.h"
 #include "common/scene/frame_limits.h"
 #include "common/base/timing.h"
@@ -17,10 +19,20 @@ std::string shortHash(const proto::SceneHash& hash) { return proto::toHex(hash).
 std::vector<std::uint8_t> traceTile(const TileWork& work) {
   const auto start = Clock::now();
   std::vector<std::uint8_t> rgb;
+  std::vector<float> probes;
   RayStats rays;
-  work.frame->renderer->renderTile(work.rect, work.mask, rgb, rays);
+  if (work.frame->probes) {  // a batch of probes [x, x + width)
+    constexpr int kFloats = IrradianceField::kProbeFloats;
+    probes.resize(static_cast<std::size_t>(work.rect.width) * kFloats);
+    for (int i = 0; i < work.rect.width; ++i) {
+      IrradianceField::writeProbe(work.frame->probes->trace(work.rect.x + i, rays),
+                                  std::span<float, kFloats>(probes.data() + static_cast<std::size_t>(i) * kFloats, kFloats));
+    }
+  } else {
+    work.frame->renderer->renderTile(work.rect, work.mask, rgb, rays);
+  }
   const auto micros = static_cast<std::uint32_t>(msSince(start) * 1000.0);
-  return proto::encodeTileResult(work.frameId, work.tileId, rgb, rays, micros);
+  return proto::encodeTileResult(work.frameId, work.tileId, rgb, rays, micros, probes);
 }
 
 Session::Session(SessionHost& host, const SessionStores& stores, const Settings& settings, std::string peer)
@@ -28,6 +40,7 @@ Session::Session(SessionHost& host, const SessionStores& stores, const Settings&
 
 Session::~Session() {
   for (const auto& [hash, file] : partial_) stores_.uploads.give(file.taken);
+  stores_.uploads.give(field_.taken);
 }
 
 void Session::handle(const wire::Message& message) {
@@ -47,7 +60,7 @@ void Session::dispatch(const wire::Message& m) {
   }
   const wire::Body kind = m.body_type();
   if (kind == wire::Body::SceneUpload || kind == wire::Body::FileChunk || kind == wire::Body::FrameSetup ||
-      kind == wire::Body::TileRequest) {
+      kind == wire::Body::TileRequest || kind == wire::Body::FieldPiece) {
     host_.worked();
   }
   // verifyMessage guarantees that the body named is there.
@@ -66,6 +79,8 @@ void Session::dispatch(const wire::Message& m) {
       return onTileRequest(*m.body_as_TileRequest());
     case wire::Body::Cancel:
       return onCancel(*m.body_as_Cancel());
+    case wire::Body::FieldPiece:
+      return onFieldPiece(*m.body_as_FieldPiece());
     case wire::Body::Goodbye:
       state_ = State::kEnded;
       frames_.clear();
@@ -226,14 +241,39 @@ void Session::onFrameSetup(const wire::FrameSetup& setup) {
       return;
     }
     const FrameSettings settings = proto::decodeFrameSettings(setup, FrameLimits::kMaxPixels);
+    const proto::FrameWork work = proto::decodeFrameWork(setup);
     auto frame = std::make_shared<SessionFrame>();
-    frame->renderer = std::make_unique<Renderer>(*scene, settings);
     frame->scene = std::move(scene);
+    if (work.fill) {
+      frame->grid = std::make_unique<FieldGrid>(frame->scene->scene().geometry.bounds(), *work.field);
+      frame->probes = std::make_unique<ProbeTracer>(*frame->scene, settings, *frame->grid);
+    } else {
+      setUpPixels(*frame, settings, work, hash);
+    }
     frames_[frameId] = std::move(frame);
     while (frames_.size() > proto::kFramesRemembered) frames_.erase(frames_.begin());
   } catch (const InputError& e) {
     error(wire::ErrorCode::BadFrame, e.what(), false, frameId);
   }
+}
+
+void Session::setUpPixels(SessionFrame& frame, const FrameSettings& settings, const proto::FrameWork& work,
+                          const proto::SceneHash& hash) {
+  if (work.field) {
+    const bool held = field_.whole() && field_.scene == hash && field_.field->settings().probes == work.field->probes &&
+                      field_.field->settings().rays == work.field->rays;
+    if (!held) {
+      throw InputError("frame_setup.field: this connection has not sent an irradiance field of " +
+                       std::to_string(work.field->probes) + " probes and " + std::to_string(work.field->rays) +
+                       " rays for this scene; send its FieldPieces first");
+    }
+    if (settings.tracing.transport != Transport::kPath) {
+      throw InputError("frame_setup.field: an irradiance field carries path transport's light (transport 1)");
+    }
+    frame.field = field_.field;
+  }
+  frame.renderer = std::make_unique<Renderer>(*frame.scene, settings, EffectPlan::derive(frame.scene->scene(), settings),
+                                              frame.field.get());
 }
 
 void Session::onTileRequest(const wire::TileRequest& request) {
@@ -248,13 +288,69 @@ void Session::onTileRequest(const wire::TileRequest& request) {
   }
   TileWork work{it->second, {}, {}, frameId, tileId};
   try {
-    work.rect = proto::decodeTileRect(request, it->second->renderer->frame());
+    const SessionFrame& frame = *it->second;
+    work.rect = frame.grid ? proto::decodeProbeBatch(request, frame.grid->probeCount())
+                           : proto::decodeTileRect(request, frame.renderer->frame());
   } catch (const InputError& e) {
     error(wire::ErrorCode::BadTile, e.what(), false, frameId, tileId);
     return;
   }
   if (request.mask()) work.mask.assign(request.mask()->begin(), request.mask()->end());
   host_.trace(std::move(work));
+}
+
+// The pieces of a field, in order from probe 0; the whole field's memory is
+// drawn from the uploads when its first piece comes, and given back when
+// another replaces it or the session ends.
+void Session::onFieldPiece(const wire::FieldPiece& piece) {
+  const auto fail = [&](const std::string& why) {
+    dropField();
+    error(wire::ErrorCode::Malformed, "field_piece: " + why, false);
+  };
+  try {
+    const proto::SceneHash hash = proto::decodeHash(piece.scene_hash(), "field_piece.scene_hash");
+    const FieldSettings settings = proto::decodeFieldSpec(piece.field(), "field_piece.field");
+    if (piece.first() == 0) {
+      dropField();
+      const std::shared_ptr<const PreparedScene> scene = stores_.scenes.find(hash);
+      if (!scene) return fail("scene " + shortHash(hash) + " is not on this server; upload it first");
+      const FieldGrid grid(scene->scene().geometry.bounds(), settings);
+      const std::size_t bytes = static_cast<std::size_t>(grid.probeCount()) * sizeof(IrradianceField::Probe);
+      if (!stores_.uploads.take(bytes)) {
+        return fail("a field of " + std::to_string(bytes) + " bytes does not fit what this server holds for uploads (" +
+                    stores_.uploads.name() + ")");
+      }
+      field_.taken = bytes;
+      field_.scene = hash;
+      field_.field = std::make_shared<IrradianceField>(scene->scene().geometry.bounds(), settings);
+    }
+    if (!field_.field || field_.whole() || piece.first() != static_cast<std::uint32_t>(field_.received) ||
+        field_.scene != hash || field_.field->settings().probes != settings.probes ||
+        field_.field->settings().rays != settings.rays) {
+      return fail("a piece from probe " + std::to_string(piece.first()) + " of a field not being sent (pieces come in "
+                  "order from probe 0, each of the same scene and settings)");
+    }
+    constexpr std::size_t kFloats = IrradianceField::kProbeFloats;
+    const std::size_t n = piece.values() ? piece.values()->size() : 0;
+    const std::size_t probes = n / kFloats;
+    if (n == 0 || n % kFloats != 0 || probes > static_cast<std::size_t>(field_.field->probeCount() - field_.received)) {
+      return fail(std::to_string(n) + " values: not whole probes of " + std::to_string(kFloats) + " within the field");
+    }
+    for (std::size_t i = 0; i < probes; ++i) {
+      const float* at = piece.values()->data() + i * kFloats;
+      for (std::size_t k = 0; k < kFloats; ++k) {
+        if (!std::isfinite(at[k])) return fail("a value that is not finite");
+      }
+      field_.field->probe(field_.received++) = IrradianceField::readProbe(std::span<const float, kFloats>(at, kFloats));
+    }
+  } catch (const InputError& e) {
+    fail(e.what());
+  }
+}
+
+void Session::dropField() {
+  stores_.uploads.give(field_.taken);
+  field_ = {};
 }
 
 void Session::onCancel(const wire::Cancel& cancel) {

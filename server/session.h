@@ -8,18 +8,26 @@
 #include <vector>
 
 #include "common/base/memory_gauge.h"
+#include "common/render/field_probes.h"
+#include "common/render/irradiance_field.h"
 #include "common/render/renderer.h"
 #include "common/render/tile.h"
 #include "proto/framing.h"
+#include "proto/messages.h"
 #include "server/scene_builder.h"
 #include "server/scene_cache.h"
 
 namespace glint::server {
 
-// A frame set up by a client: the scene it renders and its renderer.
+// A frame set up by a client: the scene it renders and its renderer, with
+// the irradiance field it reads (FrameSetup.field); or, for a frame that
+// fills a field (fill_field), where the probes lie and their tracer.
 struct SessionFrame {
   std::shared_ptr<const PreparedScene> scene;
   std::unique_ptr<Renderer> renderer;
+  std::shared_ptr<const IrradianceField> field;
+  std::unique_ptr<FieldGrid> grid;
+  std::unique_ptr<ProbeTracer> probes;
 };
 
 // One tile to trace on the pool; the result is an encoded TileResult.
@@ -101,6 +109,11 @@ class Session {
   void onFrameSetup(const wire::FrameSetup& setup);
   void onTileRequest(const wire::TileRequest& tile);
   void onCancel(const wire::Cancel& cancel);
+  void onFieldPiece(const wire::FieldPiece& piece);
+  void dropField();
+  // The frame's renderer, reading the connection's field where the frame names one.
+  void setUpPixels(SessionFrame& frame, const FrameSettings& settings, const proto::FrameWork& work,
+                   const proto::SceneHash& hash);
 
   // A file whose pieces are still arriving (FileChunk).
   struct PartialFile {
@@ -117,6 +130,16 @@ class Session {
   bool building_ = false;  // a SceneUpload of this client is being built: one at a time
   std::map<std::uint32_t, std::shared_ptr<const SessionFrame>> frames_;  // by frame id
   std::map<proto::SceneHash, PartialFile> partial_;  // given back to stores_.uploads when dropped
+  // The irradiance field the client sent (FieldPiece), whole once every
+  // probe came; its memory drawn from stores_.uploads while the session holds it.
+  struct ReceivedField {
+    proto::SceneHash scene{};
+    std::shared_ptr<IrradianceField> field;
+    int received = 0;       // probes so far
+    std::size_t taken = 0;  // from stores_.uploads
+    bool whole() const { return field && received == field->probeCount(); }
+  };
+  ReceivedField field_;
 };
 
 }  // namespace glint::server

@@ -145,13 +145,19 @@ void printSummary(const RenderOptions& options, const FrameSettings& frame, cons
   }
 }
 
-// The irradiance field, filled once before the first frame: what it cost.
+// The irradiance field, filled once before the first frame: what it cost,
+// and through servers, each one's batches.
 void printFieldFill(const TileBackend& backend) {
   const IrradianceField* field = backend.field();
   if (!field) return;
   std::fprintf(stderr, "irradiance field: %d probes x %d rays, filled once for every frame: %.1f ms, %.2f M rays\n",
                field->probeCount(), field->settings().rays, backend.fieldFill().ms,
                static_cast<double>(backend.fieldFill().rays.total()) / 1e6);
+  if (!backend.distributed()) return;
+  for (const ServerReport& s : backend.distributed()->fieldReport().servers) {
+    std::fprintf(stderr, "  server %-24s %-11s %5zu batches %7zu probes  busy %8.1f ms\n", s.address.c_str(),
+                 std::string(enumWord(s.state)).c_str(), s.tiles, s.probes, s.busyMs);
+  }
 }
 
 // Each server's share of the last frame, and the provenance image's legend.
@@ -215,7 +221,7 @@ void checkCrop(const TileRect& crop, const FrameSettings& frame) {
 }  // namespace
 
 void applyOverrides(const RenderOptions& o, Scene& scene) {
-  applyFrameOverrides(o.frame, scene, !o.remote.any());
+  applyFrameOverrides(o.frame, scene, true);
   if (o.crop) checkCrop(*o.crop, scene.frame);
 }
 

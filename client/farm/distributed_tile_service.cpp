@@ -88,7 +88,39 @@ void DistributedTileService::throwIfHopeless() {
 void DistributedTileService::linkReady(ServerLink& link) {
   servers_.ready(link.index());
   servers_[link.index()].pace.threads = link.threads();
+  if (field_) link.sendField(*field_);
   if (frame_) joinFrame(link.index());
+}
+
+void DistributedTileService::useField(const IrradianceField* field) {
+  field_ = field;
+  if (!field_) return;
+  for (std::size_t i = 0; i < servers_.size(); ++i) {
+    if (servers_.serving(i)) servers_[i].link->sendField(*field_);
+  }
+}
+
+IrradianceField DistributedTileService::fillField(const FrameSettings& frame, const Bounds3& bounds,
+                                                  const FieldSettings& settings) {
+  if (bounds.empty()) throw InputError("the irradiance field: the scene has no object to span");
+  IrradianceField field(bounds, settings);
+  std::vector<TileJob> batches;
+  for (int first = 0; first < field.probeCount(); first += kBatchProbes) {
+    batches.push_back({{first, 0, std::min(kBatchProbes, field.probeCount() - first), 1}, {}});
+  }
+  constexpr int kFloats = IrradianceField::kProbeFloats;
+  beginFrame();
+  run(frame, batches,
+      [&](std::size_t j, TileOutput&& out) {
+        const TileRect& r = batches[j].rect;
+        for (int i = 0; i < r.width; ++i) {
+          field.probe(r.x + i) = IrradianceField::readProbe(
+              std::span<const float, kFloats>(out.probes.data() + static_cast<std::size_t>(i) * kFloats, kFloats));
+        }
+      },
+      {settings, true});
+  fieldReport_ = report_;
+  return field;
 }
 
 void DistributedTileService::linkFailed(ServerLink& link, const LinkFailure& failure) {
@@ -110,7 +142,7 @@ void DistributedTileService::linkFailed(ServerLink& link, const LinkFailure& fai
 
 void DistributedTileService::joinFrame(std::size_t index) {
   FarmServer& s = servers_[index];
-  s.link->setupFrame(frame_->id(), frame_->settings());
+  s.link->setupFrame(frame_->id(), frame_->settings(), frame_->work());
   frame_->dispatcher().join(index, s.pace, nowMs());
   dispatchSoon();
 }
@@ -133,6 +165,7 @@ void DistributedTileService::deliverFrame(FrameRun& frame) {
     FarmServer& s = servers_[server];
     ++s.report.tiles;
     s.report.maskedPixels += out.rgb.size() / 3;
+    s.report.probes += out.probes.size() / IrradianceField::kProbeFloats;
     s.report.rays += out.rays;
     s.report.busyMs += out.computeMs;
     report_.deliveredBy[frame.reportBase() + job] = s.reportRow;
@@ -145,6 +178,14 @@ void DistributedTileService::deliverFrame(FrameRun& frame) {
 
 void DistributedTileService::render(const FrameSettings& settings, std::span<const TileJob> jobs,
                                     const std::function<void(std::size_t, TileOutput&&)>& done) {
+  proto::FrameWork work;
+  if (field_) work.field = field_->settings();
+  run(settings, jobs, done, work);
+}
+
+void DistributedTileService::run(const FrameSettings& settings, std::span<const TileJob> jobs,
+                                 const std::function<void(std::size_t, TileOutput&&)>& done,
+                                 const proto::FrameWork& work) {
   servers_.retryLost();
   std::vector<std::size_t> traced;
   for (std::size_t j = 0; j < jobs.size(); ++j) {
@@ -158,7 +199,7 @@ void DistributedTileService::render(const FrameSettings& settings, std::span<con
   dispatch.stallTimeoutMs = static_cast<double>(settings_.stallTimeout.count());
   const std::size_t reportBase = startReport(jobs);
   std::vector<double> costs = costs_.costs(jobs, traced);
-  frame_ = std::make_unique<FrameRun>(++frameId_, settings, jobs, done, std::move(traced), std::move(costs),
+  frame_ = std::make_unique<FrameRun>(++frameId_, settings, work, jobs, done, std::move(traced), std::move(costs),
                                       servers_.size(), dispatch, reportBase);
   struct EndOfFrame {  // however render() ends
     std::unique_ptr<FrameRun>& frame;

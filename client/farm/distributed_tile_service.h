@@ -55,6 +55,18 @@ class DistributedTileService : public TileService, private LinkListener {
 
   void render(const FrameSettings& frame, std::span<const TileJob> jobs,
               const std::function<void(std::size_t, TileOutput&&)>& done) override;
+  // Fills an irradiance field over `bounds` for `frame` in batches of
+  // probes the servers trace as tiles (the same dispatch, failover and
+  // report; onTraced counts batches): the same bytes as buildField in
+  // process. Its report is fieldReport(). Throws InputError as render().
+  IrradianceField fillField(const FrameSettings& frame, const Bounds3& bounds, const FieldSettings& settings);
+  // Probes a batch of fillField holds.
+  static constexpr int kBatchProbes = 64;
+  // The field the frames rendered after read (path transport's light
+  // between surfaces, as LocalTileService's), sent to every server that
+  // serves now or later; it must outlive the service. nullptr: none.
+  void useField(const IrradianceField* field);
+  const DistributionReport& fieldReport() const { return fieldReport_; }
   int parallelism() const override;
   void beginFrame() override;
 
@@ -83,6 +95,9 @@ class DistributedTileService : public TileService, private LinkListener {
   void linkFailed(ServerLink& link, const LinkFailure& failure) override;
 
   void joinFrame(std::size_t index);
+  // render()'s and fillField()'s frame: the jobs to the servers until every one is delivered.
+  void run(const FrameSettings& settings, std::span<const TileJob> jobs,
+           const std::function<void(std::size_t, TileOutput&&)>& done, const proto::FrameWork& work);
   // The source's changes to the pool; `frame`, the report that shows them.
   void adoptChanges(int frame);
   // Sends what the dispatcher assigns, soon (once, however many ask).
@@ -114,6 +129,8 @@ class DistributedTileService : public TileService, private LinkListener {
   TileCostModel costs_;
   DistributionReport report_;  // the frame since beginFrame(), every render() in it
   int reportFrame_ = 0;        // beginFrame() calls so far
+  const IrradianceField* field_ = nullptr;  // useField()'s
+  DistributionReport fieldReport_;           // fillField()'s
   std::size_t rowsFor_ = 0;    // the servers the report's rows were started for
 };
 

@@ -38,6 +38,7 @@ struct ServerReport {
   bool joined = false;  // listed since the frame before (it serves once it holds the scene)
   std::size_t tiles = 0;         // results the frame took from it
   std::size_t maskedPixels = 0;  // in those tiles
+  std::size_t probes = 0;        // of an irradiance field, in those that were its batches
   RayStats rays;
   double busyMs = 0.0;  // its threads' tracing time for those tiles
   double rttMs = 0.0;   // smallest round trip seen beyond tracing time

@@ -2,11 +2,13 @@
 
 namespace glint {
 
-FrameRun::FrameRun(std::uint32_t id, const FrameSettings& settings, std::span<const TileJob> jobs, const Done& done,
-                   std::vector<std::size_t> traced, std::vector<double> costs, std::size_t servers,
-                   const DispatchSettings& dispatch, std::size_t reportBase)
+FrameRun::FrameRun(std::uint32_t id, const FrameSettings& settings, const proto::FrameWork& work,
+                   std::span<const TileJob> jobs, const Done& done, std::vector<std::size_t> traced,
+                   std::vector<double> costs, std::size_t servers, const DispatchSettings& dispatch,
+                   std::size_t reportBase)
     : id_(id),
       settings_(settings),
+      work_(work),
       jobs_(jobs),
       done_(done),
       jobOf_(std::move(traced)),

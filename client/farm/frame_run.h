@@ -9,6 +9,7 @@
 
 #include "client/farm/tile_dispatcher.h"
 #include "common/render/tile_service.h"
+#include "proto/messages.h"
 
 namespace glint {
 
@@ -20,17 +21,19 @@ class FrameRun {
  public:
   using Done = std::function<void(std::size_t, TileOutput&&)>;
 
-  // `traced` the indices of `jobs` with pixels to trace, `costs` their
-  // prices; `servers` the farm's records (the dispatcher's key);
-  // `reportBase` the report's index of jobs[0].
-  FrameRun(std::uint32_t id, const FrameSettings& settings, std::span<const TileJob> jobs, const Done& done,
-           std::vector<std::size_t> traced, std::vector<double> costs, std::size_t servers,
+  // `work` what the jobs are (pixels, or a field's probes); `traced` the
+  // indices of `jobs` with pixels to trace, `costs` their prices; `servers`
+  // the farm's records (the dispatcher's key); `reportBase` the report's
+  // index of jobs[0].
+  FrameRun(std::uint32_t id, const FrameSettings& settings, const proto::FrameWork& work, std::span<const TileJob> jobs,
+           const Done& done, std::vector<std::size_t> traced, std::vector<double> costs, std::size_t servers,
            const DispatchSettings& dispatch, std::size_t reportBase);
   FrameRun(const FrameRun&) = delete;
   FrameRun& operator=(const FrameRun&) = delete;
 
   std::uint32_t id() const { return id_; }
   const FrameSettings& settings() const { return settings_; }
+  const proto::FrameWork& work() const { return work_; }
   TileDispatcher& dispatcher() { return dispatcher_; }
   const TileDispatcher& dispatcher() const { return dispatcher_; }
   std::size_t tiles() const { return jobOf_.size(); }
@@ -54,6 +57,7 @@ class FrameRun {
  private:
   std::uint32_t id_;
   const FrameSettings& settings_;
+  proto::FrameWork work_;
   std::span<const TileJob> jobs_;
   const Done& done_;
   std::vector<std::size_t> jobOf_;  // the dispatcher's tile -> the job's index

@@ -1,6 +1,7 @@
 #include "client/farm/server_conversation.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "common/base/build_identity.h"
 #include "common/base/printable.h"
@@ -157,16 +158,26 @@ void ServerConversation::onError(const wire::Error& error) {
   }
 }
 
-void ServerConversation::setupFrame(std::uint32_t frameId, const FrameSettings& frame) {
+void ServerConversation::setupFrame(std::uint32_t frameId, const FrameSettings& frame, const proto::FrameWork& work) {
   if (frameId > proto::kFramesRemembered) {  // results of frames the server forgot will not come
     std::erase_if(pending_, [&](const auto& p) { return p.first >> 32 <= frameId - proto::kFramesRemembered; });
   }
-  host_.send(proto::encodeFrameSetup(frameId, digest_.scene, frame));
+  fillFrame_ = work.fill ? std::optional(frameId) : std::nullopt;
+  host_.send(proto::encodeFrameSetup(frameId, digest_.scene, frame, work));
 }
 
 void ServerConversation::request(std::uint32_t frameId, std::uint32_t tileId, const TileJob& job) {
-  pending_[proto::tileKey(frameId, tileId)] = 3 * tracedPixels(job);
+  const bool batch = fillFrame_ == frameId;
+  pending_[proto::tileKey(frameId, tileId)] =
+      batch ? Expected{0, static_cast<std::size_t>(job.rect.width) * IrradianceField::kProbeFloats}
+            : Expected{3 * tracedPixels(job), 0};
   host_.send(proto::encodeTileRequest(frameId, tileId, job.rect, job.mask));
+}
+
+void ServerConversation::sendField(const IrradianceField& field) {
+  for (std::vector<std::uint8_t>& piece : proto::encodeFieldPieces(digest_.scene, field, maxMessageBytes_ / 2)) {
+    host_.send(std::move(piece));
+  }
 }
 
 void ServerConversation::cancel(std::uint32_t frameId, std::span<const std::uint32_t> tileIds) {
@@ -184,14 +195,25 @@ void ServerConversation::onResult(const wire::TileResult& result) {
     return;
   }
   const std::size_t rgbBytes = result.rgb() ? result.rgb()->size() : 0;
-  if (rgbBytes != it->second) {
-    fail(LinkFailure::Kind::kBadBytes,
-         "sent " + tile + " with " + std::to_string(rgbBytes) + " bytes of pixels, not " + std::to_string(it->second));
+  const std::size_t probeValues = result.probes() ? result.probes()->size() : 0;
+  if (rgbBytes != it->second.rgb) {
+    fail(LinkFailure::Kind::kBadBytes, "sent " + tile + " with " + std::to_string(rgbBytes) + " bytes of pixels, not " +
+                                           std::to_string(it->second.rgb));
+    return;
+  }
+  if (probeValues != it->second.probes) {
+    fail(LinkFailure::Kind::kBadBytes, "sent " + tile + " with " + std::to_string(probeValues) +
+                                           " probe values, not " + std::to_string(it->second.probes));
     return;
   }
   pending_.erase(it);
   TileOutput out;
   if (result.rgb()) out.rgb.assign(result.rgb()->begin(), result.rgb()->end());
+  if (result.probes()) out.probes.assign(result.probes()->begin(), result.probes()->end());
+  if (!std::all_of(out.probes.begin(), out.probes.end(), [](float v) { return std::isfinite(v); })) {
+    fail(LinkFailure::Kind::kBadBytes, "sent " + tile + " with probe values that are not finite");
+    return;
+  }
   out.rays = proto::decodeRays(result.rays());
   out.computeMs = result.compute_us() / 1000.0;
   host_.delivered(result.frame_id(), result.tile_id(), std::move(out));

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "common/render/tile_service.h"
 #include "common/scene/scene.h"
 #include "proto/framing.h"
+#include "proto/messages.h"
 #include "proto/scene_bundle.h"
 
 namespace glint {
@@ -79,8 +81,12 @@ class ServerConversation {
   void fail(LinkFailure::Kind kind, const std::string& what);
 
   // Inputs from the client.
-  void setupFrame(std::uint32_t frameId, const FrameSettings& frame);
+  void setupFrame(std::uint32_t frameId, const FrameSettings& frame, const proto::FrameWork& work = {});
+  // A job of a fill frame (FrameWork::fill) is a batch of probes: its
+  // rectangle's x and width their first and count.
   void request(std::uint32_t frameId, std::uint32_t tileId, const TileJob& job);
+  // The irradiance field the frames after read (FrameWork::field), in pieces.
+  void sendField(const IrradianceField& field);
   void cancel(std::uint32_t frameId, std::span<const std::uint32_t> tileIds);
   // Says Goodbye; nothing more is taken.
   void close();
@@ -109,7 +115,13 @@ class ServerConversation {
   std::size_t maxMessageBytes_ = proto::kDefaultMaxMessageBytes;
   int threads_ = 1;
   bool uploaded_ = false;
-  std::map<std::uint64_t, std::size_t> pending_;  // (frame, tile) asked for -> pixel bytes of its result
+  // What a result must carry: pixel bytes, or a batch's probe values.
+  struct Expected {
+    std::size_t rgb = 0;
+    std::size_t probes = 0;
+  };
+  std::map<std::uint64_t, Expected> pending_;  // (frame, tile) asked for -> what its result carries
+  std::optional<std::uint32_t> fillFrame_;      // the last frame set up, when it fills a field
 };
 
 }  // namespace glint

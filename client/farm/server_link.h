@@ -42,7 +42,10 @@ class ServerLink : public std::enable_shared_from_this<ServerLink>, private Conv
   // Stops telling the listener anything, and closes.
   void detach();
 
-  void setupFrame(std::uint32_t frameId, const FrameSettings& frame) { conversation_.setupFrame(frameId, frame); }
+  void setupFrame(std::uint32_t frameId, const FrameSettings& frame, const proto::FrameWork& work = {}) {
+    conversation_.setupFrame(frameId, frame, work);
+  }
+  void sendField(const IrradianceField& field) { conversation_.sendField(field); }
   void request(std::uint32_t frameId, std::uint32_t tileId, const TileJob& job) {
     conversation_.request(frameId, tileId, job);
   }

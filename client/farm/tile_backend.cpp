@@ -32,6 +32,7 @@ TileBackend::TileBackend(const Options& options, proto::LoadedBundle loaded) : l
     auto service = connectServers(remote, loaded_.bundle, options.awaitServer);
     distributed_ = service.get();
     service_ = std::move(service);
+    if (options.field) fillOnServers(options.fieldProgress);
     return;
   }
   BvhSettings bvh;
@@ -45,6 +46,24 @@ TileBackend::TileBackend(const Options& options, proto::LoadedBundle loaded) : l
     fieldFill_.ms = msSince(start);
   }
   service_ = std::make_unique<LocalTileService>(*prepared_, *pool_, field());
+}
+
+// The field in batches the servers trace, then sent to each for the frames.
+void TileBackend::fillOnServers(const std::function<void(int, int)>& progress) {
+  const FrameSettings& frame = loaded_.scene.frame;
+  const Clock::time_point start = Clock::now();
+  const FieldGrid grid(loaded_.scene.geometry.bounds(), *frame.tracing.field);
+  if (progress) {
+    distributed_->onTraced([&](std::size_t batches) {
+      progress(std::min(grid.probeCount(), static_cast<int>(batches) * DistributedTileService::kBatchProbes),
+               grid.probeCount());
+    });
+  }
+  field_.emplace(distributed_->fillField(frame, loaded_.scene.geometry.bounds(), *frame.tracing.field));
+  distributed_->onTraced({});
+  fieldFill_.ms = msSince(start);
+  for (const ServerReport& s : distributed_->fieldReport().servers) fieldFill_.rays += s.rays;
+  distributed_->useField(&*field_);
 }
 
 TileBackend::~TileBackend() = default;

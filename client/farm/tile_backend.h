@@ -45,10 +45,10 @@ class TileBackend {
     RemoteOptions remote;
     std::optional<BvhBuilder> bvh;
     bool awaitServer = true;  // wait for a server to be ready (view does not)
-    // In process: fill the scene's irradiance field (its tracing.field
-    // settings, which it must have) once, for the hybrid frame under path
-    // transport, and trace with it; told, never concurrently, how many of
-    // its probes are filled.
+    // Fill the scene's irradiance field (its tracing.field settings, which
+    // it must have) once, for the hybrid frame under path transport, in
+    // process or in batches on the servers, and trace with it; told, never
+    // concurrently, how many of its probes are filled.
     bool field = false;
     std::function<void(int done, int total)> fieldProgress = {};
   };
@@ -80,6 +80,8 @@ class TileBackend {
   std::string where() const;
 
  private:
+  void fillOnServers(const std::function<void(int, int)>& progress);
+
   DistributedTileService* distributed_ = nullptr;  // service_, when it is one
   proto::LoadedBundle loaded_;
   std::unique_ptr<PreparedScene> prepared_;  // in process only

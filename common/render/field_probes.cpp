@@ -52,26 +52,10 @@ IrradianceField::Probe scaled(const ProbeSums& sums, int rays, float maxDistance
   return probe;
 }
 
-// One probe's rays, in order.
-IrradianceField::Probe traceProbe(const IrradianceField& field, int index, const PathTracer& path, const Bvh& bvh,
-                                  const SampleLayout& layout, RayStats& stats) {
-  const glm::vec3 origin = field.position(index);
-  const float maxDistance = field.maxDistance();
-  const int rays = field.settings().rays;
-  const SampleLayout::Pixel pixel = layout.pixel(index, kFieldRow);
-  ProbeSums sums;
-  for (int r = 0; r < rays; ++r) {
-    const SampleKey key = SampleLayout::key(pixel, r);
-    const glm::vec2 point = key.stratified(SampleKey::kPixelPair);
-    const Ray ray(origin, octahedralDirection(point));
-    const std::optional<Hit> hit = bvh.intersect(ray, kInfinity);
-    const float d = std::min(hit ? hit->t : maxDistance, maxDistance);
-    const int texel = IrradianceField::texel(point);
-    sums.moments[texel] += glm::vec2(d, d * d);
-    ++sums.rays[texel];
-    addLight(sums, ray.d, path.radiance(ray, key, stats, PathTracer::First::kReflected) * kSphere, stats);
-  }
-  return scaled(sums, rays, maxDistance);
+// The frame's settings with a bounce fewer: a probe's rays stand for a surface's first bounce.
+FrameSettings probeFrame(FrameSettings frame) {
+  frame.tracing.maxBounces = std::max(0, frame.tracing.maxBounces - 1);
+  return frame;
 }
 
 }  // namespace
@@ -91,20 +75,44 @@ glm::vec3 octahedralDirection(const glm::vec2& point) {
   return {std::copysign(sc.cos, u) * s, std::copysign(sc.sin, v) * s, z};
 }
 
+ProbeTracer::ProbeTracer(const PreparedScene& prepared, const FrameSettings& frame, const FieldGrid& grid)
+    : prepared_(prepared),
+      grid_(grid),
+      probes_(probeFrame(frame)),
+      plan_(EffectPlan::derive(prepared.scene(), probes_)),
+      path_(prepared.scene(), prepared.bvh(), plan_.environment ? prepared.environmentLight() : nullptr, probes_,
+            plan_),
+      layout_(frame.sampling) {}
+
+IrradianceField::Probe ProbeTracer::trace(int index, RayStats& stats) const {
+  const glm::vec3 origin = grid_.position(index);
+  const float maxDistance = grid_.maxDistance();
+  const int rays = grid_.settings().rays;
+  const SampleLayout::Pixel pixel = layout_.pixel(index, kFieldRow);
+  ProbeSums sums;
+  for (int r = 0; r < rays; ++r) {
+    const SampleKey key = SampleLayout::key(pixel, r);
+    const glm::vec2 point = key.stratified(SampleKey::kPixelPair);
+    const Ray ray(origin, octahedralDirection(point));
+    const std::optional<Hit> hit = prepared_.bvh().intersect(ray, kInfinity);
+    const float d = std::min(hit ? hit->t : maxDistance, maxDistance);
+    const int texel = IrradianceField::texel(point);
+    sums.moments[texel] += glm::vec2(d, d * d);
+    ++sums.rays[texel];
+    addLight(sums, ray.d, path_.radiance(ray, key, stats, PathTracer::First::kReflected) * kSphere, stats);
+  }
+  return scaled(sums, rays, maxDistance);
+}
+
 void fillProbes(IrradianceField& field, const PreparedScene& prepared, const FrameSettings& frame, int first, int end,
                 RayStats& stats, const ProbeProgress& progress) {
-  FrameSettings probes = frame;
-  probes.tracing.maxBounces = std::max(0, frame.tracing.maxBounces - 1);
-  const EffectPlan plan = EffectPlan::derive(prepared.scene(), probes);
-  const PathTracer path(prepared.scene(), prepared.bvh(), plan.environment ? prepared.environmentLight() : nullptr,
-                        probes, plan);
-  const SampleLayout layout(frame.sampling);
+  const ProbeTracer tracer(prepared, frame, field.grid());
   std::mutex statsMutex;
   int filled = 0;
   computePool().parallelFor(static_cast<std::size_t>(end - first), [&](std::size_t i) {
     RayStats own;
     const int index = first + static_cast<int>(i);
-    field.probe(index) = traceProbe(field, index, path, prepared.bvh(), layout, own);
+    field.probe(index) = tracer.trace(index, own);
     std::lock_guard lock(statsMutex);
     stats += own;
     if (progress) progress(++filled, end - first);

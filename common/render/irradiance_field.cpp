@@ -43,20 +43,42 @@ Bounds3 spanned(const Bounds3& bounds, int probes) {
 
 }  // namespace
 
-IrradianceField::IrradianceField(const Bounds3& bounds, const FieldSettings& settings) : settings_(settings) {
+FieldGrid::FieldGrid(const Bounds3& bounds, const FieldSettings& settings) : settings_(settings) {
   const Bounds3 box = spanned(bounds, settings.probes);
   counts_ = probeCounts(box.extent(), settings.probes);
   step_ = box.extent() / glm::vec3(counts_);
   origin_ = box.min + 0.5f * step_;
-  probes_.resize(static_cast<std::size_t>(probeCount()));
 }
 
-glm::vec3 IrradianceField::position(int probe) const {
+glm::vec3 FieldGrid::position(int probe) const {
   const glm::ivec3 cell(probe % counts_.x, (probe / counts_.x) % counts_.y, probe / (counts_.x * counts_.y));
   return origin_ + glm::vec3(cell) * step_;
 }
 
-float IrradianceField::maxDistance() const { return 2.0f * glm::length(step_); }
+float FieldGrid::maxDistance() const { return 2.0f * glm::length(step_); }
+
+IrradianceField::IrradianceField(const Bounds3& bounds, const FieldSettings& settings)
+    : grid_(bounds, settings), probes_(static_cast<std::size_t>(grid_.probeCount())) {}
+
+void IrradianceField::writeProbe(const Probe& probe, std::span<float, kProbeFloats> out) {
+  float* at = out.data();
+  for (const glm::vec3& c : probe.irradiance) at = std::copy_n(&c.x, 3, at);
+  for (const glm::vec2& m : probe.moments) at = std::copy_n(&m.x, 2, at);
+}
+
+IrradianceField::Probe IrradianceField::readProbe(std::span<const float, kProbeFloats> in) {
+  Probe probe;
+  const float* at = in.data();
+  for (glm::vec3& c : probe.irradiance) {
+    c = glm::vec3(at[0], at[1], at[2]);
+    at += 3;
+  }
+  for (glm::vec2& m : probe.moments) {
+    m = glm::vec2(at[0], at[1]);
+    at += 2;
+  }
+  return probe;
+}
 
 int IrradianceField::texel(const glm::vec2& point) {
   const int x = std::clamp(static_cast<int>(point.x * kMapSide), 0, kMapSide - 1);
@@ -65,12 +87,12 @@ int IrradianceField::texel(const glm::vec2& point) {
 }
 
 IrradianceField::Lookup IrradianceField::irradiance(const glm::vec3& p, const glm::vec3& n) const {
-  const float minStep = std::min({step_.x, step_.y, step_.z});
+  const float minStep = std::min({step().x, step().y, step().z});
   // Looked up a little off the surface, so that the probes beside it on its
   // own side do not see it at a grazing distance.
   const glm::vec3 q = p + (0.25f * minStep) * n;
-  const glm::vec3 at = glm::clamp((q - origin_) / step_, glm::vec3(0.0f), glm::vec3(counts_ - 1));
-  const glm::ivec3 base = glm::min(glm::ivec3(at), counts_ - 2);
+  const glm::vec3 at = glm::clamp((q - origin()) / step(), glm::vec3(0.0f), glm::vec3(counts() - 1));
+  const glm::ivec3 base = glm::min(glm::ivec3(at), counts() - 2);
   const glm::vec3 alpha = at - glm::vec3(base);
   const float minVariance = (0.05f * minStep) * (0.05f * minStep);
   Blend blend;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <span>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -11,9 +12,32 @@
 
 namespace glint {
 
+// Where an irradiance field's probes lie: a regular grid over the scene's
+// bounds, at the centres of equal cells (so no probe lies on the bounds'
+// walls), settings.probes along the longest side and the others in
+// proportion. What filling a batch of probes needs, without their values.
+class FieldGrid {
+ public:
+  FieldGrid(const Bounds3& bounds, const FieldSettings& settings);
+
+  const FieldSettings& settings() const { return settings_; }
+  const glm::ivec3& counts() const { return counts_; }
+  int probeCount() const { return counts_.x * counts_.y * counts_.z; }
+  glm::vec3 position(int probe) const;  // origin() + cell x step()
+  const glm::vec3& origin() const { return origin_; }
+  const glm::vec3& step() const { return step_; }
+  // Where a ray's distance is clamped to in the visibility map.
+  float maxDistance() const;
+
+ private:
+  FieldSettings settings_;
+  glm::ivec3 counts_;
+  glm::vec3 origin_;  // probe (0, 0, 0)
+  glm::vec3 step_;    // between neighbouring probes
+};
+
 // The indirect light of a scene as a field the raster and the tracer read:
-// probes on a regular grid over the scene's bounds (at the centres of equal
-// cells, so no probe lies on the bounds' walls), each holding
+// probes on a FieldGrid, each holding
 //  - the irradiance the light from other surfaces brings it, as spherical
 //    harmonics to order 2 convolved with the cosine lobe (shIrradiance),
 //  - and, in an equal-area octahedral map of kMapSide^2 texels, the mean
@@ -39,6 +63,11 @@ class IrradianceField {
     std::array<glm::vec3, 9> irradiance{};  // A_l L_k per basis function
     std::array<glm::vec2, kMapTexels> moments{};  // mean, mean square distance per texel
   };
+  // A probe as floats, as it travels between client and server: its
+  // irradiance's 27, then its moments' 128.
+  static constexpr int kProbeFloats = 9 * 3 + kMapTexels * 2;
+  static void writeProbe(const Probe& probe, std::span<float, kProbeFloats> out);
+  static Probe readProbe(std::span<const float, kProbeFloats> in);
   struct Lookup {
     glm::vec3 irradiance{0.0f};
     bool decided = false;
@@ -46,14 +75,14 @@ class IrradianceField {
 
   IrradianceField(const Bounds3& bounds, const FieldSettings& settings);
 
-  const FieldSettings& settings() const { return settings_; }
-  const glm::ivec3& counts() const { return counts_; }
-  int probeCount() const { return counts_.x * counts_.y * counts_.z; }
-  glm::vec3 position(int probe) const;  // origin() + cell x step()
-  const glm::vec3& origin() const { return origin_; }
-  const glm::vec3& step() const { return step_; }
-  // Where a ray's distance is clamped to in the visibility map.
-  float maxDistance() const;
+  const FieldGrid& grid() const { return grid_; }
+  const FieldSettings& settings() const { return grid_.settings(); }
+  const glm::ivec3& counts() const { return grid_.counts(); }
+  int probeCount() const { return grid_.probeCount(); }
+  glm::vec3 position(int probe) const { return grid_.position(probe); }
+  const glm::vec3& origin() const { return grid_.origin(); }
+  const glm::vec3& step() const { return grid_.step(); }
+  float maxDistance() const { return grid_.maxDistance(); }
   Probe& probe(int i) { return probes_[static_cast<std::size_t>(i)]; }
   const Probe& probe(int i) const { return probes_[static_cast<std::size_t>(i)]; }
 
@@ -65,12 +94,11 @@ class IrradianceField {
   static int texel(const glm::vec2& point);
 
  private:
-  int index(const glm::ivec3& cell) const { return (cell.z * counts_.y + cell.y) * counts_.x + cell.x; }
+  int index(const glm::ivec3& cell) const {
+    return (cell.z * counts().y + cell.y) * counts().x + cell.x;
+  }
 
-  FieldSettings settings_;
-  glm::ivec3 counts_;
-  glm::vec3 origin_;  // probe (0, 0, 0)
-  glm::vec3 step_;    // between neighbouring probes
+  FieldGrid grid_;
   std::vector<Probe> probes_;
 };
 

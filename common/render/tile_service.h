@@ -23,9 +23,11 @@ struct TileJob {
 // The pixels a job asks for: its masked ones, or all of its rectangle.
 std::size_t tracedPixels(const TileJob& job);
 
-// What comes back for a tile: RGB8 of its masked pixels in scan order.
+// What comes back for a tile: RGB8 of its masked pixels in scan order (or,
+// for a batch of an irradiance field's probes, their values).
 struct TileOutput {
   std::vector<std::uint8_t> rgb;
+  std::vector<float> probes;  // IrradianceField::writeProbe's, probe after probe
   RayStats rays;
   double computeMs = 0.0;  // time spent tracing the tile, wherever it ran
 };

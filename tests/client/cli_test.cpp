@@ -211,6 +211,35 @@ TEST_F(Cli, ThePathTracedViewConvergesToRendersFrame) {
   EXPECT_GT(std::sqrt(squares / static_cast<double>(pass.size())), 4.0);  // one sample's noise, in 8-bit steps
 }
 
+// Through two glintd the irradiance field is filled in batches both trace,
+// then sent to each: the frame is the same bytes as in process, and the
+// summary lists each server's share of the field's probes.
+TEST_F(Cli, TheFarmFillsTheFieldAndDrawsTheSameFrame) {
+  glint::server::test::GlintdProcess a({"--threads", "1"}), b({"--threads", "1"});
+  const std::string args = scene("cornell.json") + " --size 48x48 --samples 16 --field 16,256";
+  const Result local = glint("render " + args + " -o " + path("local.png"));
+  ASSERT_EQ(local.status, 0) << local.output;
+  const Result farm = glint("render " + args + " -o " + path("farm.png") + " --server " + a.address() + "," +
+                            b.address());
+  ASSERT_EQ(farm.status, 0) << farm.output;
+  EXPECT_EQ(farm.output.find("every pixel is traced"), std::string::npos) << farm.output;
+  EXPECT_EQ(decodePng(path("farm.png")).rgb, decodePng(path("local.png")).rgb);
+  // Each server's line of the field: "server ADDRESS ok N batches P probes".
+  std::size_t probes = 0, servers = 0;
+  for (const std::string& address : {a.address(), b.address()}) {
+    const auto at = farm.output.find("server " + address);
+    ASSERT_NE(at, std::string::npos) << farm.output;
+    const std::string line = farm.output.substr(at, farm.output.find('\n', at) - at);
+    const auto batches = line.find(" batches ");
+    if (batches == std::string::npos) continue;  // the frame's line, not the field's
+    const std::size_t p = std::stoul(line.substr(batches + 9));
+    probes += p;
+    servers += p > 0 ? 1 : 0;
+  }
+  EXPECT_EQ(probes, 4096u) << farm.output;  // 16 x 16 x 16
+  EXPECT_EQ(servers, 2u) << farm.output;
+}
+
 // Through two glintd, the view shows the same frame; with no server at all it
 // keeps showing the raster frame, the pixels that needed tracing magenta, and
 // says why.

@@ -3,6 +3,8 @@
 // the waits it asks for and their ends.
 #include "client/farm/server_conversation.h"
 
+#include <limits>
+
 #include <gtest/gtest.h>
 
 #include "proto/messages.h"
@@ -143,6 +145,36 @@ TEST_F(ServerConversationTest, AResultOfTheWrongSizeIsBadBytes) {
   EXPECT_EQ(failure(), LinkFailure::Kind::kBadBytes);
   EXPECT_NE(host_.failures[0].what.find("with 5 bytes of pixels, not 24"), std::string::npos);
   EXPECT_TRUE(host_.results.empty());
+}
+
+// A fill frame's result carries its batch's probe values: as many as asked
+// (the batch's probes times IrradianceField::kProbeFloats), every one finite.
+TEST_F(ServerConversationTest, ABatchOfProbesMustCarryEachProbesFiniteValues) {
+  serve();
+  conversation_.setupFrame(2, FrameSettings{}, {FieldSettings{4, 64}, true});
+  conversation_.request(2, 0, {{10, 0, 3, 1}, {}});
+  conversation_.request(2, 1, {{13, 0, 3, 1}, {}});
+  conversation_.request(2, 2, {{16, 0, 3, 1}, {}});
+  std::vector<float> values(3 * IrradianceField::kProbeFloats, 0.5f);
+  receive(proto::encodeTileResult(2, 0, {}, {}, 0, values));
+  ASSERT_EQ(host_.results.size(), 1u);
+  EXPECT_EQ(host_.results[0].second.probes, values);
+  EXPECT_TRUE(host_.results[0].second.rgb.empty());
+  values[7] = std::numeric_limits<float>::quiet_NaN();
+  receive(proto::encodeTileResult(2, 1, {}, {}, 0, values));
+  EXPECT_EQ(failure(), LinkFailure::Kind::kBadBytes);
+  EXPECT_NE(host_.failures[0].what.find("tile 1 of frame 2 with probe values that are not finite"), std::string::npos)
+      << host_.failures[0].what;
+}
+
+TEST_F(ServerConversationTest, ABatchWithTooFewProbeValuesIsBadBytes) {
+  serve();
+  conversation_.setupFrame(2, FrameSettings{}, {FieldSettings{4, 64}, true});
+  conversation_.request(2, 0, {{0, 0, 3, 1}, {}});
+  receive(proto::encodeTileResult(2, 0, {}, {}, 0, std::vector<float>(2 * IrradianceField::kProbeFloats, 1.0f)));
+  EXPECT_EQ(failure(), LinkFailure::Kind::kBadBytes);
+  EXPECT_NE(host_.failures[0].what.find("with 310 probe values, not 465"), std::string::npos)
+      << host_.failures[0].what;
 }
 
 TEST_F(ServerConversationTest, AMessageOutOfTurnIsBadBytesAndNothingIsTakenAfter) {

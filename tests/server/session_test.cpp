@@ -4,6 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <limits>
+
+#include "common/render/field_probes.h"
+#include "common/render/renderer.h"
 #include "proto/messages.h"
 #include "server/log.h"
 #include "tests/support/full_upload.h"
@@ -226,6 +231,68 @@ TEST_F(SessionTest, UnfinishedFilesAreGivenBackAtTheEnd) {
     EXPECT_EQ(uploads_.used(), 3000u);
   }
   EXPECT_EQ(uploads_.used(), 0u);
+}
+
+// A fill frame's tiles are batches of an irradiance field's probes, traced
+// as buildField traces them in process; a frame that reads a field needs the
+// whole field sent first (FieldPieces, in order), and then traces as the
+// in-process tracer with that field. Pieces out of order or not finite are
+// refused, and the field's memory is the uploads' while it is held.
+TEST_F(SessionTest, FieldBatchesAndTheFieldFramesRead) {
+  hello();
+  const proto::LoadedBundle cornell = proto::loadSceneBundle(glint::test::sourcePath("scenes/cornell.json"));
+  const proto::SceneHash hash = cornell.bundle.hash();
+  upload(cornell.bundle);
+  ASSERT_EQ(replyType(1), wire::Body::SceneReady);
+  FrameSettings frame = cornell.scene.frame;
+  frame.width = 16;
+  frame.height = 16;
+  frame.sampling.samples = 2;
+  const FieldSettings settings{4, 64};
+  const PreparedScene prepared(cornell.scene, BvhSettings{});
+  RayStats rays;
+  const IrradianceField local = buildField(prepared, frame, settings, rays);
+
+  send(proto::encodeFrameSetup(7, hash, frame, {settings, true}));
+  send(proto::encodeTileRequest(7, 0, {8, 0, 5, 1}, {}));
+  const auto* batch = decode(host_.replies.at(2)).body_as_TileResult();
+  ASSERT_TRUE(batch && batch->probes());
+  ASSERT_EQ(batch->probes()->size(), 5u * IrradianceField::kProbeFloats);
+  std::vector<float> expected(5 * IrradianceField::kProbeFloats);
+  for (int i = 0; i < 5; ++i) {
+    IrradianceField::writeProbe(local.probe(8 + i), std::span<float, IrradianceField::kProbeFloats>(
+                                                        expected.data() + i * IrradianceField::kProbeFloats,
+                                                        IrradianceField::kProbeFloats));
+  }
+  EXPECT_TRUE(std::equal(expected.begin(), expected.end(), batch->probes()->begin()));
+  send(proto::encodeTileRequest(7, 1, {0, 0, 5, 2}, {}));
+  EXPECT_EQ(errorCode(3), wire::ErrorCode::BadTile);
+
+  send(proto::encodeFrameSetup(8, hash, frame, {settings, false}));
+  EXPECT_EQ(errorCode(4), wire::ErrorCode::BadFrame);  // the field was not sent
+  std::vector<std::vector<std::uint8_t>> pieces = proto::encodeFieldPieces(hash, local, 10000);
+  ASSERT_GT(pieces.size(), 2u);
+  send(pieces[1]);  // out of order
+  EXPECT_EQ(errorCode(5), wire::ErrorCode::Malformed);
+  for (const auto& piece : pieces) send(piece);
+  EXPECT_EQ(host_.replies.size(), 6u);  // every piece taken in silence
+  EXPECT_EQ(uploads_.used(), static_cast<std::size_t>(local.probeCount()) * sizeof(IrradianceField::Probe));
+  send(proto::encodeFrameSetup(9, hash, frame, {settings, false}));
+  send(proto::encodeTileRequest(9, 0, {0, 0, 16, 16}, {}));
+  const auto* tile = decode(host_.replies.at(6)).body_as_TileResult();
+  ASSERT_TRUE(tile && tile->rgb());
+  const Renderer renderer(prepared, frame, EffectPlan::derive(prepared.scene(), frame), &local);
+  std::vector<std::uint8_t> rgb;
+  renderer.renderTile({0, 0, 16, 16}, {}, rgb, rays);
+  EXPECT_TRUE(std::equal(rgb.begin(), rgb.end(), tile->rgb()->begin()) && rgb.size() == tile->rgb()->size());
+
+  IrradianceField bad = local;
+  bad.probe(0).irradiance[0].x = std::numeric_limits<float>::infinity();
+  send(proto::encodeFieldPieces(hash, bad, 10000).front());
+  EXPECT_EQ(errorCode(7), wire::ErrorCode::Malformed);
+  EXPECT_EQ(uploads_.used(), 0u);  // the field refused is given back
+  send(proto::encodeFrameSetup(10, hash, frame, {settings, false}));
+  EXPECT_EQ(errorCode(8), wire::ErrorCode::BadFrame);
 }
 
 // Cancel names the frame and its tiles (none: the whole frame) and is handed

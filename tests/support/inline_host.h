@@ -41,8 +41,10 @@ class InlineHost : public SessionHost {
   }
   void trace(TileWork work) override {
     ++tiles;
-    const auto samples = static_cast<std::size_t>(work.frame->renderer->frame().sampling.samples);
-    if (work.rect.pixelCount() * samples <= maxTraceWork_) reply(traceTile(work));
+    const SessionFrame& frame = *work.frame;
+    const std::size_t perUnit = static_cast<std::size_t>(frame.grid ? frame.grid->settings().rays
+                                                                     : frame.renderer->frame().sampling.samples);
+    if (work.rect.pixelCount() * perUnit <= maxTraceWork_) reply(traceTile(work));
   }
 
   void cancel(std::uint32_t frameId, std::span<const std::uint32_t> tileIds) override {
