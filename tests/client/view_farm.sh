@@ -2,17 +2,17 @@
 # glint view through a farm that grows while the window waits: its title
 # says how many servers are up, and a server added to the --server-file is
 # up and counted within seconds, without the camera moving (no new frame is
-# asked for). The window runs on a virtual display (xvfb-run); its title is
+# asked for). The window runs on a virtual display (tests/support/with_display.sh); its title is
 # read with xwininfo.
 # Usage: view_farm.sh GLINT GLINTD SCENES_DIR
-# Exit 77 (CTest: skipped) without xvfb-run or xwininfo.
+# Exit 77 (CTest: skipped) without Xvfb or xwininfo.
 set -euo pipefail
 glint=$1
 glintd=$2
 scenes=$3
 
 skip() { echo "view_farm: skipped: $*"; exit 77; }
-command -v xvfb-run > /dev/null || skip "xvfb-run is not installed"
+command -v Xvfb > /dev/null || skip "Xvfb is not installed"
 command -v xwininfo > /dev/null || skip "xwininfo (x11-utils) is not installed"
 
 work=$(mktemp -d)
@@ -43,7 +43,7 @@ b=$address
 
 list="$work/farm.txt"
 echo "$a" > "$list"
-xvfb-run -a bash -c '
+bash "$(dirname "$0")/../support/with_display.sh" bash -c '
   set -u
   log="$2.view.log"
   "$0" view "$1" --size 160x120 --server-file "$2" > "$log" 2>&1 &

@@ -6,13 +6,13 @@
 # transport (cornell), once its passes have summed the frame's samples, and
 # with an irradiance field (cornell-field), the hybrid frame that reads it.
 # Usage: view_window.sh GLINT SCENES_DIR
-# Exit 77 (CTest: skipped) without xvfb-run, xwininfo, xwd or netpbm.
+# Exit 77 (CTest: skipped) without Xvfb, xwininfo, xwd or netpbm.
 set -euo pipefail
 glint=$1
 scenes=$2
 
 skip() { echo "view_window: skipped: $*"; exit 77; }
-command -v xvfb-run > /dev/null || skip "xvfb-run is not installed"
+command -v Xvfb > /dev/null || skip "Xvfb is not installed"
 command -v xwininfo > /dev/null || skip "xwininfo (x11-utils) is not installed"
 command -v xwd > /dev/null || skip "xwd (x11-apps) is not installed"
 command -v xwdtopnm > /dev/null || skip "xwdtopnm (netpbm) is not installed"
@@ -40,7 +40,7 @@ done
 # In the virtual display: for each scene, open the view, wait until its
 # title says the frame is shown, capture the window and compare its pixels
 # (the last WxHx3 bytes of the PPM) with the render's.
-xvfb-run -a -s "-screen 0 640x480x24" bash -c '
+bash "$(dirname "$0")/../support/with_display.sh" bash -c '
   set -u
   glint=$1 scenes=$2 work=$3 size=$4 pixels=$5 cases=$6
   view=""

@@ -13,7 +13,7 @@ struct GlintRun {
   std::string output;
 };
 
-// Runs `glint ARGS` as a user would, with `prefix` before it ("xvfb-run -a ").
+// Runs `glint ARGS` as a user would, with `prefix` before it (onDisplay()).
 GlintRun runGlint(const std::string& args, const std::string& prefix = "");
 // Runs `glintd ARGS` to its end (for arguments it refuses, or --help).
 GlintRun runGlintd(const std::string& args);
