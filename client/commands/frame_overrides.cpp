@@ -65,8 +65,8 @@ void applyFrameOverrides(const FrameOverrides& o, Scene& scene, bool fieldInRast
   scene.mask.rule = MaskRule::kAll;
   const char* why = !f.tracing.field ? "for the hybrid frame to draw the light between surfaces from an irradiance "
                                        "field, give --field or the scene's tracing.field"
-                    : !fieldInRaster ? "through glintd only glint render draws the irradiance field's light; "
-                                       "the other commands, in process (without --server)"
+                    : !fieldInRaster ? "glint accuracy draws the irradiance field's light in process only "
+                                       "(without --server)"
                                      : "the hybrid frame draws the irradiance field's light only for a few flat "
                                        "emitters of plain emission";
   std::fprintf(stderr, "note: path transport: every pixel is traced (%s)\n", why);

@@ -226,7 +226,9 @@ Shown showFrame(GLFWwindow* window, const gl::Api& api, gl::RasterScene& raster,
   };
   // Under the rule all the field's frame traces path transport in full, as glint render --mask all does.
   std::optional<LocalTileService> unlit;
-  if (backend.field() && mask.rule == MaskRule::kAll) unlit.emplace(*backend.prepared(), *backend.pool());
+  const bool unlitFrame = backend.field() && mask.rule == MaskRule::kAll;
+  if (unlitFrame && backend.prepared()) unlit.emplace(*backend.prepared(), *backend.pool());
+  if (backend.distributed()) backend.distributed()->readField(!unlitFrame);
   try {
     if (!renderHybrid(api, raster, unlit ? *unlit : backend.service(), frame, mask, tileSize, last, std::nullopt,
                       {.cancelled = preview ? CancelCheck{} : cameraMoved, .progress = told})) {
@@ -324,7 +326,7 @@ void refreshFarm(GLFWwindow* window, TileBackend& backend, bool missing, Title& 
 void runView(const ViewOptions& options) {
   proto::LoadedBundle loaded = proto::loadSceneBundle(options.scene);
   printSceneWarnings(options.scene, loaded.scene);
-  applyFrameOverrides(options.frame, loaded.scene, !options.remote.any());
+  applyFrameOverrides(options.frame, loaded.scene, true);
   // The hybrid frame under path transport reads the irradiance field, filled once for the whole view.
   const bool field =
       loaded.scene.frame.tracing.transport == Transport::kPath && loaded.scene.mask.rule != MaskRule::kAll;

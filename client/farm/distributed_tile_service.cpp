@@ -179,7 +179,7 @@ void DistributedTileService::deliverFrame(FrameRun& frame) {
 void DistributedTileService::render(const FrameSettings& settings, std::span<const TileJob> jobs,
                                     const std::function<void(std::size_t, TileOutput&&)>& done) {
   proto::FrameWork work;
-  if (field_) work.field = field_->settings();
+  if (field_ && readsField_) work.field = field_->settings();
   run(settings, jobs, done, work);
 }
 

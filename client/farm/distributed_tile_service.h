@@ -66,6 +66,9 @@ class DistributedTileService : public TileService, private LinkListener {
   // between surfaces, as LocalTileService's), sent to every server that
   // serves now or later; it must outlive the service. nullptr: none.
   void useField(const IrradianceField* field);
+  // Whether the frames rendered after read the field useField() gave (by
+  // default they do); those that do not trace path transport in full.
+  void readField(bool reads) { readsField_ = reads; }
   const DistributionReport& fieldReport() const { return fieldReport_; }
   int parallelism() const override;
   void beginFrame() override;
@@ -130,6 +133,7 @@ class DistributedTileService : public TileService, private LinkListener {
   DistributionReport report_;  // the frame since beginFrame(), every render() in it
   int reportFrame_ = 0;        // beginFrame() calls so far
   const IrradianceField* field_ = nullptr;  // useField()'s
+  bool readsField_ = true;
   DistributionReport fieldReport_;           // fillField()'s
   std::size_t rowsFor_ = 0;    // the servers the report's rows were started for
 };

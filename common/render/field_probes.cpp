@@ -76,8 +76,7 @@ glm::vec3 octahedralDirection(const glm::vec2& point) {
 }
 
 ProbeTracer::ProbeTracer(const PreparedScene& prepared, const FrameSettings& frame, const FieldGrid& grid)
-    : prepared_(prepared),
-      grid_(grid),
+    : grid_(grid),
       probes_(probeFrame(frame)),
       plan_(EffectPlan::derive(prepared.scene(), probes_)),
       path_(prepared.scene(), prepared.bvh(), plan_.environment ? prepared.environmentLight() : nullptr, probes_,
@@ -94,12 +93,13 @@ IrradianceField::Probe ProbeTracer::trace(int index, RayStats& stats) const {
     const SampleKey key = SampleLayout::key(pixel, r);
     const glm::vec2 point = key.stratified(SampleKey::kPixelPair);
     const Ray ray(origin, octahedralDirection(point));
-    const std::optional<Hit> hit = prepared_.bvh().intersect(ray, kInfinity);
-    const float d = std::min(hit ? hit->t : maxDistance, maxDistance);
+    float hit = kInfinity;
+    const glm::vec3 light = path_.radiance(ray, key, stats, PathTracer::First::kReflected, &hit);
+    const float d = std::min(hit, maxDistance);
     const int texel = IrradianceField::texel(point);
     sums.moments[texel] += glm::vec2(d, d * d);
     ++sums.rays[texel];
-    addLight(sums, ray.d, path_.radiance(ray, key, stats, PathTracer::First::kReflected) * kSphere, stats);
+    addLight(sums, ray.d, light * kSphere, stats);
   }
   return scaled(sums, rays, maxDistance);
 }

@@ -34,7 +34,6 @@ class ProbeTracer {
   IrradianceField::Probe trace(int index, RayStats& stats) const;
 
  private:
-  const PreparedScene& prepared_;
   const FieldGrid& grid_;
   FrameSettings probes_;  // the frame's, a bounce fewer
   EffectPlan plan_;

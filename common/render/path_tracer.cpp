@@ -184,7 +184,8 @@ glm::vec3 PathTracer::emittedAt(const Ray& ray, const Hit& hit, const SurfaceHit
   return radiance * powerHeuristic(bsdfPdf, lightPdf);
 }
 
-glm::vec3 PathTracer::radiance(const Ray& cameraRay, const SampleKey& key, RayStats& stats, First first) const {
+glm::vec3 PathTracer::radiance(const Ray& cameraRay, const SampleKey& key, RayStats& stats, First first,
+                               float* firstDistance) const {
   ++stats.primary;
   ++stats.paths;
   glm::vec3 sum(0.0f), throughput(1.0f);
@@ -194,6 +195,7 @@ glm::vec3 PathTracer::radiance(const Ray& cameraRay, const SampleKey& key, RaySt
   int bounce = 0;        // the bounce rays traced
   for (;; ++bounce) {
     const std::optional<Hit> hit = bvh_.intersect(ray, kInfinity);
+    if (bounce == 0 && firstDistance) *firstDistance = hit ? hit->t : kInfinity;
     if (bounce > 0) sum += throughput * lightsAlong(ray, hit ? hit->t : kInfinity, bsdfPdf);
     if (!hit) {
       sum += throughput * escaped(ray.d, bounce > 0 ? bsdfPdf : 0.0f);

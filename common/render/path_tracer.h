@@ -57,9 +57,12 @@ class PathTracer {
   // What the first surface a ray meets adds: its emission and what it
   // reflects (a camera ray's), or what it reflects alone (an irradiance
   // probe's, field_probes.h: the point the field lights samples the
-  // emitters itself).
+  // emitters itself). `firstDistance`, where given, is set to the first
+  // surface's distance along the ray (kInfinity: none), which a probe's
+  // visibility map keeps.
   enum class First { kSeen, kReflected };
-  glm::vec3 radiance(const Ray& ray, const SampleKey& key, RayStats& stats, First first = First::kSeen) const;
+  glm::vec3 radiance(const Ray& ray, const SampleKey& key, RayStats& stats, First first = First::kSeen,
+                     float* firstDistance = nullptr) const;
 
  private:
   // A surface the path found.

@@ -42,10 +42,12 @@ class Cli : public ::testing::Test {
     return path(name);
   }
   static std::string scene(const std::string& name) { return std::string(GLINT_SOURCE_DIR) + "/scenes/" + name; }
+  // A command's prefix that runs it on a virtual display of its own.
+  static std::string onDisplay() { return "bash " + std::string(GLINT_SOURCE_DIR) + "/tests/support/with_display.sh "; }
   // glint view of `args` on a virtual display, closed after `frames`
   // frames, the last written to the PNG `png`.
   Result view(const std::string& args, int frames, const std::string& png) const {
-    return glint("view " + args + " --frames " + std::to_string(frames) + " --screenshot " + path(png), "xvfb-run -a ");
+    return glint("view " + args + " --frames " + std::to_string(frames) + " --screenshot " + path(png), onDisplay());
   }
 
   // Debian's textured glTF box in box/, and beside it box/NAME.gltf: the
@@ -168,7 +170,7 @@ TEST_F(Cli, HybridRenderWritesImageMaskAndStepTimes) {
 // The view converges to glint render's frame; its preview is the one-sample
 // frame.
 TEST_F(Cli, ViewShowsTheSameFrameAsRender) {
-  if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed";
+  if (std::system("command -v Xvfb > /dev/null 2>&1") != 0) GTEST_SKIP() << "Xvfb is not installed";
   const std::string args = scene("room.json") + " --size 160x120";
   const Result shown = view(args, 2, "view.png");
   ASSERT_EQ(shown.status, 0) << shown.output;
@@ -193,7 +195,7 @@ TEST_F(Cli, ViewShowsTheSameFrameAsRender) {
 // sums its samples in passes, each shown, and ends as glint render's frame;
 // its first pass, one sample a pixel, is far from it.
 TEST_F(Cli, ThePathTracedViewConvergesToRendersFrame) {
-  if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed";
+  if (std::system("command -v Xvfb > /dev/null 2>&1") != 0) GTEST_SKIP() << "Xvfb is not installed";
   const std::string args = scene("cornell.json") + " --size 48x48 --samples 16 --max-bounces 3";
   const Result passes = view(args, 100, "view.png");
   ASSERT_EQ(passes.status, 0) << passes.output;
@@ -240,23 +242,33 @@ TEST_F(Cli, TheFarmFillsTheFieldAndDrawsTheSameFrame) {
   EXPECT_EQ(servers, 2u) << farm.output;
 }
 
-// Through two glintd, the view shows the same frame; with no server at all it
-// keeps showing the raster frame, the pixels that needed tracing magenta, and
-// says why.
+// Through two glintd, the view shows the same frame, with an irradiance field
+// too; with no server at all it keeps showing the raster frame, the pixels
+// that needed tracing magenta, and says why.
 TEST_F(Cli, ViewThroughServersAndWithoutThem) {
-  if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed";
+  if (std::system("command -v Xvfb > /dev/null 2>&1") != 0) GTEST_SKIP() << "Xvfb is not installed";
   glint::server::test::GlintdProcess a({"--threads", "1"}), b({"--threads", "1"});
   const std::string args = scene("room.json") + " --size 160x120";
   const Result view = glint(
       "view " + args + " --frames 2 --screenshot " + path("view.png") + " --server " + a.address() + "," + b.address(),
-      "xvfb-run -a ");
+      onDisplay());
   ASSERT_EQ(view.status, 0) << view.output;
   const Result render = glint("render " + args + " -o " + path("render.png") + " -q");
   ASSERT_EQ(render.status, 0) << render.output;
   EXPECT_EQ(decodePng(path("view.png")).rgb, decodePng(path("render.png")).rgb);
 
+  // With an irradiance field, which the servers fill and then read.
+  const std::string field = scene("cornell.json") + " --size 48x48 --samples 4 --field 8,256";
+  const Result fieldView = glint("view " + field + " --frames 2 --screenshot " + path("field-view.png") +
+                                     " --server " + a.address() + "," + b.address(),
+                                 onDisplay());
+  ASSERT_EQ(fieldView.status, 0) << fieldView.output;
+  EXPECT_EQ(fieldView.output.find("every pixel is traced"), std::string::npos) << fieldView.output;
+  ASSERT_EQ(glint("render " + field + " -o " + path("field-render.png") + " -q").status, 0);
+  EXPECT_EQ(decodePng(path("field-view.png")).rgb, decodePng(path("field-render.png")).rgb);
+
   const Result alone =
-      glint("view " + args + " --frames 2 --screenshot " + path("alone.png") + " --server 127.0.0.1:1", "xvfb-run -a ");
+      glint("view " + args + " --frames 2 --screenshot " + path("alone.png") + " --server 127.0.0.1:1", onDisplay());
   ASSERT_EQ(alone.status, 0) << alone.output;
   EXPECT_NE(alone.output.find("no glintd can serve"), std::string::npos) << alone.output;
   const Image missing = decodePng(path("alone.png"));
