@@ -16,6 +16,7 @@
 #include <stb_image_write.h>
 
 #include "common/render/frame.h"
+#include "common/render/irradiance_field.h"
 #include "common/image/image_write.h"
 #include "common/scene/mesh_blob.h"
 #include "common/scene/obj_load.h"
@@ -102,8 +103,33 @@ void framingSeeds(const proto::SceneBundle& bundle, const FrameSettings& frame) 
   }
 }
 
-void sessionSeeds(const proto::SceneBundle& room, const FrameSettings& frame) {
+// A session that fills an irradiance field's probes in batches, sends it
+// back in pieces, and traces a tile of a frame that reads it.
+Bytes fieldSession(const proto::SceneBundle& bundle, FrameSettings frame, const Bounds3& bounds) {
+  frame.width = 16;
+  frame.height = 8;
+  frame.sampling.samples = 1;
+  frame.tracing.transport = Transport::kPath;
+  frame.tracing.maxBounces = 1;
+  const FieldSettings settings{2, 64};
+  const proto::SceneHash hash = bundle.hash();
+  std::vector<Bytes> frames{proto::encodeHello(1 << 20, 0, "seed")};
+  for (Bytes& f : proto::encodeFullUpload(bundle, 2048)) frames.push_back(std::move(f));
+  frames.push_back(proto::encodeFrameSetup(1, hash, frame, {settings, true}));
+  frames.push_back(proto::encodeTileRequest(1, 0, {0, 0, 4, 1}, {}));
+  frames.push_back(proto::encodeTileRequest(1, 1, {4, 0, 4, 1}, {}));
+  for (Bytes& f : proto::encodeFieldPieces(hash, IrradianceField(bounds, settings), 2048)) {
+    frames.push_back(std::move(f));
+  }
+  frames.push_back(proto::encodeFrameSetup(2, hash, frame, {settings, false}));
+  frames.push_back(proto::encodeTileRequest(2, 0, {0, 0, 8, 8}, {}));
+  frames.push_back(proto::encodeGoodbye());
+  return join(frames);
+}
+
+void sessionSeeds(const proto::SceneBundle& room, const FrameSettings& frame, const Bounds3& bounds) {
   write("session", "room", session(room, frame));
+  write("session", "field", fieldSession(room, frame, bounds));
   proto::SceneBundle textured{readFile(gRoot / "tests/fuzz/seed-scenes/textured.json"), {}};
   textured.files = {{"models/cube.obj", fuzz::kCubeObj}, {"models/cube.mtl", fuzz::kCubeMtl},
                     {"models/tex.bmp", fuzz::tinyBmp()}};
@@ -238,7 +264,7 @@ int main(int argc, char** argv) {
   try {
     const proto::LoadedBundle room = proto::loadSceneBundle(gRoot / "scenes/room.json");
     framingSeeds(room.bundle, room.scene.frame);
-    sessionSeeds(room.bundle, room.scene.frame);
+    sessionSeeds(room.bundle, room.scene.frame, room.scene.geometry.bounds());
     serverLinkSeeds();
     sceneSeeds();
     objAndImageSeeds();
