@@ -56,7 +56,28 @@ FrameImage provenanceImage(const FrameImage& frame, const DistributionReport& re
   return image;
 }
 
-std::string provenanceLegend(const DistributionReport& report) {
+namespace {
+
+// "; the irradiance field's batches: red 32 (2048 probes), ...", each server
+// named by its colour in the frame's legend (by its address where it has
+// left the farm since).
+std::string fieldBatches(const DistributionReport& report, const DistributionReport& field) {
+  std::string text;
+  for (const ServerReport& s : field.servers) {
+    if (s.tiles == 0) continue;
+    std::string name = s.address;
+    for (std::size_t i = 0; i < report.servers.size(); ++i) {
+      if (report.servers[i].address == s.address) name = serverColourName(i);
+    }
+    text += (text.empty() ? "; the irradiance field's batches: " : ", ") + name + " " + std::to_string(s.tiles) +
+            " (" + std::to_string(s.probes) + " probes)";
+  }
+  return text;
+}
+
+}  // namespace
+
+std::string provenanceLegend(const DistributionReport& report, const DistributionReport* field) {
   std::string legend;
   for (std::size_t i = 0; i < report.servers.size(); ++i) {
     const ServerReport& s = report.servers[i];
@@ -71,6 +92,7 @@ std::string provenanceLegend(const DistributionReport& report) {
     legend += "; " + std::to_string(report.duplicatedTiles) + " tiles copied to a second server (" +
               std::to_string(report.hedgedTiles) + " hedged), each tinted by the server whose copy came first";
   }
+  if (field) legend += fieldBatches(report, *field);
   return legend;
 }
 

@@ -21,7 +21,8 @@ const char* serverColourName(std::size_t index);
 FrameImage provenanceImage(const FrameImage& frame, const DistributionReport& report);
 
 // "red = 127.0.0.1:7001 (41 tiles), green = ..." with servers that joined,
-// left or were lost named, and the tiles re-issued and copied.
-std::string provenanceLegend(const DistributionReport& report);
+// left or were lost named, and the tiles re-issued and copied; with the
+// report of an irradiance field's fill (`field`), each server's batches of it.
+std::string provenanceLegend(const DistributionReport& report, const DistributionReport* field = nullptr);
 
 }  // namespace glint

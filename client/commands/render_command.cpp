@@ -160,8 +160,9 @@ void printFieldFill(const TileBackend& backend) {
   }
 }
 
-// Each server's share of the last frame, and the provenance image's legend.
-void printServers(const DistributionReport& report, bool legend) {
+// Each server's share of the last frame, and the provenance image's legend
+// (with the field's batches, where the servers filled one: `field`).
+void printServers(const DistributionReport& report, bool legend, const DistributionReport* field) {
   for (const ServerReport& s : report.servers) {
     const std::string state = std::string(enumWord(s.state)) + (s.joined ? ", new" : "");
     std::fprintf(stderr, "  server %-24s %-11s %5zu tiles %9zu pixels  busy %8.1f ms  rtt %6.2f ms%s%s\n",
@@ -172,7 +173,7 @@ void printServers(const DistributionReport& report, bool legend) {
     std::fprintf(stderr, "  %zu tiles re-issued from lost servers, %zu copied to a second server (%zu of them hedged)\n",
                  report.reissuedTiles, report.duplicatedTiles, report.hedgedTiles);
   }
-  if (legend) std::fprintf(stderr, "provenance: %s\n", provenanceLegend(report).c_str());
+  if (legend) std::fprintf(stderr, "provenance: %s\n", provenanceLegend(report, field).c_str());
 }
 
 // An output is refused before anything renders: an image option must name a
@@ -364,7 +365,10 @@ void runRender(const RenderOptions& options) {
   if (!options.quiet) {
     printSummary(options, run.frame, backend.where(), frameTimes, r.rays, drawsWithGl(backend.scene(), options));
     printFieldFill(backend);
-    if (backend.distributed()) printServers(backend.distributed()->lastFrame(), !options.provenanceOut.empty());
+    if (backend.distributed()) {
+      const DistributionReport* field = backend.field() ? &backend.distributed()->fieldReport() : nullptr;
+      printServers(backend.distributed()->lastFrame(), !options.provenanceOut.empty(), field);
+    }
   }
 }
 

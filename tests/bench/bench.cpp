@@ -39,6 +39,7 @@
 #include "tests/bench/gl_backend_section.h"
 #include "tests/bench/mesh_file_section.h"
 #include "tests/bench/perceptual_section.h"
+#include "tests/bench/povray_run.h"
 #include "tests/bench/soft_shadow_section.h"
 #include "tests/bench/indirect_section.h"
 #include "tests/bench/transport_section.h"
@@ -144,42 +145,22 @@ double renderMs(const Scene& scene, ThreadPool& pool, int runs, RayStats* stats 
 
 // POV-Ray 3.7 rendering the same room at the same size with 4 jittered
 // samples per pixel (+A0.0: supersample every pixel; +AM1 +R2: 2 x 2 grid;
-// +J: jitter), 2 threads, no display, no progress lines (-GR -V): the statistics.
-// Two times per run: the whole process as a user waits for it (start-up,
-// parsing, writing the PNG), and POV-Ray's own "Trace Time", the work that
-// compares with a Glint frame. Medians of `runs`; negative when POV-Ray is not
-// installed, fails, or prints no trace time.
+// +J: jitter). Medians of `runs`; negative when POV-Ray is not installed or
+// fails.
 struct PovrayTimes {
   double processMs = -1.0;
   double traceMs = -1.0;
 };
 
-// The seconds in "Trace Time:  0 hours  0 minutes  0 seconds (0.382 seconds)".
-double traceSeconds(const std::string& statistics) {
-  const std::size_t line = statistics.find("Trace Time:");
-  if (line == std::string::npos) return -1.0;
-  const std::size_t open = statistics.find('(', line);
-  if (open == std::string::npos) return -1.0;
-  return std::strtod(statistics.c_str() + open + 1, nullptr);
-}
-
 PovrayTimes povrayTimes(const Options& o, int width, int height, int runs) {
-  if (std::system("command -v povray > /dev/null 2>&1") != 0) return {};
+  if (!povrayInstalled()) return {};
   const std::filesystem::path pov = std::filesystem::path(o.scenes) / "room.pov";
   const std::filesystem::path out = std::filesystem::temp_directory_path() / "glint-bench-povray.png";
-  const std::string cmd = "povray +I" + pov.string() + " +O" + out.string() + " +W" + std::to_string(width) +
-                          " +H" + std::to_string(height) + " +A0.0 +AM1 +R2 +J1.0 +WT2 -D -GR -V +FN 2>&1";
   std::vector<double> process, trace;
   for (int i = 0; i < runs; ++i) {
-    std::string statistics;
-    process.push_back(medianMs(1, [&] {
-      FILE* pipe = popen(cmd.c_str(), "r");
-      if (!pipe) return;
-      std::array<char, 4096> buffer;
-      for (std::size_t n; (n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0;) statistics.append(buffer.data(), n);
-      if (pclose(pipe) != 0) statistics.clear();
-    }));
-    trace.push_back(1000.0 * traceSeconds(statistics));
+    const PovrayRun run = runPovray(pov, out, width, height, "+A0.0 +AM1 +R2 +J1.0");
+    process.push_back(run.processMs);
+    trace.push_back(run.renderMs);
   }
   std::filesystem::remove(out);
   if (*std::min_element(trace.begin(), trace.end()) <= 0.0) return {};
@@ -471,7 +452,7 @@ int main(int argc, char** argv) {
     if (o.wants("meshfile")) bench::meshFileSection(o.quick, o.runs);
     if (o.wants("embree")) bench::embreeSection(o.scenes, o.quick, o.runs);
     if (o.wants("transport")) bench::transportSection(o.scenes, o.quick);
-    if (o.wants("indirect")) bench::indirectSection(o.scenes, o.quick);
+    if (o.wants("indirect")) bench::indirectSection(o.scenes, o.quick, o.povray);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "glint-bench: %s\n", e.what());
     return 1;

@@ -15,7 +15,11 @@ namespace glint::bench {
 // displayed, against the path trace's curve as displayed), its first frame
 // (with the field's filling) and a later one apart. Each row gives the path
 // trace's time to the same FLIP (between the two sample counts around it,
-// log-linear) and the ratio. 640 x 480 (--quick: 160 x 120).
-void indirectSection(const std::string& scenes, bool quick);
+// log-linear) and the ratio. Where the scene has a .pov beside it (the
+// room: scenes/room-path.pov) and `povray` is set, POV-Ray 3.7's radiosity
+// renders it at several settings, each FLIP as displayed against the same
+// path trace, and the hybrid frame's first frame is timed against POV-Ray's
+// fastest setting at equal FLIP. 640 x 480 (--quick: 160 x 120).
+void indirectSection(const std::string& scenes, bool quick, bool povray);
 
 }  // namespace glint::bench

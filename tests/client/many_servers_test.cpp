@@ -15,6 +15,7 @@
 #include "client/raster/raster_scene.h"
 #include "client/commands/render_command.h"
 #include "common/base/error.h"
+#include "common/render/field_probes.h"
 #include "common/render/frame.h"
 #include "proto/messages.h"
 #include "tests/support/test_support.h"
@@ -131,6 +132,43 @@ TEST(ManyServers, AServerKilledMidFrameIsReplacedByTheOthers) {
   // The next frame goes on without it (its retry fails: nothing listens).
   EXPECT_EQ(renderFrame(service, room.frame, smallTiles()).image.rgb, expected.rgb);
   EXPECT_EQ(service.lastFrame().servers[0].tiles, 0u);
+}
+
+// The field's probes, as the wire carries them.
+std::vector<float> probeFloats(const IrradianceField& field) {
+  constexpr std::size_t n = IrradianceField::kProbeFloats;
+  std::vector<float> out(static_cast<std::size_t>(field.probeCount()) * n);
+  for (int i = 0; i < field.probeCount(); ++i) {
+    IrradianceField::writeProbe(field.probe(i), std::span<float, n>(out.data() + static_cast<std::size_t>(i) * n, n));
+  }
+  return out;
+}
+
+// Server a is stopped before the irradiance field's fill, so that it holds
+// the batches it is given, and killed once two batches are in: the others
+// trace its batches, and the field is the in-process one's bytes.
+TEST(ManyServers, AServerKilledMidFillLeavesItsBatchesToTheOthers) {
+  const proto::LoadedBundle cornell = proto::loadSceneBundle(test::sourcePath("scenes/cornell.json"));
+  const FrameSettings& frame = cornell.scene.frame;
+  const FieldSettings settings{8, 64};
+  const PreparedScene prepared(cornell.scene, BvhSettings{});
+  RayStats rays;
+  const IrradianceField here = buildField(prepared, frame, settings, rays);
+  ASSERT_GT(here.probeCount(), 4 * DistributedTileService::kBatchProbes);
+  Farm farm;
+  DistributedTileService service(resolveServers(farm.addresses()), cornell.bundle);
+  service.awaitServers(std::chrono::seconds(10));
+  ::kill(farm.a.pid(), SIGSTOP);
+  service.onTraced([&farm](std::size_t batches) {
+    if (batches == 2) ::kill(farm.a.pid(), SIGKILL);
+  });
+  const IrradianceField there = service.fillField(frame, cornell.scene.geometry.bounds(), settings);
+  EXPECT_EQ(probeFloats(there), probeFloats(here));
+  const DistributionReport& report = service.fieldReport();
+  EXPECT_EQ(report.servers[0].state, ServerState::kLost);
+  EXPECT_GT(report.reissuedTiles, 0u);
+  EXPECT_EQ(report.servers[0].tiles, 0u);
+  EXPECT_EQ(report.servers[1].probes + report.servers[2].probes, static_cast<std::size_t>(here.probeCount()));
 }
 
 // A fake server's greeting: Hello back, and the room's scene held.
