@@ -47,12 +47,13 @@ struct Sweep {
   ThreadPool& pool;
   int frames;
   int tileSize;         // --tile-size
-  TileService* remote;  // --server: the rows' tiles go there
+  DistributedTileService* remote;  // --server: the rows' tiles (and fields' batches) go there
   std::optional<gl::GlBackend> gl;                 // --gl
   std::unique_ptr<gl::OffscreenContext> context;  // made for the first hybrid row
   std::unique_ptr<gl::RasterScene> raster;
-  // Under path transport: rows may draw from an irradiance field (in
-  // process, the emitters few flat ones), each filled once for its settings.
+  // Under path transport: rows may draw from an irradiance field (the
+  // emitters few flat ones), each filled once for its settings, in process
+  // or by the servers.
   bool fieldDrawable = false;
   struct Filled {
     std::optional<IrradianceField> field;
@@ -76,7 +77,9 @@ const Sweep::Filled& fieldOf(Sweep& sweep, const FrameSettings& frame) {
   if (fresh) {
     const auto start = Clock::now();
     RayStats rays;
-    at->second.field.emplace(buildField(sweep.prepared, frame, settings, rays));
+    at->second.field.emplace(sweep.remote
+                                 ? sweep.remote->fillField(frame, sweep.prepared.scene().geometry.bounds(), settings)
+                                 : buildField(sweep.prepared, frame, settings, rays));
     at->second.ms = msSince(start);
   }
   return at->second;
@@ -136,13 +139,15 @@ LinearImage hybridRow(Sweep& sweep, const FrameSettings& frame, const MaskSettin
   // The rule all traces path transport in full, as glint render --mask all does.
   const bool readsField = filled && mask.rule != MaskRule::kAll;
   LocalTileService local(sweep.prepared, sweep.pool, readsField ? &*filled->field : nullptr);
-  TileService& service = sweep.remote && !filled ? *sweep.remote : local;
+  if (sweep.remote) sweep.remote->useField(readsField ? &*filled->field : nullptr);
+  TileService& service = sweep.remote ? static_cast<TileService&>(*sweep.remote) : local;
   std::vector<double> times;
   HybridResult result;
   for (int f = 0; f < sweep.frames + 1; ++f) {  // the first compiles the shaders
     renderHybrid(sweep.context->api(), *sweep.raster, service, frame, mask, sweep.tileSize, result);
     if (f > 0) times.push_back(result.times.totalMs);
   }
+  if (sweep.remote) sweep.remote->useField(nullptr);  // the next row's frames trace in full
   row.fieldMs = filled ? filled->ms : 0.0;
   row.timeMs = median(times) + row.fieldMs;
   row.rays = result.rays;
@@ -204,16 +209,14 @@ std::pair<FrameSettings, MaskSettings> withSetting(const Scene& scene, AccuracyK
   return s;
 }
 
-// The field's rows need its light drawn: path transport, in process, few
-// flat emitters.
-void checkFieldRows(const Series& s, const Scene& scene, bool remote) {
+// The field's rows need its light drawn: path transport, few flat emitters.
+void checkFieldRows(const Series& s, const Scene& scene) {
   if (!fieldKey(s.key)) return;
   const std::string vary = "--vary " + std::string(enumWord(s.key));
   if (scene.frame.tracing.transport != Transport::kPath) {
     throw UsageError(vary + ": the irradiance field carries path transport's light; the scene's transport is "
                             "whitted (give --transport path)");
   }
-  if (remote) throw UsageError(vary + ": the irradiance field's rows are drawn in process; leave out --server");
   if (!fieldDrawable(scene)) {
     throw UsageError(vary + ": the hybrid frame draws the field's light only for at most " +
                      std::to_string(EmitterPatches::kMaxPatches) +
@@ -226,7 +229,7 @@ std::vector<Series> sweepOf(const AccuracyOptions& o, const Scene& scene) {
   for (const std::string& v : o.vary) series.push_back(parseVary(v));
   if (series.empty()) series = defaultSweep(scene);
   for (const Series& s : series) {
-    checkFieldRows(s, scene, o.remote.any());
+    checkFieldRows(s, scene);
     for (const std::string& value : s.values) {
       checkSetting("--vary " + std::string(enumWord(s.key)) + "=" + value, withSetting(scene, s.key, value).first);
     }
@@ -244,7 +247,7 @@ void runAccuracy(const AccuracyOptions& o) {
   proto::LoadedBundle loaded = proto::loadSceneBundle(o.scene);
   printSceneWarnings(o.scene, loaded.scene);
   Scene& scene = loaded.scene;
-  applyFrameOverrides(o.frame, scene, !o.remote.any());
+  applyFrameOverrides(o.frame, scene);
   const std::vector<Series> series = sweepOf(o, scene);
   const fs::path dir(o.outDir);
   std::error_code ec;
@@ -256,7 +259,7 @@ void runAccuracy(const AccuracyOptions& o) {
   std::unique_ptr<DistributedTileService> remote;
   if (o.remote.any()) remote = connectServers(o.remote, loaded.bundle);
   Sweep sweep{prepared, Encoder(scene.frame.output), pool, o.frames, o.frame.tileSize, remote.get(), o.gl, nullptr,
-              nullptr, !remote && fieldDrawable(scene), {}};
+              nullptr, fieldDrawable(scene), {}};
   Reference reference;
   const AccuracyReference ref = renderReference(sweep, scene.frame, o.referenceSamples, dir, reference);
 

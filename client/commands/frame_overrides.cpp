@@ -10,7 +10,7 @@
 
 namespace glint {
 
-void applyFrameOverrides(const FrameOverrides& o, Scene& scene, bool fieldInRaster) {
+void applyFrameOverrides(const FrameOverrides& o, Scene& scene) {
   FrameSettings& f = scene.frame;
   if (o.eye) f.camera.eye = *o.eye;
   if (o.lookAt) f.camera.lookAt = *o.lookAt;
@@ -61,12 +61,10 @@ void applyFrameOverrides(const FrameOverrides& o, Scene& scene, bool fieldInRast
   if (o.field) f.tracing.field = *o.field;
   if (f.tracing.transport != Transport::kPath || scene.mask.rule == MaskRule::kAll) return;
   const bool drawable = EmitterPatches::of(scene, EffectPlan::derive(scene, f), 0).has_value();
-  if (fieldInRaster && f.tracing.field && drawable) return;
+  if (f.tracing.field && drawable) return;
   scene.mask.rule = MaskRule::kAll;
   const char* why = !f.tracing.field ? "for the hybrid frame to draw the light between surfaces from an irradiance "
                                        "field, give --field or the scene's tracing.field"
-                    : !fieldInRaster ? "glint accuracy draws the irradiance field's light in process only "
-                                       "(without --server)"
                                      : "the hybrid frame draws the irradiance field's light only for a few flat "
                                        "emitters of plain emission";
   std::fprintf(stderr, "note: path transport: every pixel is traced (%s)\n", why);

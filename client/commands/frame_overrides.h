@@ -41,10 +41,9 @@ struct FrameOverrides {
 
 // The scene with the overrides applied, its frame checked (an error names
 // the option). Under path transport, the hybrid frame draws indirect light
-// where the scene or --field asks for an irradiance field, the command can
-// give its raster one (`fieldInRaster`: render and view; accuracy in process) and the
-// scene's emitters are few flat ones (EmitterPatches); elsewhere every pixel
-// is traced (the mask rule becomes all), and a note says so.
-void applyFrameOverrides(const FrameOverrides& overrides, Scene& scene, bool fieldInRaster = false);
+// where the scene or --field asks for an irradiance field and the scene's
+// emitters are few flat ones (EmitterPatches); elsewhere every pixel is
+// traced (the mask rule becomes all), and a note says so.
+void applyFrameOverrides(const FrameOverrides& overrides, Scene& scene);
 
 }  // namespace glint

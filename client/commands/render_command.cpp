@@ -222,7 +222,7 @@ void checkCrop(const TileRect& crop, const FrameSettings& frame) {
 }  // namespace
 
 void applyOverrides(const RenderOptions& o, Scene& scene) {
-  applyFrameOverrides(o.frame, scene, true);
+  applyFrameOverrides(o.frame, scene);
   if (o.crop) checkCrop(*o.crop, scene.frame);
 }
 

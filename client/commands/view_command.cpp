@@ -326,7 +326,7 @@ void refreshFarm(GLFWwindow* window, TileBackend& backend, bool missing, Title& 
 void runView(const ViewOptions& options) {
   proto::LoadedBundle loaded = proto::loadSceneBundle(options.scene);
   printSceneWarnings(options.scene, loaded.scene);
-  applyFrameOverrides(options.frame, loaded.scene, true);
+  applyFrameOverrides(options.frame, loaded.scene);
   // The hybrid frame under path transport reads the irradiance field, filled once for the whole view.
   const bool field =
       loaded.scene.frame.tracing.transport == Transport::kPath && loaded.scene.mask.rule != MaskRule::kAll;

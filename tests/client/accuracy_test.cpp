@@ -20,6 +20,7 @@
 #include "common/image/image_read.h"
 #include "common/scene/scene_load.h"
 #include "tests/support/glint_run.h"
+#include "tests/support/glintd_process.h"
 #include "tests/support/test_support.h"
 
 namespace glint {
@@ -247,6 +248,37 @@ TEST(Accuracy, TheFieldsRowsAreHybridFramesDrawnFromIt) {
             std::string::npos)
       << whitted;
   EXPECT_FALSE(fs::exists(dir));
+}
+
+// Through glintd the field's rows are filled by the servers in batches and
+// drawn as in process: the same bytes, and a path-traced row after them
+// still traces every pixel (the servers no longer read the field).
+TEST(Accuracy, ThroughGlintdTheFieldsRowsAreTheInProcessBytes) {
+  const fs::path here = fs::temp_directory_path() / ("glint-accuracy-field-here-" + std::to_string(::getpid()));
+  const fs::path there = fs::temp_directory_path() / ("glint-accuracy-field-there-" + std::to_string(::getpid()));
+  AccuracyOptions o;
+  o.scene = test::sourcePath("scenes/cornell.json");
+  o.vary = {"field_rays=64,128", "mask_rule=all"};
+  o.referenceSamples = 16;
+  o.frames = 1;
+  o.frame.width = 32;
+  o.frame.height = 32;
+  o.frame.samples = 4;
+  o.frame.field = FieldSettings{4, 64};
+  o.outDir = here.string();
+  runAccuracy(o);
+  const server::test::GlintdProcess glintd({"--threads", "1"});
+  o.remote.servers = {glintd.address()};
+  o.outDir = there.string();
+  runAccuracy(o);
+  for (const char* row : {"field_rays-64.png", "field_rays-128.png", "mask_rule-all.png"}) {
+    EXPECT_EQ(test::decodePngFile((there / row).string()).rgb, test::decodePngFile((here / row).string()).rgb)
+        << row;
+  }
+  EXPECT_NE(test::decodePngFile((there / "field_rays-64.png").string()).rgb,
+            test::decodePngFile((there / "mask_rule-all.png").string()).rgb);
+  fs::remove_all(here);
+  fs::remove_all(there);
 }
 
 // --metric rmse: the plot's axis and the front judge RMSE.
