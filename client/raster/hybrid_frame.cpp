@@ -6,6 +6,7 @@
 #include <cstring>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "client/raster/colour_edges.h"
 #include "client/raster/focus_blur.h"
@@ -164,26 +165,50 @@ void cropRows(std::vector<std::uint8_t>& rgb, int frameWidth, const TileRect& wi
 
 // Marks for tracing (with direct light, as an undecided shadow) each pixel
 // OpenGL shades whose point is not proved to see every area light whole:
-// the penumbra and umbra (client/raster/penumbra_proof.h). Rows are cut into bands
-// on the compute pool; each pixel's proof stands alone.
-void markPenumbra(const gl::RasterScene& raster, const FrameSettings& frame, HybridResult& result) {
-  const int bands = computePool().size();
-  const gl::RasterScene::PixelPoints points = raster.pixelPoints(frame);
-  const auto rows = [&](int first, int end) {
-    for (int y = first; y < end; ++y) {
-      for (int x = 0; x < frame.width; ++x) {
-        const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(frame.width) +
-                              static_cast<std::size_t>(x);
-        if (result.mask[i] != kRasterPixel || !raster.objectLit(result.surface[i] >> kPixelMarkBits)) continue;
-        if (!raster.penumbra().seesWhole(points.at(x, y, result.depth[i]), frame.camera.eye)) {
-          result.mask[i] = kShadowEdgePixel;
-        }
-      }
+// the penumbra and umbra (client/raster/penumbra_proof.h). A block of pixels
+// is proved at once where it can be (one region query for all its points);
+// one that cannot be is cut in four, down to kSmallestBlock pixels a side,
+// then proved pixel by pixel. The blocks' rows are shared out on the
+// compute pool.
+constexpr int kProofBlock = 8;
+constexpr int kSmallestBlock = 4;
+
+void markPenumbraBlock(const gl::RasterScene& raster, const gl::RasterScene::PixelPoints& points,
+                       const FrameSettings& frame, int x0, int y0, int size, HybridResult& result) {
+  std::vector<std::size_t> pixels;
+  std::vector<glm::vec3> at;
+  for (int y = y0; y < std::min(frame.height, y0 + size); ++y) {
+    for (int x = x0; x < std::min(frame.width, x0 + size); ++x) {
+      const std::size_t i =
+          static_cast<std::size_t>(y) * static_cast<std::size_t>(frame.width) + static_cast<std::size_t>(x);
+      if (result.mask[i] != kRasterPixel || !raster.objectLit(result.surface[i] >> kPixelMarkBits)) continue;
+      pixels.push_back(i);
+      at.push_back(points.at(x, y, result.depth[i]));
     }
-  };
-  computePool().parallelFor(static_cast<std::size_t>(bands), [&](std::size_t b) {
-    const int band = static_cast<int>(b);
-    rows(frame.height * band / bands, frame.height * (band + 1) / bands);
+  }
+  if (at.empty()) return;
+  if (at.size() > 1 && raster.penumbra().allSeeWhole(at, frame.camera.eye)) return;
+  if (size > kSmallestBlock) {
+    const int half = size / 2;
+    for (int q = 0; q < 4; ++q) {
+      markPenumbraBlock(raster, points, frame, x0 + (q & 1) * half, y0 + (q >> 1) * half, half, result);
+    }
+    return;
+  }
+  for (std::size_t k = 0; k < at.size(); ++k) {
+    if (!raster.penumbra().seesWhole(at[k], frame.camera.eye)) result.mask[pixels[k]] = kShadowEdgePixel;
+  }
+}
+
+void markPenumbra(const gl::RasterScene& raster, const FrameSettings& frame, HybridResult& result) {
+  const gl::RasterScene::PixelPoints points = raster.pixelPoints(frame);
+  const int blocksX = (frame.width + kProofBlock - 1) / kProofBlock;
+  const int blocksY = (frame.height + kProofBlock - 1) / kProofBlock;
+  computePool().parallelFor(static_cast<std::size_t>(blocksY), [&](std::size_t by) {
+    const int y0 = static_cast<int>(by) * kProofBlock;
+    for (int bx = 0; bx < blocksX; ++bx) {
+      markPenumbraBlock(raster, points, frame, bx * kProofBlock, y0, kProofBlock, result);
+    }
   });
 }
 

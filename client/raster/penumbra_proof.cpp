@@ -170,27 +170,94 @@ bool PenumbraProof::clear(const glm::vec3& apex, const Base& base, const glm::ve
   return true;
 }
 
+PenumbraProof::View PenumbraProof::viewOf(SoftLight light, const glm::vec3& p, const glm::vec3& eye) {
+  const glm::vec3 toLight = light.centre - p;
+  const float distance = glm::length(toLight);
+  const float side = glm::dot(p - light.centre, light.normal);
+  // An emitter lights the side p is on; a point in its plane (a ceiling
+  // around a lamp set in it) gets next to nothing from it.
+  if (light.emitter && std::abs(side) <= kInPlane * distance) return {};
+  if (light.emitter && side < 0.0f) light.normal = -light.normal;
+  // Behind an area light: no light, nothing to prove.
+  if (light.radius == 0.0f && !light.emitter && side <= 0.0f) return {};
+  View view;
+  view.apex = p + (kLift * (distance + glm::length(p - eye)) / distance) * toLight;
+  const std::optional<Base> base = baseFrom(light, view.apex, distance);
+  if (!base) {
+    view.kind = View::Kind::kUnprovable;
+    return view;
+  }
+  view.kind = View::Kind::kPyramid;
+  view.base = *base;
+  view.centre = light.centre;
+  if (light.emitter) {
+    const float keep = 1.0f - Emitters::kShortOfEmitter;
+    for (glm::vec3& corner : view.base.corners) corner = view.apex + keep * (corner - view.apex);
+    view.centre = view.apex + keep * (view.centre - view.apex);
+  }
+  return view;
+}
+
 bool PenumbraProof::seesWhole(const glm::vec3& p, const glm::vec3& eye) const {
-  for (SoftLight light : lights_) {
-    const glm::vec3 toLight = light.centre - p;
-    const float distance = glm::length(toLight);
-    const float side = glm::dot(p - light.centre, light.normal);
-    // An emitter lights the side p is on; a point in its plane (a ceiling
-    // around a lamp set in it) gets next to nothing from it.
-    if (light.emitter && std::abs(side) <= kInPlane * distance) continue;
-    if (light.emitter && side < 0.0f) light.normal = -light.normal;
-    // Behind an area light: no light, nothing to prove.
-    if (light.radius == 0.0f && !light.emitter && side <= 0.0f) continue;
-    const glm::vec3 apex = p + (kLift * (distance + glm::length(p - eye)) / distance) * toLight;
-    std::optional<Base> base = baseFrom(light, apex, distance);
-    if (!base) return false;
-    glm::vec3 centre = light.centre;
-    if (light.emitter) {
-      const float keep = 1.0f - Emitters::kShortOfEmitter;
-      for (glm::vec3& corner : base->corners) corner = apex + keep * (corner - apex);
-      centre = apex + keep * (centre - apex);
+  for (const SoftLight& light : lights_) {
+    const View view = viewOf(light, p, eye);
+    if (view.kind == View::Kind::kUnprovable) return false;
+    if (view.kind == View::Kind::kPyramid && !clear(view.apex, view.base, view.centre)) return false;
+  }
+  return true;
+}
+
+namespace {
+
+// The plane of outward unit normal n that has every point on its inner
+// side, the farthest on it.
+glm::vec4 planeAround(const glm::vec3& n, const std::vector<glm::vec3>& points) {
+  float d = -INFINITY;
+  for (const glm::vec3& p : points) d = std::max(d, glm::dot(n, p));
+  return {n, d};
+}
+
+}  // namespace
+
+// A region around every pyramid of a block of points: the planes of the
+// middle one's faces and of the box, each moved out to take in every
+// pyramid's corners (a pyramid is their hull), the corners all of those.
+ConvexRegion PenumbraProof::regionAround(const std::vector<View>& views) {
+  ConvexRegion region;
+  for (const View& v : views) {
+    region.corners.push_back(v.apex);
+    region.corners.insert(region.corners.end(), v.base.corners.begin(), v.base.corners.end());
+  }
+  const View& middle = views[views.size() / 2];
+  const glm::vec3 inside = 0.5f * (middle.apex + middle.centre);
+  region.planes.push_back(planeAround(-middle.base.normal, region.corners));
+  for (int k = 0; k < 4; ++k) {
+    const glm::vec3& a = middle.base.corners[k];
+    const glm::vec3& b = middle.base.corners[(k + 1) % 4];
+    const glm::vec4 side = planeThrough(middle.apex, glm::cross(a - middle.apex, b - middle.apex), inside);
+    region.planes.push_back(planeAround(glm::vec3(side), region.corners));
+  }
+  for (int axis = 0; axis < 3; ++axis) {
+    glm::vec3 n(0.0f);
+    n[axis] = 1.0f;
+    region.planes.push_back(planeAround(n, region.corners));
+    region.planes.push_back(planeAround(-n, region.corners));
+  }
+  finishRegion(region);
+  return region;
+}
+
+bool PenumbraProof::allSeeWhole(std::span<const glm::vec3> points, const glm::vec3& eye) const {
+  std::vector<View> views;
+  for (const SoftLight& light : lights_) {
+    views.clear();
+    for (const glm::vec3& p : points) {
+      const View view = viewOf(light, p, eye);
+      if (view.kind == View::Kind::kUnprovable) return false;
+      if (view.kind == View::Kind::kPyramid) views.push_back(view);
     }
-    if (!clear(apex, *base, centre)) return false;
+    if (views.empty()) continue;
+    if (!primitivesInRegion(bvh_, geometry_, regionAround(views), UINT32_MAX).empty()) return false;
   }
   return true;
 }

@@ -3,6 +3,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -43,6 +44,10 @@ class PenumbraProof {
 
   // Whether every soft light reaches the whole of p's view of it.
   bool seesWhole(const glm::vec3& p, const glm::vec3& eye) const;
+  // The same for a block of points at once: true proves it for each (nothing
+  // enters the box around all their pyramids to a light); false proves
+  // nothing, and each point is asked alone.
+  bool allSeeWhole(std::span<const glm::vec3> points, const glm::vec3& eye) const;
 
  private:
   // Whether a primitive the region query found may enter the pyramid (an
@@ -63,6 +68,17 @@ class PenumbraProof {
   };
   // The base from the apex (none: no proof from there).
   static std::optional<Base> baseFrom(const SoftLight& light, const glm::vec3& apex, float distance);
+  // What p's proof of one light asks: nothing (the light sends p nothing),
+  // the pyramid from the apex to the base through `centre`, or what cannot
+  // be proved (no base).
+  struct View {
+    enum class Kind { kNothing, kPyramid, kUnprovable } kind = Kind::kNothing;
+    glm::vec3 apex{0.0f};
+    Base base;
+    glm::vec3 centre{0.0f};
+  };
+  static View viewOf(SoftLight light, const glm::vec3& p, const glm::vec3& eye);
+  static ConvexRegion regionAround(const std::vector<View>& views);
   // Whether nothing enters the pyramid from the apex to the base through
   // `centre`.
   bool clear(const glm::vec3& apex, const Base& base, const glm::vec3& centre) const;
