@@ -224,9 +224,13 @@ glm::vec4 planeAround(const glm::vec3& n, const std::vector<glm::vec3>& points) 
 // pyramid's corners (a pyramid is their hull), the corners all of those.
 ConvexRegion PenumbraProof::regionAround(const std::vector<View>& views) {
   ConvexRegion region;
+  region.corners.insert(region.corners.end(), views.front().base.corners.begin(), views.front().base.corners.end());
   for (const View& v : views) {
     region.corners.push_back(v.apex);
-    region.corners.insert(region.corners.end(), v.base.corners.begin(), v.base.corners.end());
+    // An area light's base is the same from every apex: its corners once.
+    if (v.base.corners != views.front().base.corners) {
+      region.corners.insert(region.corners.end(), v.base.corners.begin(), v.base.corners.end());
+    }
   }
   const View& middle = views[views.size() / 2];
   const glm::vec3 inside = 0.5f * (middle.apex + middle.centre);
