@@ -1,5 +1,6 @@
 #include "tests/bench/indirect_section.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -158,8 +159,9 @@ Point fastestWithin(const std::vector<Point>& points, double flip) {
 
 void radiositySummary(const std::vector<Point>& pov, const std::vector<Point>& hybrid) {
   if (pov.empty() || hybrid.empty()) return;
-  Point closest = hybrid.front();
-  for (const Point& p : hybrid) closest = p.flip < closest.flip ? p : closest;
+  const auto byFlip = [](const Point& a, const Point& b) { return a.flip < b.flip; };
+  const auto byMs = [](const Point& a, const Point& b) { return a.ms < b.ms; };
+  const Point closest = *std::min_element(hybrid.begin(), hybrid.end(), byFlip);
   const Point reaching = fastestWithin(pov, closest.flip);
   if (reaching.ms >= 0.0) {
     std::printf("\nPOV-Ray's fastest setting that reaches the hybrid frame's FLIP %.4f takes %.0f ms: the hybrid frame "
@@ -167,8 +169,7 @@ void radiositySummary(const std::vector<Point>& pov, const std::vector<Point>& h
                 closest.flip, reaching.ms, closest.ms, reaching.ms / closest.ms);
     return;
   }
-  Point fastestPov = pov.front();
-  for (const Point& p : pov) fastestPov = p.ms < fastestPov.ms ? p : fastestPov;
+  const Point fastestPov = *std::min_element(pov.begin(), pov.end(), byMs);
   const Point hybridWithin = fastestWithin(hybrid, fastestPov.flip);
   std::printf("\nNo POV-Ray setting reaches the hybrid frame's FLIP %.4f.", closest.flip);
   if (hybridWithin.ms < 0.0) return (void)std::printf("\n");
@@ -235,14 +236,17 @@ void sceneRows(const fs::path& file, bool quick, bool povray) {
   fieldRows(prepared, reference, curve, quick);
   const std::vector<Point> hybrid = hybridRows(prepared, displayedReference, displayedCurve, quick);
   const fs::path pov = fs::path(file).replace_extension(".pov");
-  if (povray && fs::exists(pov)) radiosityRows(pov, prepared.scene().frame.output.encoding, displayedReference, hybrid, quick);
+  if (povray && fs::exists(pov)) {
+    radiosityRows(pov, prepared.scene().frame.output.encoding, displayedReference, hybrid, quick);
+  }
 }
 
 }  // namespace
 
 void indirectSection(const std::string& scenes, bool quick, bool povray) {
   std::printf("\n## Indirect light: the irradiance field against path tracing, at equal FLIP\n");
-  for (const char* name : {"cornell.json", "room-path.json"}) sceneRows(fs::path(scenes) / name, quick, povray && povrayInstalled());
+  const bool withPovray = povray && povrayInstalled();
+  for (const char* name : {"cornell.json", "room-path.json"}) sceneRows(fs::path(scenes) / name, quick, withPovray);
 }
 
 }  // namespace glint::bench

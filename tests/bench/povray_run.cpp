@@ -1,8 +1,8 @@
 #include "tests/bench/povray_run.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
-#include <algorithm>
 #include <cstdlib>
 
 #include "tests/bench/bench_timing.h"
@@ -36,7 +36,9 @@ PovrayRun runPovray(const std::filesystem::path& pov, const std::filesystem::pat
     FILE* pipe = popen(cmd.c_str(), "r");
     if (!pipe) return;
     std::array<char, 4096> buffer;
-    for (std::size_t n; (n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0;) statistics.append(buffer.data(), n);
+    for (std::size_t n; (n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0;) {
+      statistics.append(buffer.data(), n);
+    }
     if (pclose(pipe) != 0) statistics.clear();
   });
   const double trace = statisticSeconds(statistics, "Trace Time:");
