@@ -131,6 +131,8 @@ layout(location = 0) out vec4 fragColor;
 layout(location = 1) out uint fragSurface;   // object << 2 | PixelMark
 bool gShadowUndecided = false;               // set by shadowVisibility() and behindTriangle()
 bool gFieldUndecided = false;                // set by fieldIrradiance()
+vec3 gLobeAlbedo;                            // with a field, path transport's lobe weights (set by shade)
+float gLobeSpecular;
 
 vec3 encodeOutput(vec3 linear) {
   vec3 v = clamp(linear * uExposureScale, 0.0, 1.0);
@@ -317,11 +319,16 @@ float parallelVisibility(int light, vec3 p, vec3 ng) {
 #endif
 
 // Adds the diffuse and specular light of a point light of intensity lightI
-// in direction l (unit, facing the surface), as the tracer's addPhong.
+// in direction l (unit, facing the surface), as the tracer's addPhong: the
+// thesis's Phong, or with a field path transport's lobes.
 void addPhong(inout vec3 result, vec3 lightI, vec3 c, vec3 ns, vec3 l, vec3 toViewer) {
+#ifdef FIELD
+  result += lobesReflect(lightI, gLobeAlbedo, gLobeSpecular, uTerms.w, ns, l, toViewer);
+#else
   result += phongDiffuse(lightI, c, uTerms.y, ns, l);
 #ifdef SPECULAR
   result += phongSpecular(lightI, uTerms.z, uTerms.w, ns, l, toViewer);
+#endif
 #endif
 }
 
@@ -397,10 +404,9 @@ vec3 emitterIrradiance(vec3 p, vec3 n) {
 
 // The light other surfaces send p, as the tracer's fieldLight: the diffuse
 // albedo over pi times the field's and the emitters' irradiance.
-vec3 fieldLight(vec3 p, vec3 ns, vec3 c) {
-  vec3 albedo = diffuseAlbedo(c, uTerms.y, uTerms.z, uOtherLobes.x, uOtherLobes.y);
-  if (albedo == vec3(0.0)) return albedo;
-  return albedo * ((fieldIrradiance(p, ns) + emitterIrradiance(p, ns)) * 0.318309886);
+vec3 fieldLight(vec3 p, vec3 ns) {
+  if (gLobeAlbedo == vec3(0.0)) return gLobeAlbedo;
+  return gLobeAlbedo * ((fieldIrradiance(p, ns) + emitterIrradiance(p, ns)) * 0.318309886);
 }
 #endif
 
@@ -414,7 +420,9 @@ vec3 shade(vec3 p, vec3 ng, vec3 ns, vec2 uv) {
   if (dot(ns, ng) < 0.0) ns = -ns;
 #endif
 #ifdef FIELD
-  vec3 result = fieldLight(p, ns, c);
+  gLobeAlbedo = diffuseAlbedo(c, uTerms.y, uTerms.z, uOtherLobes.x, uOtherLobes.y);
+  gLobeSpecular = specularWeight(c, uTerms.y, uTerms.z, uOtherLobes.x, uOtherLobes.y);
+  vec3 result = fieldLight(p, ns);
 #else
   vec3 result = phongAmbient(c, uTerms.x);
 #endif

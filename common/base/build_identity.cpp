@@ -25,8 +25,11 @@ namespace {
 // pixels unchanged); 13: path transport draws its choices from scrambled
 // Sobol points (Whitted pixels unchanged); 14: path transport's diffuse
 // bounce weighs by the albedo exactly, turns its azimuth in float and draws
-// a lobe only where there is a choice (Whitted pixels unchanged).
-constexpr int kTracerVersion = 14;
+// a lobe only where there is a choice (Whitted pixels unchanged); 15: a
+// frame that reads an irradiance field lights by path transport's lobes
+// (lobesReflect), the tracer confirms the field's probes with rays, and a
+// probe about hidden carries no weight (frames without a field unchanged).
+constexpr int kTracerVersion = 15;
 
 // FNV-1a: the flags only need a short, stable fingerprint.
 std::uint64_t fingerprint(const char* text) {

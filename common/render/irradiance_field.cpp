@@ -86,7 +86,7 @@ int IrradianceField::texel(const glm::vec2& point) {
   return y * kMapSide + x;
 }
 
-IrradianceField::Lookup IrradianceField::irradiance(const glm::vec3& p, const glm::vec3& n) const {
+IrradianceField::Lookup IrradianceField::irradiance(const glm::vec3& p, const glm::vec3& n, const Bvh* sight) const {
   const float minStep = std::min({step().x, step().y, step().z});
   // Looked up a little off the surface, so that the probes beside it on its
   // own side do not see it at a grazing distance.
@@ -96,6 +96,7 @@ IrradianceField::Lookup IrradianceField::irradiance(const glm::vec3& p, const gl
   const glm::vec3 alpha = at - glm::vec3(base);
   const float minVariance = (0.05f * minStep) * (0.05f * minStep);
   Blend blend;
+  Lookup out;
   for (int corner = 0; corner < 8; ++corner) {
     const glm::ivec3 offset(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
     const int i = index(base + offset);
@@ -106,14 +107,20 @@ IrradianceField::Lookup IrradianceField::irradiance(const glm::vec3& p, const gl
     const float share = glsl::probeShare(t.x * t.y * t.z, dir, n);
     const Probe& probe = probes_[static_cast<std::size_t>(i)];
     const glm::vec2 moments = probe.moments[static_cast<std::size_t>(texel(glsl::octahedralPoint(-dir)))];
-    const float v = glsl::probeVisibility(moments, d, minVariance);
+    float v = glsl::probeVisibility(moments, d, minVariance);
+    if (sight && v > 0.0f && d > 0.0f) {
+      ++out.sightRays;
+      if (sight->occluded(Ray(q, dir), d)) {
+        ++out.sightBlocked;
+        v = 0.0f;
+      }
+    }
     const float w = share * v;
     blend.sum += w * glsl::shIrradiance(probe.irradiance.data(), n);
     blend.weight += w;
     blend.share += share;
-    if (glsl::visibilityInDoubt(v)) blend.doubt += share;
+    if (!sight && glsl::visibilityInDoubt(v)) blend.doubt += share;
   }
-  Lookup out;
   out.decided = blend.share > 0.0f && blend.weight >= kDecidedShare * blend.share &&
                 blend.doubt <= kDoubtShare * blend.share;
   if (blend.weight > 0.0f) out.irradiance = blend.sum / blend.weight;

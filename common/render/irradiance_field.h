@@ -8,6 +8,7 @@
 #include <glm/vec3.hpp>
 
 #include "common/geometry/bounds.h"
+#include "common/geometry/bvh.h"
 #include "common/scene/scene.h"
 
 namespace glint {
@@ -71,6 +72,8 @@ class IrradianceField {
   struct Lookup {
     glm::vec3 irradiance{0.0f};
     bool decided = false;
+    int sightRays = 0;     // the rays that confirmed probes (any-hit rays)
+    int sightBlocked = 0;  // those that found a probe hidden
   };
 
   IrradianceField(const Bounds3& bounds, const FieldSettings& settings);
@@ -87,8 +90,12 @@ class IrradianceField {
   const Probe& probe(int i) const { return probes_[static_cast<std::size_t>(i)]; }
 
   // The irradiance at p toward unit normal n (p on a surface, n on the side
-  // the light is wanted).
-  Lookup irradiance(const glm::vec3& p, const glm::vec3& n) const;
+  // the light is wanted). With `sight` (the tracer's scene), a ray from the
+  // looked-up point confirms each probe the map lets through: a probe
+  // behind a wall of zero thickness or inside an object, which the coarse
+  // map cannot tell from one that sees the point, carries no weight, and
+  // no probe is left in doubt (OpenGL, without rays, traces such points).
+  Lookup irradiance(const glm::vec3& p, const glm::vec3& n, const Bvh* sight = nullptr) const;
 
   // The visibility texel of a point of the map (octahedralPoint's).
   static int texel(const glm::vec2& point);

@@ -75,9 +75,11 @@ std::optional<glm::vec3> Tracer::radianceWithField(const Ray& ray, const SampleK
 }
 
 glm::vec3 Tracer::fieldLight(const ShadingPoint& at, const Surface& f, Path& path) const {
-  const glm::vec3 albedo = lobeWeights(f.m, f.color).albedo;
+  const glm::vec3& albedo = f.lobes->albedo;
   if (albedo == glm::vec3(0.0f)) return albedo;  // no lookup: nothing to decide
-  const IrradianceField::Lookup light = field_->irradiance(at.s.p, at.s.ns);
+  const IrradianceField::Lookup light = field_->irradiance(at.s.p, at.s.ns, &bvh_);
+  path.stats.shadow += static_cast<std::uint64_t>(light.sightRays);
+  path.stats.shadowBlocked += static_cast<std::uint64_t>(light.sightBlocked);
   if (!light.decided) path.undecided = true;
   const glm::vec3 irradiance = light.irradiance + emitterIrradiance(at, path);
   return albedo * (irradiance * std::numbers::inv_pi_v<float>);
@@ -156,6 +158,10 @@ inline std::optional<Tracer::Direction> Tracer::facing(const ShadingPoint& at, c
 
 inline void Tracer::addPhong(const ShadingPoint& at, const Surface& f, const Direction& d, const glm::vec3& lightI,
                              glm::vec3& result) const {
+  if (f.lobes) {
+    result += glsl::lobesReflect(lightI, f.lobes->albedo, f.lobes->specular, f.m.shininess, at.s.ns, d.l, at.toViewer);
+    return;
+  }
   result += phongDiffuse(lightI, f.color, f.m.diffuse, at.s.ns, d.l);
   if (f.e.specular) result += phongSpecular(lightI, f.m.specular, f.m.shininess, at.s.ns, d.l, at.toViewer);
 }
@@ -271,7 +277,9 @@ float Tracer::visibleShare(const ShadingPoint& at, int first, int count, Path& p
 
 glm::vec3 Tracer::shade(const ShadingPoint& at, const Material& m, const MaterialEffects& e, Path& path) const {
   const SurfaceHit& s = at.s;
-  const Surface f{surfaceColor(scene_, m, e, s, plan_.vertexColors), m, e};
+  const glm::vec3 color = surfaceColor(scene_, m, e, s, plan_.vertexColors);
+  const std::optional<LobeWeights> lobes = field_ ? std::optional(lobeWeights(m, color)) : std::nullopt;
+  const Surface f{color, m, e, lobes ? &*lobes : nullptr};
   glm::vec3 result = field_ ? fieldLight(at, f, path) : phongAmbient(f.color, m.ambient);
   if (e.emits) result += emitted(m, s.uv);
   if (!e.direct) return result;

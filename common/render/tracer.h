@@ -7,6 +7,7 @@
 
 #include "common/geometry/bvh.h"
 #include "common/render/area_light.h"
+#include "common/render/bsdf.h"
 #include "common/render/effects.h"
 #include "common/render/emitter_patches.h"
 #include "common/render/emitters.h"
@@ -69,11 +70,13 @@ class Tracer {
     glm::vec3 toViewer;
     int depth;
   };
-  // A material's colour and terms at a point.
+  // A material's colour and terms at a point; with a field, its lobes'
+  // weights under path transport (direct light is then the lobes').
   struct Surface {
     glm::vec3 color;
     const Material& m;
     const MaterialEffects& e;
+    const LobeWeights* lobes;
   };
   glm::vec3 trace(const Ray& ray, int depth, float weight, bool inside, Path& path) const;
   // The origin of a shadow ray along `d` (from at.outside): at.outside where
@@ -99,7 +102,9 @@ class Tracer {
   std::optional<Direction> towards(const ShadingPoint& at, const glm::vec3& position) const;
   // d, unless the light comes from behind the surface.
   std::optional<Direction> facing(const ShadingPoint& at, const Direction& d) const;
-  // Adds the diffuse and specular light of intensity lightI from d.
+  // Adds the diffuse and specular light of intensity lightI from d: the
+  // thesis's Phong, or with a field path transport's lobes (lobesReflect),
+  // so that a pixel the field lights agrees with the path trace.
   void addPhong(const ShadingPoint& at, const Surface& f, const Direction& d, const glm::vec3& lightI,
                 glm::vec3& result) const;
   // A point, spot or directional light: one shadow ray.

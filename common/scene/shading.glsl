@@ -161,21 +161,23 @@ SHARED float probeShare(float t, vec3 toProbe, vec3 n) {
 // the point says: 1 nearer than the mean distance its rays travelled, else
 // Chebyshev's bound var / (var + (d - mean)^2), cubed, as DDGI's
 // (moments: the mean and the mean square; minVariance keeps a flat texel's
-// bound from a step).
+// bound from a step); 0 where that is at most 1/1000, about hidden (a
+// probe across a wall keeps no weight to leak its room's light with).
 SHARED float probeVisibility(vec2 moments, float d, float minVariance) {
   if (d <= moments.x) return 1.0f;
   float variance = max(moments.y - moments.x * moments.x, minVariance);
   float away = d - moments.x;
   float bound = variance / (variance + away * away);
-  return bound * bound * bound;
+  float v = bound * bound * bound;
+  return v > 0.001f ? v : 0.0f;
 }
 
 // Whether a probe's visibility leaves it in doubt whether the probe sees
-// the point: neither about seen (0.9) nor about hidden (1/1000). A point
-// near a thin wall or in an object's contact shadow is such for the probes
-// across: the coarse map blurs the edge between what they see and what they
-// do not, and blending them would leak their light.
-SHARED bool visibilityInDoubt(float v) { return v > 0.001f && v < 0.9f; }
+// the point: neither about seen (0.9) nor hidden (probeVisibility's 0). A
+// point near a thin wall or in an object's contact shadow is such for the
+// probes across: the coarse map blurs the edge between what they see and
+// what they do not, and blending them would leak their light.
+SHARED bool visibilityInDoubt(float v) { return v > 0.0f && v < 0.9f; }
 
 // A probe's irradiance toward unit normal n from its coefficients c (each
 // A_l L_k), never below zero (order 2 rings slightly under a light that
@@ -194,6 +196,31 @@ SHARED vec3 diffuseAlbedo(vec3 c, float diffuse, float specular, float reflectiv
   vec3 a = max(c * diffuse, vec3(0.0f));
   float sum = max(a.x, max(a.y, a.z)) + specular + reflectivity + transparency;
   return sum > 1.0f ? a / sum : a;
+}
+
+// The normalised Phong lobe's weight under path transport: `specular`,
+// divided by the same sum as diffuseAlbedo's where it exceeds 1.
+SHARED float specularWeight(vec3 c, float diffuse, float specular, float reflectivity, float transparency) {
+  vec3 a = max(c * diffuse, vec3(0.0f));
+  float sum = max(a.x, max(a.y, a.z)) + specular + reflectivity + transparency;
+  return sum > 1.0f ? specular / sum : specular;
+}
+
+// What the diffuse and the normalised Phong lobes (bsdf.h: f = albedo / pi
+// + specular (h + 2) / (2 pi) (V . R)^h) reflect toward v of the light
+// `arriving` from unit direction l, times pi: pi f (N . L), so that a delta
+// light of intensity I (path transport's pi I) gives I times this. Zero
+// when the light is behind the surface.
+SHARED vec3 lobesReflect(vec3 arriving, vec3 albedo, float specular, float h, vec3 n, vec3 l, vec3 v) {
+  float nl = dot(n, l);
+  if (nl <= 0.0f) return vec3(0.0f);
+  vec3 f = albedo;
+  if (specular > 0.0f) {
+    vec3 r = 2.0f * nl * n - l;
+    float vr = dot(v, r);
+    if (vr > 0.0f) f += vec3(specular * (h + 2.0f) * 0.5f * pow(vr, h));
+  }
+  return arriving * f * nl;
 }
 
 // The irradiance a surface at p of unit normal n receives, unshadowed, from

@@ -16,6 +16,7 @@
 #include "common/render/field_probes.h"
 #include "common/render/frame.h"
 #include "common/render/prepared_scene.h"
+#include "common/render/tile_service.h"
 #include "common/scene/camera.h"
 #include "common/scene/scene_load.h"
 #include "tests/support/test_support.h"
@@ -148,6 +149,150 @@ TEST(FieldHybrid, NoLightLeaksThroughAThinWallIntoRasterPixels) {
   // its neighbours keeps a weight that small without falling in doubt.
   EXPECT_GT(raster, 64 * 48 / 10);
   EXPECT_LE(brightest, 1);
+}
+
+// A clay sphere with a highlight under a point light, nothing else: the
+// light between surfaces is about nil, so the field's frame is direct light
+// alone, and OpenGL's pixels and the tracer's must both be path transport's
+// (the diffuse and normalised Phong lobes), or the highlight is cut where
+// the mask changes.
+TEST(FieldHybrid, DirectLightIsPathTransportsLobesWhoeverDrawsIt) {
+  const json scene = {
+      {"glint", 1},
+      {"image", {{"width", 64}, {"height", 64}}},
+      {"camera", {{"eye", {0, 0.4, -3}}, {"look_at", {0, 0, 0}}, {"fov_y", 45}}},
+      {"tracing", {{"transport", "path"}, {"max_bounces", 2}}},
+      {"materials",
+       {{"clay", {{"color", {0.8, 0.35, 0.25}}, {"diffuse", 0.8}, {"specular", 0.2}, {"shininess", 30}}}}},
+      {"lights", {{{"type", "point"}, {"position", {2, 4, -3}}, {"color", {1, 1, 1}}}}},
+      {"objects", {{{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1}, {"material", "clay"}}}}};
+  const PreparedScene prepared(test::sceneFromJson(scene.dump()), BvhSettings{});
+  const FrameSettings frame = centreRays(prepared.scene(), 64, 64);
+  RayStats stats;
+  const IrradianceField field = buildField(prepared, frame, {4, 64}, stats);
+  const FieldHybrid both = renderBoth(prepared, frame, field);
+  ThreadPool pool(2);
+  LocalTileService pathOnly(prepared, pool);
+  const FrameImage path = renderFrame(pathOnly, frame, {}).image;
+  const HybridResult& h = both.hybrid;
+  int raster = 0, worstRaster = 0, worstTraced = 0;
+  for (std::size_t i = 0; i < h.mask.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      const int apart = std::abs(int(h.image.rgb[3 * i + k]) - int(path.rgb[3 * i + k]));
+      int& worst = h.mask[i] == kRasterPixel ? worstRaster : worstTraced;
+      worst = std::max(worst, apart);
+    }
+    raster += h.mask[i] == kRasterPixel ? 1 : 0;
+  }
+  std::printf("clay sphere 64 x 64: %d raster pixels, worst apart from the path trace: raster %d/255, traced %d/255\n",
+              raster, worstRaster, worstTraced);
+  EXPECT_GT(raster, 64 * 64 / 4);
+  EXPECT_LE(worstRaster, 3);
+  EXPECT_LE(worstTraced, 3);
+}
+
+// Two rooms, one quad between them, a lamp in the right one and the camera
+// in the left: where the tracer reads the field (the pixels it traces), the
+// probes across the wall, whose coarse maps cannot tell, are confirmed by
+// rays and carry nothing, at the coarsest settings as at fine ones.
+TEST(FieldHybrid, TheTracerReadsNoLightThroughAThinWall) {
+  json objects = json::array();
+  const auto quad = [&](std::vector<std::vector<double>> c, const char* m) {
+    objects.push_back({{"type", "quad"}, {"corners", c}, {"material", m}});
+  };
+  quad({{-2, 0, -1}, {2, 0, -1}, {2, 0, 1}, {-2, 0, 1}}, "w");
+  quad({{-2, 2, -1}, {-2, 2, 1}, {2, 2, 1}, {2, 2, -1}}, "w");
+  quad({{-2, 0, 1}, {2, 0, 1}, {2, 2, 1}, {-2, 2, 1}}, "w");
+  quad({{-2, 0, -1}, {-2, 2, -1}, {2, 2, -1}, {2, 0, -1}}, "w");
+  quad({{-2, 0, -1}, {-2, 0, 1}, {-2, 2, 1}, {-2, 2, -1}}, "w");
+  quad({{2, 0, -1}, {2, 2, -1}, {2, 2, 1}, {2, 0, 1}}, "w");
+  quad({{0, 0, -1}, {0, 2, -1}, {0, 2, 1}, {0, 0, 1}}, "w");  // the wall between
+  quad({{0.8, 1.99, -0.3}, {0.8, 1.99, 0.3}, {1.4, 1.99, 0.3}, {1.4, 1.99, -0.3}}, "lamp");
+  const json scene = {
+      {"glint", 1},
+      {"image", {{"width", 64}, {"height", 48}}},
+      {"camera", {{"eye", {-1.5, 1, -0.9}}, {"look_at", {-0.05, 0.8, 0.5}}, {"fov_y", 70}}},
+      {"tracing", {{"transport", "path"}, {"max_bounces", 6}}},
+      {"materials",
+       {{"w", {{"color", {0.8, 0.8, 0.8}}, {"diffuse", 1}}},
+        {"lamp", {{"color", {0.8, 0.8, 0.8}}, {"diffuse", 1}, {"emission", {20, 20, 20}}}}}},
+      {"objects", objects}};
+  const PreparedScene prepared(test::sceneFromJson(scene.dump()), BvhSettings{});
+  const FrameSettings frame = centreRays(prepared.scene(), 64, 48);
+  const Camera camera(frame.camera, frame.width, frame.height);
+  for (const FieldSettings settings : {FieldSettings{FieldSettings::kMinProbes, FieldSettings::kMinRays},
+                                       FieldSettings{4, 64}, FieldSettings{8, 256}, FieldSettings{16, 256}}) {
+    RayStats stats;
+    const IrradianceField field = buildField(prepared, frame, settings, stats);
+    int points = 0, lit = 0, mapLit = 0;
+    for (int y = 0; y < 48; ++y) {
+      for (int x = 0; x < 64; ++x) {
+        const Ray ray = camera.generateRay({float(x) + 0.5f, float(y) + 0.5f});
+        const std::optional<Hit> hit = prepared.bvh().intersect(ray, 1e30f);
+        if (!hit) continue;
+        const SurfaceHit s = prepared.scene().geometry.surface(ray, *hit, false, false);
+        if (s.p.x > 0.0f) continue;  // the lit room, seen past the wall's end
+        const glm::vec3 n = glm::dot(s.ns, ray.d) > 0.0f ? -s.ns : s.ns;
+        ++points;
+        lit += field.irradiance(s.p, n, &prepared.bvh()).irradiance != glm::vec3(0.0f) ? 1 : 0;
+        mapLit += field.irradiance(s.p, n).irradiance != glm::vec3(0.0f) ? 1 : 0;
+      }
+    }
+    std::printf("field %d, %d: %d points in the dark room, %d lit by the map alone, %d once confirmed\n",
+                settings.probes, settings.rays, points, mapLit, lit);
+    EXPECT_GT(points, 64 * 48 / 2);
+    EXPECT_EQ(lit, 0) << settings.probes << " probes, " << settings.rays << " rays";
+  }
+}
+
+// A closed box with a lamp inside it, on a wide floor: the probes inside the
+// box are full of light, and no point outside it receives any.
+TEST(FieldHybrid, AProbeInsideAClosedBoxLightsNothingOutside) {
+  json objects = json::array();
+  const auto quad = [&](std::vector<std::vector<double>> c, const char* m) {
+    objects.push_back({{"type", "quad"}, {"corners", c}, {"material", m}});
+  };
+  quad({{-3, 0, -3}, {3, 0, -3}, {3, 0, 3}, {-3, 0, 3}}, "w");  // the floor
+  const double a = 0.01, b = 1.5;  // the box: [-0.75, 0.75] x [a, b] x [-0.75, 0.75]
+  quad({{-0.75, a, -0.75}, {0.75, a, -0.75}, {0.75, a, 0.75}, {-0.75, a, 0.75}}, "w");
+  quad({{-0.75, b, -0.75}, {-0.75, b, 0.75}, {0.75, b, 0.75}, {0.75, b, -0.75}}, "w");
+  quad({{-0.75, a, -0.75}, {-0.75, b, -0.75}, {0.75, b, -0.75}, {0.75, a, -0.75}}, "w");
+  quad({{-0.75, a, 0.75}, {0.75, a, 0.75}, {0.75, b, 0.75}, {-0.75, b, 0.75}}, "w");
+  quad({{-0.75, a, -0.75}, {-0.75, a, 0.75}, {-0.75, b, 0.75}, {-0.75, b, -0.75}}, "w");
+  quad({{0.75, a, -0.75}, {0.75, b, -0.75}, {0.75, b, 0.75}, {0.75, a, 0.75}}, "w");
+  quad({{-0.2, 1.4, -0.2}, {-0.2, 1.4, 0.2}, {0.2, 1.4, 0.2}, {0.2, 1.4, -0.2}}, "lamp");
+  const json scene = {
+      {"glint", 1},
+      {"image", {{"width", 32}, {"height", 32}}},
+      {"camera", {{"eye", {0, 3, -4}}, {"look_at", {0, 0, 0}}, {"fov_y", 60}}},
+      {"tracing", {{"transport", "path"}, {"max_bounces", 4}}},
+      {"materials",
+       {{"w", {{"color", {0.8, 0.8, 0.8}}, {"diffuse", 1}}},
+        {"lamp", {{"color", {0.8, 0.8, 0.8}}, {"diffuse", 1}, {"emission", {20, 20, 20}}}}}},
+      {"objects", objects}};
+  const PreparedScene prepared(test::sceneFromJson(scene.dump()), BvhSettings{});
+  const FrameSettings frame = centreRays(prepared.scene(), 32, 32);
+  RayStats stats;
+  const IrradianceField field = buildField(prepared, frame, {8, 256}, stats);
+  int inside = 0, outside = 0, lit = 0, mapLit = 0;
+  for (int i = 0; i < field.probeCount(); ++i) {
+    const glm::vec3 p = field.position(i);
+    const bool in = std::abs(p.x) < 0.75f && std::abs(p.z) < 0.75f && p.y > a && p.y < b;
+    inside += in && field.probe(i).irradiance[0] != glm::vec3(0.0f) ? 1 : 0;
+  }
+  for (float x = -2.9f; x < 3.0f; x += 0.1f) {
+    for (float z = -2.9f; z < 3.0f; z += 0.1f) {
+      if (std::abs(x) < 0.8f && std::abs(z) < 0.8f) continue;
+      ++outside;
+      lit += field.irradiance({x, 0.0f, z}, {0, 1, 0}, &prepared.bvh()).irradiance != glm::vec3(0.0f) ? 1 : 0;
+      mapLit += field.irradiance({x, 0.0f, z}, {0, 1, 0}).irradiance != glm::vec3(0.0f) ? 1 : 0;
+    }
+  }
+  std::printf("closed box: %d lit probes inside, %d floor points outside, %d lit by the map alone, %d once confirmed\n",
+              inside, outside, mapLit, lit);
+  EXPECT_GT(inside, 0);
+  EXPECT_GT(outside, 1000);
+  EXPECT_EQ(lit, 0);
 }
 
 }  // namespace
