@@ -13,8 +13,8 @@
 namespace glint::proto {
 
 // 2: Hello.build, Cancel; 3: files by hash, FileChunk; 4: path counts in RayCounts; 5: the irradiance field
-// (FrameSetup.field and fill_field, TileResult.probes, FieldPiece)
-constexpr std::uint32_t kProtocolVersion = 5;
+// (FrameSetup.field and fill_field, TileResult.probes, FieldPiece); 6: RayCounts.path_bounces
+constexpr std::uint32_t kProtocolVersion = 6;
 constexpr std::size_t kHeaderBytes = 4;  // little-endian uint32 length
 constexpr std::size_t kDefaultMaxMessageBytes = std::size_t{64} << 20;
 // The most file bytes one FileChunk carries (less where a server's message

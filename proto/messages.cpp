@@ -141,7 +141,7 @@ std::vector<std::uint8_t> encodeTileResult(std::uint32_t frameId, std::uint32_t 
   const auto probeVector = probes.empty() ? flatbuffers::Offset<flatbuffers::Vector<float>>()
                                           : b.CreateVector(probes.data(), probes.size());
   const wire::RayCounts rays(r.primary, r.shadow, r.shadowBlocked, r.reflection, r.refraction, r.nonFiniteSamples,
-                              r.paths, r.longestPath, r.lightSamples);
+                              r.paths, r.longestPath, r.lightSamples, r.pathBounces);
   return finish(b, wire::CreateTileResult(b, frameId, tileId, rgbVector, &rays, computeMicros, probeVector),
                 wire::Body::TileResult);
 }
@@ -182,6 +182,7 @@ RayStats decodeRays(const wire::RayCounts* r) {
   s.paths = r->paths();
   s.longestPath = r->longest_path();
   s.lightSamples = r->light_samples();
+  s.pathBounces = r->path_bounces();
   return s;
 }
 

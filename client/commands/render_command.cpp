@@ -238,7 +238,8 @@ struct RenderRun {
   EffectPlan plan;
   std::size_t dropped = 0;
   double loadMs = 0.0;
-  double prepareMs = 0.0;
+  double prepareMs = 0.0;  // the field's fill aside
+  std::optional<FrameRecord::Field> field;
 };
 
 // --mask all is the full ray trace: every pixel through the tile service.
@@ -294,6 +295,7 @@ std::optional<LinearImage> renderFrames(const RenderRun& run, TileBackend& backe
                     .remote = options.remote.any(),
                     .loadMs = run.loadMs,
                     .prepareMs = run.prepareMs,
+                    .field = run.field,
                     .traceMs = r.times.traceMs,
                     .frameMs = r.times.totalMs,
                     .totalMs = f == 0 ? msSince(run.start) : r.times.totalMs,
@@ -356,7 +358,10 @@ void runRender(const RenderOptions& options) {
   ProgressLine probes = stderrProgress(progressMode(options), "irradiance field", "probes");
   TileBackend backend({options.remote, options.bvh, true, field, showOn(probes)}, std::move(loaded));
   probes.clear();
-  run.prepareMs = msSince(prepareStart);
+  run.prepareMs = msSince(prepareStart) - backend.fieldFill().ms;
+  if (const IrradianceField* f = backend.field()) {
+    run.field = FrameRecord::Field{f->probeCount(), f->settings().rays, backend.fieldFill().ms, backend.fieldFill().rays};
+  }
 
   std::vector<HybridTimes> frameTimes;
   HybridResult r;  // reused: each frame overwrites it

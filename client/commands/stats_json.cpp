@@ -53,10 +53,15 @@ nlohmann::json toJson(const FrameRecord& r) {
   j["traced_share"] = pixels > 0 ? static_cast<double>(r.maskedPixels) / pixels : 0.0;
   j["primary_share"] = pixels > 0 ? static_cast<double>(r.rays.primary) / (pixels * r.samples) : 0.0;
   if (r.plan) j["effects"] = toJson(*r.plan);
+  if (r.field) {
+    j["field"] = {{"probes", r.field->probes},
+                  {"rays_a_probe", r.field->raysAProbe},
+                  {"ms", r.field->ms},
+                  {"rays", toJson(r.field->rays)}};
+  }
   if (r.rays.paths > 0) {
-    const auto bounces = static_cast<double>(r.rays.reflection + r.rays.refraction);
     j["paths"] = {{"count", r.rays.paths},
-                  {"bounces_mean", bounces / static_cast<double>(r.rays.paths)},
+                  {"bounces_mean", static_cast<double>(r.rays.pathBounces) / static_cast<double>(r.rays.paths)},
                   {"bounces_max", r.rays.longestPath},
                   {"light_samples", r.rays.lightSamples}};
   }

@@ -33,6 +33,15 @@ struct FrameRecord {
   bool remote = false;     // tiles traced by a glintd
   double loadMs = 0.0;     // reading and checking the scene and its files
   double prepareMs = 0.0;  // in process: the BVH build; remote: connect, upload and the server's build
+  // The irradiance field the frame reads, filled once before the first
+  // frame (its time apart from prepareMs, its rays apart from the frame's).
+  struct Field {
+    int probes = 0;
+    int raysAProbe = 0;
+    double ms = 0.0;
+    RayStats rays;
+  };
+  std::optional<Field> field;
   double traceMs = 0.0;    // the tile service filling the traced pixels
   double frameMs = 0.0;    // the frame alone
   double totalMs = 0.0;    // frame 0: since the start, load and preparation included; then the frame

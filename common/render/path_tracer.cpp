@@ -228,6 +228,7 @@ glm::vec3 PathTracer::radiance(const Ray& cameraRay, const SampleKey& key, RaySt
     }
     if (!allFinite(throughput)) break;
     ++(next->transmitted ? stats.refraction : stats.reflection);
+    ++stats.pathBounces;
     ray = Ray(next->transmitted ? offsetRayOrigin(s.p, s.error, -s.ng) : v.outside, next->wi);
     inside = inside != next->transmitted;
     bsdfPdf = next->pdf;

@@ -14,11 +14,13 @@ struct RayStats {
   std::uint64_t reflection = 0;
   std::uint64_t refraction = 0;
   std::uint64_t nonFiniteSamples = 0;  // samples discarded because a channel was NaN or infinite
-  // Path transport's: the paths (one a camera sample), the bounces of the
-  // longest (its bounce rays: reflection and refraction above count them
-  // all), and the lights' samples drawn for next-event estimation (a shadow
-  // ray each, unless the light cannot reach the point).
+  // Path transport's: the paths (one a camera sample, or one a sample the
+  // irradiance field could not decide), their bounce rays (also counted in
+  // reflection and refraction above, with Whitted's), the bounces of the
+  // longest, and the lights' samples drawn for next-event estimation (a
+  // shadow ray each, unless the light cannot reach the point).
   std::uint64_t paths = 0;
+  std::uint64_t pathBounces = 0;
   std::uint64_t longestPath = 0;
   std::uint64_t lightSamples = 0;
   // Samples of the hybrid frame's tracer that the irradiance field could
@@ -33,6 +35,7 @@ struct RayStats {
     refraction += o.refraction;
     nonFiniteSamples += o.nonFiniteSamples;
     paths += o.paths;
+    pathBounces += o.pathBounces;
     longestPath = std::max(longestPath, o.longestPath);
     lightSamples += o.lightSamples;
     fieldUndecided += o.fieldUndecided;

@@ -43,7 +43,8 @@ TEST(StatsJson, PathsAreCountedWhereThereAreAny) {
   FrameRecord r;
   EXPECT_FALSE(toJson(r).contains("paths"));
   r.rays.paths = 4;
-  r.rays.reflection = 9;
+  r.rays.pathBounces = 10;
+  r.rays.reflection = 25;  // Whitted's mirror rays among them, in a frame that reads a field
   r.rays.refraction = 1;
   r.rays.longestPath = 5;
   r.rays.lightSamples = 12;
@@ -52,6 +53,25 @@ TEST(StatsJson, PathsAreCountedWhereThereAreAny) {
   EXPECT_DOUBLE_EQ(paths["bounces_mean"].get<double>(), 2.5);
   EXPECT_EQ(paths["bounces_max"], 5);
   EXPECT_EQ(paths["light_samples"], 12);
+}
+
+// The irradiance field's fill is a record of its own: its probes, time and
+// rays, none of them the frame's or the BVH's.
+TEST(StatsJson, TheFieldsFillIsApartFromTheFrame) {
+  FrameRecord r;
+  r.prepareMs = 0.25;
+  r.rays.paths = 10;
+  EXPECT_FALSE(toJson(r).contains("field"));
+  r.field = FrameRecord::Field{512, 256, 317.0, {}};
+  r.field->rays.primary = 512 * 256;
+  r.field->rays.paths = 512 * 256;
+  const nlohmann::json j = toJson(r);
+  EXPECT_EQ(j["bvh_ms"], 0.25);
+  EXPECT_EQ(j["field"]["probes"], 512);
+  EXPECT_EQ(j["field"]["rays_a_probe"], 256);
+  EXPECT_EQ(j["field"]["ms"], 317.0);
+  EXPECT_EQ(j["field"]["rays"]["primary"], 512 * 256);
+  EXPECT_EQ(j["paths"]["count"], 10);
 }
 
 TEST(StatsJson, RemoteRecordNamesTheConnection) {

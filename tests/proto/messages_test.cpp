@@ -201,6 +201,7 @@ TEST(Messages, TileRequestAndResultRoundTrip) {
     rays.paths = 500;
     rays.longestPath = 7;
     rays.lightSamples = 1200;
+    rays.pathBounces = 130;
     const auto* m = decode(encodeTileResult(3, 44, rgb, rays, 250)).body_as_TileResult();
     EXPECT_EQ(m->tile_id(), 44u);
     EXPECT_EQ(std::vector<std::uint8_t>(m->rgb()->begin(), m->rgb()->end()), rgb);
@@ -213,6 +214,7 @@ TEST(Messages, TileRequestAndResultRoundTrip) {
     EXPECT_EQ(back.nonFiniteSamples, 1u);
     EXPECT_EQ(back.paths, 500u);
     EXPECT_EQ(back.longestPath, 7u);
+    EXPECT_EQ(back.pathBounces, 130u);
     EXPECT_EQ(back.lightSamples, 1200u);
     EXPECT_EQ(m->compute_us(), 250u);
   }
