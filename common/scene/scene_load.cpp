@@ -271,12 +271,19 @@ class SceneLoader {
     return -1;
   }
 
+  // A colour (a material's, its emission, a light's): three numbers, none
+  // negative (no light is taken away).
+  static glm::vec3 colour(const JsonReader& r, const char* key, const glm::vec3& fallback) {
+    const glm::vec3 c = r.vec3(key, fallback);
+    if (glm::any(glm::lessThan(c, glm::vec3(0.0f)))) r.find(key)->fail("must not be negative");
+    return c;
+  }
+
   // emission times emission_texture (either alone is the emission; default
   // none): an image, or a solid colour folded in.
   void readEmission(const JsonReader& m, Material& mat) const {
     const auto t = m.find("emission_texture");
-    mat.emission = m.vec3("emission", glm::vec3(t ? 1.0f : 0.0f));
-    if (glm::any(glm::lessThan(mat.emission, glm::vec3(0.0f)))) m.find("emission")->fail("must not be negative");
+    mat.emission = colour(m, "emission", glm::vec3(t ? 1.0f : 0.0f));
     if (!t) return;
     const std::uint32_t texture = textureNamed(*t);
     if (scene_.textures[texture].type == TextureType::kChecker) {
@@ -293,7 +300,7 @@ class SceneLoader {
                    "shininess", "reflectivity", "roughness", "transparency", "ior", "raytrace"});
       Material mat;
       mat.name = name;
-      mat.color = m.vec3("color", glm::vec3(1.0f));
+      mat.color = colour(m, "color", glm::vec3(1.0f));
       if (auto t = m.find("texture")) mat.texture = foldSolid(textureNamed(*t), mat.color);
       readEmission(m, mat);
       mat.ambient = m.number("ambient", 0.0f, 0.0f);
@@ -344,7 +351,7 @@ class SceneLoader {
           break;
       }
       if (light.type != LightType::kDirectional) light.position = l["position"].vec3();
-      light.color = l.vec3("color", glm::vec3(1.0f));
+      light.color = colour(l, "color", glm::vec3(1.0f));
       if (auto a = l.find("attenuation")) {
         light.attenuation = a->vec3();
         for (int k = 0; k < 3; ++k) {

@@ -193,6 +193,10 @@ TEST(SceneLoad, BadScenesNameThePlace) {
        "materials.m.texture: no texture named 'wood'"},
       {"negative emission", [](json& j) { j["materials"]["m"]["emission"] = {1, -0.5, 0}; },
        "materials.m.emission: must not be negative"},
+      {"negative colour", [](json& j) { j["materials"]["m"]["color"] = {0.5, 0.5, -0.1}; },
+       "materials.m.color: must not be negative"},
+      {"negative light", [](json& j) { j["lights"] = {{{"type", "point"}, {"position", {0, 5, 0}}, {"color", {-1, 1, 1}}}}; },
+       "lights[0].color: must not be negative"},
       {"checker emission",
        [](json& j) {
          j["textures"] = {{"c", {{"type", "checker"}, {"colors", {{0, 0, 0}, {1, 1, 1}}}, {"scale", 2}}}};
