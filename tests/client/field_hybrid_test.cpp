@@ -37,6 +37,11 @@ FrameSettings centreRays(const Scene& scene, int width, int height) {
   return frame;
 }
 
+// A quad of the scene format.
+json quad(std::vector<std::vector<double>> corners, const char* material) {
+  return {{"type", "quad"}, {"corners", std::move(corners)}, {"material", material}};
+}
+
 MaskSettings autoRule() {
   MaskSettings mask;
   mask.rule = MaskRule::kAuto;
@@ -102,16 +107,13 @@ TEST(FieldHybrid, RasterPixelsAreTheTracersAndTracedPixelsItsOwn) {
 // field's visibility keeps it out, or the pixel is marked and traced.
 TEST(FieldHybrid, NoLightLeaksThroughAThinWallIntoRasterPixels) {
   json objects = json::array();
-  const auto quad = [&](std::vector<std::vector<double>> c, const char* m) {
-    objects.push_back({{"type", "quad"}, {"corners", c}, {"material", m}});
-  };
-  quad({{0, 0, 0}, {4, 0, 0}, {4, 0, 2}, {0, 0, 2}}, "wall");  // floor
-  quad({{0, 2, 0}, {0, 2, 2}, {4, 2, 2}, {4, 2, 0}}, "wall");  // ceiling
-  quad({{0, 0, 0}, {0, 2, 0}, {4, 2, 0}, {4, 0, 0}}, "wall");  // back
-  quad({{0, 0, 2}, {4, 0, 2}, {4, 2, 2}, {0, 2, 2}}, "wall");  // front
-  quad({{0, 0, 0}, {0, 0, 2}, {0, 2, 2}, {0, 2, 0}}, "glow");  // the left room's far wall
-  quad({{4, 0, 0}, {4, 2, 0}, {4, 2, 2}, {4, 0, 2}}, "wall");  // the right room's far wall
-  quad({{2, 0, 0}, {2, 2, 0}, {2, 2, 2}, {2, 0, 2}}, "wall");  // between them
+  objects.push_back(quad({{0, 0, 0}, {4, 0, 0}, {4, 0, 2}, {0, 0, 2}}, "wall"));  // floor
+  objects.push_back(quad({{0, 2, 0}, {0, 2, 2}, {4, 2, 2}, {4, 2, 0}}, "wall"));  // ceiling
+  objects.push_back(quad({{0, 0, 0}, {0, 2, 0}, {4, 2, 0}, {4, 0, 0}}, "wall"));  // back
+  objects.push_back(quad({{0, 0, 2}, {4, 0, 2}, {4, 2, 2}, {0, 2, 2}}, "wall"));  // front
+  objects.push_back(quad({{0, 0, 0}, {0, 0, 2}, {0, 2, 2}, {0, 2, 0}}, "glow"));  // the left room's far wall
+  objects.push_back(quad({{4, 0, 0}, {4, 2, 0}, {4, 2, 2}, {4, 0, 2}}, "wall"));  // the right room's far wall
+  objects.push_back(quad({{2, 0, 0}, {2, 2, 0}, {2, 2, 2}, {2, 0, 2}}, "wall"));  // between them
   const json scene = {
       {"glint", 1},
       {"image", {{"width", 64}, {"height", 48}}},
@@ -197,17 +199,14 @@ TEST(FieldHybrid, DirectLightIsPathTransportsLobesWhoeverDrawsIt) {
 // rays and carry nothing, at the coarsest settings as at fine ones.
 TEST(FieldHybrid, TheTracerReadsNoLightThroughAThinWall) {
   json objects = json::array();
-  const auto quad = [&](std::vector<std::vector<double>> c, const char* m) {
-    objects.push_back({{"type", "quad"}, {"corners", c}, {"material", m}});
-  };
-  quad({{-2, 0, -1}, {2, 0, -1}, {2, 0, 1}, {-2, 0, 1}}, "w");
-  quad({{-2, 2, -1}, {-2, 2, 1}, {2, 2, 1}, {2, 2, -1}}, "w");
-  quad({{-2, 0, 1}, {2, 0, 1}, {2, 2, 1}, {-2, 2, 1}}, "w");
-  quad({{-2, 0, -1}, {-2, 2, -1}, {2, 2, -1}, {2, 0, -1}}, "w");
-  quad({{-2, 0, -1}, {-2, 0, 1}, {-2, 2, 1}, {-2, 2, -1}}, "w");
-  quad({{2, 0, -1}, {2, 2, -1}, {2, 2, 1}, {2, 0, 1}}, "w");
-  quad({{0, 0, -1}, {0, 2, -1}, {0, 2, 1}, {0, 0, 1}}, "w");  // the wall between
-  quad({{0.8, 1.99, -0.3}, {0.8, 1.99, 0.3}, {1.4, 1.99, 0.3}, {1.4, 1.99, -0.3}}, "lamp");
+  objects.push_back(quad({{-2, 0, -1}, {2, 0, -1}, {2, 0, 1}, {-2, 0, 1}}, "w"));
+  objects.push_back(quad({{-2, 2, -1}, {-2, 2, 1}, {2, 2, 1}, {2, 2, -1}}, "w"));
+  objects.push_back(quad({{-2, 0, 1}, {2, 0, 1}, {2, 2, 1}, {-2, 2, 1}}, "w"));
+  objects.push_back(quad({{-2, 0, -1}, {-2, 2, -1}, {2, 2, -1}, {2, 0, -1}}, "w"));
+  objects.push_back(quad({{-2, 0, -1}, {-2, 0, 1}, {-2, 2, 1}, {-2, 2, -1}}, "w"));
+  objects.push_back(quad({{2, 0, -1}, {2, 2, -1}, {2, 2, 1}, {2, 0, 1}}, "w"));
+  objects.push_back(quad({{0, 0, -1}, {0, 2, -1}, {0, 2, 1}, {0, 0, 1}}, "w"));  // the wall between
+  objects.push_back(quad({{0.8, 1.99, -0.3}, {0.8, 1.99, 0.3}, {1.4, 1.99, 0.3}, {1.4, 1.99, -0.3}}, "lamp"));
   const json scene = {
       {"glint", 1},
       {"image", {{"width", 64}, {"height", 48}}},
@@ -249,18 +248,15 @@ TEST(FieldHybrid, TheTracerReadsNoLightThroughAThinWall) {
 // box are full of light, and no point outside it receives any.
 TEST(FieldHybrid, AProbeInsideAClosedBoxLightsNothingOutside) {
   json objects = json::array();
-  const auto quad = [&](std::vector<std::vector<double>> c, const char* m) {
-    objects.push_back({{"type", "quad"}, {"corners", c}, {"material", m}});
-  };
-  quad({{-3, 0, -3}, {3, 0, -3}, {3, 0, 3}, {-3, 0, 3}}, "w");  // the floor
+  objects.push_back(quad({{-3, 0, -3}, {3, 0, -3}, {3, 0, 3}, {-3, 0, 3}}, "w"));  // the floor
   const double a = 0.01, b = 1.5;  // the box: [-0.75, 0.75] x [a, b] x [-0.75, 0.75]
-  quad({{-0.75, a, -0.75}, {0.75, a, -0.75}, {0.75, a, 0.75}, {-0.75, a, 0.75}}, "w");
-  quad({{-0.75, b, -0.75}, {-0.75, b, 0.75}, {0.75, b, 0.75}, {0.75, b, -0.75}}, "w");
-  quad({{-0.75, a, -0.75}, {-0.75, b, -0.75}, {0.75, b, -0.75}, {0.75, a, -0.75}}, "w");
-  quad({{-0.75, a, 0.75}, {0.75, a, 0.75}, {0.75, b, 0.75}, {-0.75, b, 0.75}}, "w");
-  quad({{-0.75, a, -0.75}, {-0.75, a, 0.75}, {-0.75, b, 0.75}, {-0.75, b, -0.75}}, "w");
-  quad({{0.75, a, -0.75}, {0.75, b, -0.75}, {0.75, b, 0.75}, {0.75, a, 0.75}}, "w");
-  quad({{-0.2, 1.4, -0.2}, {-0.2, 1.4, 0.2}, {0.2, 1.4, 0.2}, {0.2, 1.4, -0.2}}, "lamp");
+  objects.push_back(quad({{-0.75, a, -0.75}, {0.75, a, -0.75}, {0.75, a, 0.75}, {-0.75, a, 0.75}}, "w"));
+  objects.push_back(quad({{-0.75, b, -0.75}, {-0.75, b, 0.75}, {0.75, b, 0.75}, {0.75, b, -0.75}}, "w"));
+  objects.push_back(quad({{-0.75, a, -0.75}, {-0.75, b, -0.75}, {0.75, b, -0.75}, {0.75, a, -0.75}}, "w"));
+  objects.push_back(quad({{-0.75, a, 0.75}, {0.75, a, 0.75}, {0.75, b, 0.75}, {-0.75, b, 0.75}}, "w"));
+  objects.push_back(quad({{-0.75, a, -0.75}, {-0.75, a, 0.75}, {-0.75, b, 0.75}, {-0.75, b, -0.75}}, "w"));
+  objects.push_back(quad({{0.75, a, -0.75}, {0.75, b, -0.75}, {0.75, b, 0.75}, {0.75, a, 0.75}}, "w"));
+  objects.push_back(quad({{-0.2, 1.4, -0.2}, {-0.2, 1.4, 0.2}, {0.2, 1.4, 0.2}, {0.2, 1.4, -0.2}}, "lamp"));
   const json scene = {
       {"glint", 1},
       {"image", {{"width", 32}, {"height", 32}}},
