@@ -121,6 +121,21 @@ std::string describeLight(const Light& l) {
 }
 
 
+// The surfaces that emit light, and whether they light the others (path
+// transport) or only show their own colour (Whitted's).
+std::string emitting(const Scene& scene) {
+  const Geometry& g = scene.geometry;
+  std::size_t count = 0;
+  for (std::uint32_t prim = 0; prim < g.primitiveCount(); ++prim) {
+    const glm::vec3& e = scene.materials[g.materialOf(prim)].emission;
+    count += e.x > 0.0f || e.y > 0.0f || e.z > 0.0f ? 1 : 0;
+  }
+  if (count == 0) return "";
+  const bool lights = scene.frame.tracing.transport == Transport::kPath;
+  return "; " + std::to_string(count) + (count == 1 ? " emitting surface" : " emitting surfaces") +
+         (lights ? " (lighting the others: path transport)" : " (their own colour only: Whitted transport)");
+}
+
 void printContents(const Scene& scene) {
   const Geometry& g = scene.geometry;
   std::printf("  objects    %s, %s; %s (%zu dropped: cannot be hit), %s\n",
@@ -143,7 +158,7 @@ void printContents(const Scene& scene) {
   }
   std::printf("  textures   %zu (%s, %s)\n", scene.textures.size(), count(images, "image", "images").c_str(),
               count(checkers, "checker", "checkers").c_str());
-  std::printf("  lights     %s\n", count(scene.lights.size(), "light", "lights").c_str());
+  std::printf("  lights     %s%s\n", count(scene.lights.size(), "light", "lights").c_str(), emitting(scene).c_str());
   for (const Light& l : scene.lights) std::printf("             %s\n", describeLight(l).c_str());
   if (const Environment* e = scene.environment.get()) {
     std::printf("  sky        %dx%d environment image (escaping rays; the background %s)\n", e->width, e->height,

@@ -72,8 +72,11 @@ EffectPlan EffectPlan::derive(const Scene& scene, const FrameSettings& frame) {
   }
   bool anyDirect = false;
   for (const MaterialEffects& e : plan.materials) anyDirect = anyDirect || e.direct;
-  plan.shadows = anyLight && anyDirect && !selfShadowFree(scene.geometry);
-  plan.softShadows = plan.shadows && anySoft;
+  // Under path transport an emitting surface lights the others as a light
+  // does (next-event estimation), with an area light's penumbra.
+  const bool emittersLight = frame.tracing.transport == Transport::kPath && plan.emission;
+  plan.shadows = (anyLight || emittersLight) && anyDirect && !selfShadowFree(scene.geometry);
+  plan.softShadows = plan.shadows && (anySoft || emittersLight);
   plan.depthOfField = frame.camera.aperture > 0.0f;
   plan.environment = scene.environment != nullptr;
   plan.vertexColors = !scene.geometry.colors().empty();

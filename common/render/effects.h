@@ -24,7 +24,7 @@ struct MaterialEffects {
 // light or setting calls for. derive() is exact in one direction: an effect
 // it turns off cannot change the image.
 struct EffectPlan {
-  bool shadows = false;       // shadow rays: lights, lit materials and a possible occluder
+  bool shadows = false;       // shadow rays: lights (emitting surfaces under path transport), lit materials and a possible occluder
   bool reflection = false;    // reflected rays
   bool refraction = false;    // refracted rays
   bool textures = false;      // texture lookups other than a solid colour
@@ -32,7 +32,7 @@ struct EffectPlan {
   bool vertexColors = false;  // a mesh's per-vertex colours
   bool attenuation = false;   // distance fall-off of some light (other than a constant)
   bool antialiasing = false;  // samples off the pixel centre: several, or jittered
-  bool softShadows = false;   // shadow rays to points over an area or sphere light
+  bool softShadows = false;   // shadow rays to points over an area or sphere light, or an emitting surface
   bool depthOfField = false;  // camera rays from points over a thin lens
   bool glossyReflection = false;  // reflected rays drawn from a rough material's lobe
   bool environment = false;       // escaping rays see the environment image, not the background

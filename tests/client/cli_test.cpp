@@ -479,6 +479,22 @@ TEST_F(Cli, InfoNamesTheSphereLight) {
   EXPECT_EQ(info.output.find("left out: soft_shadows"), std::string::npos) << info.output;
 }
 
+// The Cornell box's lamp is its light: info counts its emitting surfaces,
+// and its shadows (soft, as an area light's) are simulated, not left out.
+TEST_F(Cli, InfoCountsEmittingSurfacesAsLights) {
+  const Result info = glint("info " + scene("cornell.json") + " --no-raster");
+  ASSERT_EQ(info.status, 0) << info.output;
+  EXPECT_NE(info.output.find("0 lights; 2 emitting surfaces (lighting the others: path transport)"), std::string::npos)
+      << info.output;
+  const std::size_t left = info.output.find("left out:");
+  ASSERT_NE(left, std::string::npos) << info.output;
+  EXPECT_EQ(info.output.find(" shadows", left), std::string::npos) << info.output;
+  EXPECT_EQ(info.output.find(" soft_shadows", left), std::string::npos) << info.output;
+  const Result whitted = glint("info " + scene("cornell.json") + " --transport whitted --no-raster");
+  EXPECT_NE(whitted.output.find("2 emitting surfaces (their own colour only: Whitted transport)"), std::string::npos)
+      << whitted.output;
+}
+
 // Path transport is named by info, simulated as indirect light, and traced
 // in full under any mask rule (the raster draws direct light only), with a
 // note saying so; --transport chooses it from the command line.
