@@ -125,11 +125,9 @@ std::string describeLight(const Light& l) {
 // transport) or only show their own colour (Whitted's).
 std::string emitting(const Scene& scene) {
   const Geometry& g = scene.geometry;
+  const EffectPlan plan = EffectPlan::derive(scene);
   std::size_t count = 0;
-  for (std::uint32_t prim = 0; prim < g.primitiveCount(); ++prim) {
-    const glm::vec3& e = scene.materials[g.materialOf(prim)].emission;
-    count += e.x > 0.0f || e.y > 0.0f || e.z > 0.0f ? 1 : 0;
-  }
+  for (std::uint32_t prim = 0; prim < g.primitiveCount(); ++prim) count += plan.materials[g.materialOf(prim)].emits;
   if (count == 0) return "";
   const bool lights = scene.frame.tracing.transport == Transport::kPath;
   return "; " + std::to_string(count) + (count == 1 ? " emitting surface" : " emitting surfaces") +

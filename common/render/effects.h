@@ -24,7 +24,9 @@ struct MaterialEffects {
 // light or setting calls for. derive() is exact in one direction: an effect
 // it turns off cannot change the image.
 struct EffectPlan {
-  bool shadows = false;       // shadow rays: lights (emitting surfaces under path transport), lit materials and a possible occluder
+  // shadow rays: lights (and emitting surfaces under path transport), lit
+  // materials and a possible occluder
+  bool shadows = false;
   bool reflection = false;    // reflected rays
   bool refraction = false;    // refracted rays
   bool textures = false;      // texture lookups other than a solid colour
