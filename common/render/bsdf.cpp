@@ -47,7 +47,7 @@ LobeWeights lobeWeights(const Material& m, const glm::vec3& color) {
   LobeWeights w{glsl::diffuseAlbedo(color, m.diffuse, m.specular, m.reflectivity, m.transparency),
                 glsl::specularWeight(color, m.diffuse, m.specular, m.reflectivity, m.transparency), m.reflectivity,
                 m.transparency};
-  const float sum = maxOf(glm::max(color * m.diffuse, glm::vec3(0.0f))) + w.specular + w.reflectivity + w.transparency;
+  const float sum = glsl::lobeSum(color, m.diffuse, m.specular, m.reflectivity, m.transparency);
   if (sum > 1.0f) {
     w.reflectivity /= sum;
     w.transparency /= sum;

@@ -188,21 +188,28 @@ SHARED vec3 shIrradiance(const vec3 c[9], vec3 n) {
   return max(e, vec3(0.0f));
 }
 
-// The diffuse albedo of a surface of colour c (the material's times its
-// texture) under path transport: c x diffuse, never below zero, divided by
-// the sum of the lobes' weights where it exceeds 1 (energy conserving:
-// common/render/bsdf.h's lobeWeights).
+// The sum of a material's lobe weights under path transport, for a surface
+// of colour c (the material's times its texture): the largest channel of c
+// x diffuse (never below zero) plus specular, reflectivity and
+// transparency. Where it exceeds 1, every lobe is divided by it (energy
+// conserving: common/render/bsdf.h's lobeWeights).
+SHARED float lobeSum(vec3 c, float diffuse, float specular, float reflectivity, float transparency) {
+  vec3 a = max(c * diffuse, vec3(0.0f));
+  return max(a.x, max(a.y, a.z)) + specular + reflectivity + transparency;
+}
+
+// The diffuse albedo under path transport: c x diffuse, never below zero,
+// renormalised by lobeSum.
 SHARED vec3 diffuseAlbedo(vec3 c, float diffuse, float specular, float reflectivity, float transparency) {
   vec3 a = max(c * diffuse, vec3(0.0f));
-  float sum = max(a.x, max(a.y, a.z)) + specular + reflectivity + transparency;
+  float sum = lobeSum(c, diffuse, specular, reflectivity, transparency);
   return sum > 1.0f ? a / sum : a;
 }
 
 // The normalised Phong lobe's weight under path transport: `specular`,
-// divided by the same sum as diffuseAlbedo's where it exceeds 1.
+// renormalised by lobeSum.
 SHARED float specularWeight(vec3 c, float diffuse, float specular, float reflectivity, float transparency) {
-  vec3 a = max(c * diffuse, vec3(0.0f));
-  float sum = max(a.x, max(a.y, a.z)) + specular + reflectivity + transparency;
+  float sum = lobeSum(c, diffuse, specular, reflectivity, transparency);
   return sum > 1.0f ? specular / sum : specular;
 }
 

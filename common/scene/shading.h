@@ -20,7 +20,7 @@ constexpr float kHardSpotEdge = 1e-4f;
 // phongSpecular, attenuate and spotFactor; the textures' wrapped,
 // wrappedIndex, imagePoint, bilinearCorner and bilinearBlend; the
 // irradiance field's octahedralPoint, shBasis, cosineLobe, probeShare,
-// probeVisibility and shIrradiance; path transport's diffuseAlbedo,
+// probeVisibility and shIrradiance; path transport's lobeSum, diffuseAlbedo,
 // specularWeight and lobesReflect; emitterPointIrradiance), from shading.glsl, which the raster's
 // shaders compile too: read them there. Here GLSL's names are C++'s, in
 // float.
