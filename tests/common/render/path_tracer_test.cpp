@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/base/file_source.h"
+#include "common/render/bsdf.h"
 #include "common/scene/scene_load.h"
 #include "tests/support/test_support.h"
 
@@ -90,6 +91,28 @@ TEST(PathTracer, AWhiteFurnaceReturnsTheLightItReceivesAndNeverMore) {
   std::printf("terms summing to 3: %.4f\n", overbright);
   EXPECT_LE(overbright, 1.0);
   EXPECT_GT(overbright, 0.8);
+}
+
+// The lobes' weights: a material whose terms add past 1 (the room's mirror:
+// 0.08 + 0.8 + 0.8) has each divided by the same sum, so that they share
+// exactly 1; one whose terms stay under 1 keeps them.
+TEST(PathTracer, AnOverbrightMaterialsLobesShareOne) {
+  Material mirror;
+  mirror.diffuse = 0.1f;
+  mirror.specular = 0.8f;
+  mirror.reflectivity = 0.8f;
+  const LobeWeights w = lobeWeights(mirror, glm::vec3(0.8f));
+  const float sum = 0.08f + 0.8f + 0.8f;
+  EXPECT_NEAR(w.albedo.x, 0.08f / sum, 1e-6f);
+  EXPECT_NEAR(w.specular, 0.8f / sum, 1e-6f);
+  EXPECT_NEAR(w.reflectivity, 0.8f / sum, 1e-6f);
+  EXPECT_NEAR(w.albedo.x + w.specular + w.reflectivity + w.transparency, 1.0f, 1e-6f);
+  Material clay;
+  clay.diffuse = 0.8f;
+  clay.specular = 0.2f;
+  const LobeWeights c = lobeWeights(clay, glm::vec3(0.8f, 0.35f, 0.25f));
+  EXPECT_FLOAT_EQ(c.albedo.x, 0.64f);
+  EXPECT_FLOAT_EQ(c.specular, 0.2f);
 }
 
 // A diffuse square under one light, in both transports (nothing else to
