@@ -7,7 +7,7 @@ JOBS  ?= 2
 DEPS := cmake g++ make pkg-config libglm-dev nlohmann-json3-dev libtinyobjloader-dev \
         libstb-dev libcli11-dev libgtest-dev libgmock-dev \
         libflatbuffers-dev flatbuffers-compiler libssl-dev libasio-dev libosmesa6-dev \
-        libegl-dev libglfw3-dev libgl1-mesa-dri xvfb xauth x11-utils x11-apps netpbm openssl iproute2 \
+        libegl-dev libglfw3-dev libgl1-mesa-dri xvfb xauth x11-utils x11-apps xdotool netpbm openssl iproute2 \
         libopenexr-dev libassimp-dev libjpeg-dev assimp-testmodels \
         gnuplot-nox
 # The benchmark also compares against POV-Ray 3.7 and Embree 3.

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <functional>
 #include <memory>
@@ -27,13 +28,15 @@
 #include "common/base/compute_pool.h"
 #include "common/base/error.h"
 #include "common/base/nearest_word.h"
+#include "common/scene/camera.h"
 #include "common/scene/frame_limits.h"
 
 namespace glint {
 namespace {
 
 constexpr const char* kRenderHelp =
-    "Ray-trace a Glint scene (JSON, see docs/scene-format.md) and write a PNG.\n"
+    "Render a Glint scene (JSON, see docs/scene-format.md): the hybrid frame, OpenGL's pixels and the\n"
+    "traced ones, written as PNG, EXR or PFM (by -o's extension).\n"
     "Settings given here override the scene file's. The image is the same\n"
     "whatever --threads and --tile-size are.";
 constexpr const char* kViewHelp =
@@ -131,7 +134,14 @@ void addCameraOptions(CLI::App* app, FrameOverrides& o) {
   vec("--eye", o.eye, "The camera's position (default: the scene's)");
   vec("--look-at", o.lookAt, "The point the camera looks at");
   vec("--up", o.up, "The camera's up direction");
-  app->add_option("--fov", o.fovY, "Vertical field of view in degrees")->check(CLI::Range(0.001f, 179.0f));
+  app->add_option("--fov", o.fovY, "Vertical field of view in degrees, " + fovRange().substr(8))
+      ->check(CLI::Validator(
+          [](const std::string& v) {
+            char* end = nullptr;
+            const float fov = std::strtof(v.c_str(), &end);  // not a number: CLI11's conversion says so
+            return *end != '\0' || (fov > 0.0f && fov <= kMaxFovY) ? std::string() : fovRange();
+          },
+          "", "fov"));
   app->add_flag("--fit", o.fit,
                 "Move the camera along its direction to frame every object (after --eye, --look-at; as the "
                 "scene's camera \"fit\": true)");
@@ -296,7 +306,7 @@ std::function<void()> declareRender(CLI::App* render) {
                    "Render N frames and print the median time of each step (like the thesis's Table 4.1)")
       ->check(CLI::Range(1, 100000))
       ->default_val(1);
-  render->add_flag("-q,--quiet", o.quiet, "No progress and no summary on stderr");
+  render->add_flag("-q,--quiet", o.quiet, "No progress, notes or summary on stderr (warnings and errors still show)");
   render->add_flag("--progress", o.progress,
                    "Show each frame's progress (tiles, each server's share, time left) even when stderr is not a "
                    "terminal (a line a second) or the frame is short");
@@ -336,7 +346,8 @@ std::function<void()> declareInfo(CLI::App* info) {
   info->add_option("scene", o.scene, "Scene file (.json)")->required();
   addFrameOptions(info, o.frame);
   addGlOption(info, o.gl);
-  info->add_flag("!--no-raster", o.raster, "Skip the raster pass (no OpenGL; no traced-pixel count)");
+  info->add_flag_callback("--no-raster", [&o] { o.raster = false; },
+                          "Skip the raster pass (no OpenGL; no traced-pixel count)");
   return [options] { runInfo(*options); };
 }
 

@@ -25,7 +25,7 @@ start_glintd() {
   address=""
   log=$(mktemp)
   logs+=("$log")
-  "$build/bin/glintd" --listen 127.0.0.1:0 --threads 1 --quiet > "$log" &
+  "$build/bin/glintd" --listen 127.0.0.1:0 --threads 1 --quiet --ready-fd 1 > "$log" &
   servers+=($!)
   for _ in $(seq 1 100); do
     address=$(sed -n 's/^glintd: listening on \([^,]*\),.*/\1/p' "$log")

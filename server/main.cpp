@@ -1,4 +1,6 @@
+#include <fcntl.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -63,7 +65,14 @@ std::string listenProblem(const std::string& address) {
   }
 }
 
-void declareOptions(CLI::App& app, glint::server::ServerOptions& o, bool& quiet) {
+// How glintd says where it listens: on stdout unless --quiet, and on
+// --ready-fd's descriptor (for scripts and supervisors) either way.
+struct Announce {
+  bool quiet = false;
+  int readyFd = -1;
+};
+
+void declareOptions(CLI::App& app, glint::server::ServerOptions& o, Announce& announce) {
   app.add_option("--listen", o.listen, "HOST:PORT to listen on (port 0: any free port)")
       ->check(listenProblem, "HOST:PORT")
       ->default_val(o.listen);
@@ -104,7 +113,10 @@ void declareOptions(CLI::App& app, glint::server::ServerOptions& o, bool& quiet)
       ->envname("GLINTD_TLS_CLIENT_CA");
   app.add_flag("--insecure", o.insecure,
                "Listen on a non-loopback address without TLS (anyone who reaches it can use glintd)");
-  app.add_flag("-q,--quiet", quiet, "No log lines");
+  app.add_flag("-q,--quiet", announce.quiet, "Print nothing but errors (not even the listening line)");
+  app.add_option("--ready-fd", announce.readyFd,
+                 "Once listening, write the listening line to this open descriptor and close it (3: '3>file')")
+      ->check(CLI::Range(1, 1 << 20));
 }
 
 // The first option glintd does not have, with the nearest it has; else
@@ -117,6 +129,28 @@ std::string usageProblem(const CLI::App& app, const CLI::ParseError& e, int argc
   }
   const std::string unknown = glint::unknownOption("glintd", std::vector<std::string>(argv + 1, argv + argc), known);
   return unknown.empty() ? e.what() : unknown;
+}
+
+// The descriptor --ready-fd names is open for writing (a usage error
+// otherwise, before anything is bound).
+void checkReadyFd(int fd) {
+  if (fd < 0) return;
+  const int flags = fcntl(fd, F_GETFL);
+  if (flags < 0 || (flags & O_ACCMODE) == O_RDONLY) {
+    throw glint::UsageError("--ready-fd " + std::to_string(fd) +
+                            ": not a descriptor open for writing (start glintd with e.g. '3>ready.txt')");
+  }
+}
+
+// The listening line on stdout and on --ready-fd's descriptor.
+void announceListening(const Announce& a, const std::string& line) {
+  if (!a.quiet) {
+    std::fputs(line.c_str(), stdout);
+    std::fflush(stdout);
+  }
+  if (a.readyFd < 0) return;
+  if (write(a.readyFd, line.data(), line.size()) < 0) glint::server::logLine("--ready-fd: cannot write the line");
+  if (a.readyFd > 2) close(a.readyFd);
 }
 
 // How clients reach it, for the line scripts wait for.
@@ -133,12 +167,12 @@ int main(int argc, char** argv) {
   using namespace glint::server;
   glint::keepFreedMemoryForReuse();
   ServerOptions o;
-  bool quiet = false;
+  Announce announce;
   CLI::App app{"glintd: the Glint ray-trace server. Holds scenes (sent by clients as bytes, cached by\n"
                "content hash) and fills the masked tiles clients send, on a thread pool shared fairly\n"
                "between clients. SIGINT or SIGTERM stops it cleanly.",
                "glintd"};
-  declareOptions(app, o, quiet);
+  declareOptions(app, o, announce);
   app.set_version_flag("--version", "glintd 0.1.0 (" + glint::buildIdentity() + ")");
   try {
     app.parse(argc, argv);
@@ -147,17 +181,18 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "glintd: error: %s %s\n", usageProblem(app, e, argc, argv).c_str(), kHelpHint);
     return kUsageError;  // as shells expect
   }
-  setLogging(!quiet);
+  setLogging(!announce.quiet);
   raiseDescriptorLimit(o);
   glint::setComputeThreads(o.threads);
   o.computePool = true;
   try {
+    checkReadyFd(announce.readyFd);
     Server server(o);
-    // One line on stdout that scripts can wait for; the port is the real one.
+    // The line scripts wait for; the port is the real one.
     const std::string host = o.listen.substr(0, o.listen.rfind(':'));
-    std::printf("glintd: listening on %s:%u, %d thread%s, %s\n", host.c_str(), server.port(), server.threads(),
-                server.threads() == 1 ? "" : "s", transport(o).c_str());
-    std::fflush(stdout);
+    announceListening(announce, "glintd: listening on " + host + ":" + std::to_string(server.port()) + ", " +
+                                    std::to_string(server.threads()) + (server.threads() == 1 ? " thread, " : " threads, ") +
+                                    transport(o) + "\n");
     server.run();
     logLine("stopped");
     return 0;

@@ -247,7 +247,7 @@ void runAccuracy(const AccuracyOptions& o) {
   proto::LoadedBundle loaded = proto::loadSceneBundle(o.scene);
   printSceneWarnings(o.scene, loaded.scene);
   Scene& scene = loaded.scene;
-  applyFrameOverrides(o.frame, scene);
+  printNote(applyFrameOverrides(o.frame, scene));
   const std::vector<Series> series = sweepOf(o, scene);
   const fs::path dir(o.outDir);
   std::error_code ec;

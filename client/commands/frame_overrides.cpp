@@ -10,7 +10,7 @@
 
 namespace glint {
 
-void applyFrameOverrides(const FrameOverrides& o, Scene& scene) {
+std::string applyFrameOverrides(const FrameOverrides& o, Scene& scene) {
   FrameSettings& f = scene.frame;
   if (o.eye) f.camera.eye = *o.eye;
   if (o.lookAt) f.camera.lookAt = *o.lookAt;
@@ -59,15 +59,19 @@ void applyFrameOverrides(const FrameOverrides& o, Scene& scene) {
   if (o.maskThreshold) scene.mask.minReflectivity = *o.maskThreshold;
   if (o.shadowMap) scene.mask.shadowMap = *o.shadowMap;
   if (o.field) f.tracing.field = *o.field;
-  if (f.tracing.transport != Transport::kPath || scene.mask.rule == MaskRule::kAll) return;
+  if (f.tracing.transport != Transport::kPath || scene.mask.rule == MaskRule::kAll) return {};
   const bool drawable = EmitterPatches::of(scene, EffectPlan::derive(scene, f), 0).has_value();
-  if (f.tracing.field && drawable) return;
+  if (f.tracing.field && drawable) return {};
   scene.mask.rule = MaskRule::kAll;
   const char* why = !f.tracing.field ? "for the hybrid frame to draw the light between surfaces from an irradiance "
                                        "field, give --field or the scene's tracing.field"
                                      : "the hybrid frame draws the irradiance field's light only for a few flat "
                                        "emitters of plain emission";
-  std::fprintf(stderr, "note: path transport: every pixel is traced (%s)\n", why);
+  return std::string("path transport: every pixel is traced (") + why + ")";
+}
+
+void printNote(const std::string& note) {
+  if (!note.empty()) std::fprintf(stderr, "note: %s\n", note.c_str());
 }
 
 }  // namespace glint

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <optional>
+#include <string>
 
 #include <glm/vec3.hpp>
 
@@ -43,7 +44,11 @@ struct FrameOverrides {
 // the option). Under path transport, the hybrid frame draws indirect light
 // where the scene or --field asks for an irradiance field and the scene's
 // emitters are few flat ones (EmitterPatches); elsewhere every pixel is
-// traced (the mask rule becomes all), and a note says so.
-void applyFrameOverrides(const FrameOverrides& overrides, Scene& scene);
+// traced (the mask rule becomes all), and the note it returns says why
+// (empty when there is nothing to say).
+[[nodiscard]] std::string applyFrameOverrides(const FrameOverrides& overrides, Scene& scene);
+
+// "note: NOTE" on stderr, when the note is not empty.
+void printNote(const std::string& note);
 
 }  // namespace glint

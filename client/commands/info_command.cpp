@@ -210,7 +210,7 @@ void printHybrid(const Scene& scene, int tileSize, std::optional<gl::GlBackend> 
 void runInfo(const InfoOptions& options) {
   Scene scene = loadSceneFile(options.scene);
   printSceneWarnings(options.scene, scene);
-  applyFrameOverrides(options.frame, scene);
+  printNote(applyFrameOverrides(options.frame, scene));
   std::printf("%s\n", options.scene.c_str());
   printFrame(scene);
   printBounds(scene);

@@ -222,7 +222,8 @@ void checkCrop(const TileRect& crop, const FrameSettings& frame) {
 }  // namespace
 
 void applyOverrides(const RenderOptions& o, Scene& scene) {
-  applyFrameOverrides(o.frame, scene);
+  const std::string note = applyFrameOverrides(o.frame, scene);
+  if (!o.quiet) printNote(note);
   if (o.crop) checkCrop(*o.crop, scene.frame);
 }
 

@@ -35,6 +35,7 @@ namespace {
 struct Controls {
   CameraSpec camera;
   MaskRule rule = MaskRule::kAuto;
+  bool ruleFixed = false;  // path transport with no field to read: every pixel is traced under any rule
   bool overlay = false;
   bool provenance = false;
   bool dragging = false;
@@ -112,7 +113,7 @@ void installCallbacks(GLFWwindow* window) {
     if (action != GLFW_PRESS) return;
     Controls& c = controlsOf(w);
     if (key == GLFW_KEY_Q || key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(w, GLFW_TRUE);
-    if (key == GLFW_KEY_M) {
+    if (key == GLFW_KEY_M && !c.ruleFixed) {
       c.rule = c.rule == MaskRule::kAuto         ? MaskRule::kPerceptual
                : c.rule == MaskRule::kPerceptual ? MaskRule::kAll
                : c.rule == MaskRule::kAll        ? MaskRule::kNone
@@ -326,7 +327,7 @@ void refreshFarm(GLFWwindow* window, TileBackend& backend, bool missing, Title& 
 void runView(const ViewOptions& options) {
   proto::LoadedBundle loaded = proto::loadSceneBundle(options.scene);
   printSceneWarnings(options.scene, loaded.scene);
-  applyFrameOverrides(options.frame, loaded.scene);
+  printNote(applyFrameOverrides(options.frame, loaded.scene));
   // The hybrid frame under path transport reads the irradiance field, filled once for the whole view.
   const bool field =
       loaded.scene.frame.tracing.transport == Transport::kPath && loaded.scene.mask.rule != MaskRule::kAll;
@@ -362,6 +363,7 @@ void runView(const ViewOptions& options) {
   Controls controls;
   controls.camera = scene.frame.camera;
   controls.rule = scene.mask.rule;
+  controls.ruleFixed = scene.frame.tracing.transport == Transport::kPath && !backend.field();
   glfwSetWindowUserPointer(window, &controls);
   installCallbacks(window);
   glfwSetFramebufferSizeCallback(window, [](GLFWwindow* w, int, int) { controlsOf(w).changed = true; });

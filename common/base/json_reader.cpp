@@ -270,15 +270,15 @@ float JsonReader::number(float lo, float hi, bool loExclusive) const {
   const double d = value_.get<double>();
   const auto f = static_cast<float>(d);
   if (!std::isfinite(d) || !std::isfinite(f)) fail("must be a finite number");
-  if (loExclusive ? !(f > lo) : !(f >= lo)) {
-    fail(loExclusive ? "must be > " + format(lo) : "must be >= " + format(lo));
+  if ((loExclusive ? f > lo : f >= lo) && f <= hi) return f;
+  // The whole range, said once, whichever side the value fell.
+  const bool floor = lo > -std::numeric_limits<float>::max();
+  const bool ceiling = hi < std::numeric_limits<float>::max();
+  if (floor && ceiling) {
+    fail("must be in " + std::string(loExclusive ? "(" : "[") + format(lo) + ", " + format(hi) + "]");
   }
-  if (!(f <= hi)) {
-    fail(lo > -std::numeric_limits<float>::max()
-             ? "must be in [" + format(lo) + ", " + format(hi) + "]"
-             : "must be <= " + format(hi));
-  }
-  return f;
+  if (ceiling) fail("must be <= " + format(hi));
+  fail(loExclusive ? "must be > " + format(lo) : "must be >= " + format(lo));
 }
 
 int JsonReader::integer(long long lo, long long hi) const {

@@ -11,6 +11,10 @@
 namespace glint {
 
 // The scene's camera, as the user writes it.
+// The widest vertical field of view, in degrees (the narrowest is any
+// above 0).
+constexpr float kMaxFovY = 179.0f;
+
 struct CameraSpec {
   glm::vec3 eye{0.0f, 0.0f, 0.0f};
   glm::vec3 lookAt{0.0f, 0.0f, -1.0f};
@@ -25,6 +29,8 @@ struct CameraSpec {
 // What makes a camera unusable, as "field: what is wrong" ("up: must not be
 // the zero vector"), or "" for a good camera. Fields are the scene format's.
 std::string cameraProblem(const CameraSpec& spec);
+// The words of fov_y's range: "must be in (0, 179]".
+std::string fovRange();
 
 // The camera moved along its viewing direction so that the sphere around
 // `bounds` fills the narrower of the two fields of view (vertical fov_y, or

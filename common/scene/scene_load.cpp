@@ -12,6 +12,7 @@
 #include "common/base/json_reader.h"
 #include "common/math/circular.h"
 #include "common/math/power.h"
+#include "common/scene/camera.h"
 #include "common/scene/frame_limits.h"
 #include "common/image/image_decode.h"
 #include "common/scene/mesh_import.h"
@@ -55,7 +56,7 @@ class SceneLoader {
     const JsonReader root(doc, "");
     root.allowKeys({"glint", "image", "camera", "sampling", "tracing", "mask", "background", "environment",
                     "textures", "materials", "lights", "objects"});
-    root["glint"].integer(1, 1);  // the format's version: only 1 exists
+    readVersion(root["glint"]);
     readImage(root["image"]);
     readCamera(root["camera"]);
     if (auto s = root.find("sampling")) readSampling(*s);
@@ -91,9 +92,18 @@ class SceneLoader {
       c.eye = r["eye"].vec3();
       c.lookAt = r["look_at"].vec3();
       c.up = r.vec3("up", {0.0f, 1.0f, 0.0f});
-      c.fovY = r.number("fov_y", 45.0f, 0.0f, 179.0f, true);
+      c.fovY = r.number("fov_y", 45.0f, 0.0f, kMaxFovY, true);
     }
     readLens(r, c);
+  }
+
+  // The format's version: this build reads version 1, the only one.
+  static void readVersion(const JsonReader& r) {
+    constexpr int kVersion = 1;
+    if (!r.isNumber() || r.number() != static_cast<float>(kVersion)) {
+      r.fail("this build of Glint reads scene format version " + std::to_string(kVersion) + " (\"glint\": " +
+             std::to_string(kVersion) + ")");
+    }
   }
 
   // The thin lens: focused at look_at unless told (the camera check names an

@@ -522,6 +522,26 @@ TEST_F(Cli, PathTransportIsTracedInFullAndSaysSo) {
   EXPECT_EQ(room2.status, 0) << room2.output;
 }
 
+// The words a user reads are true: --quiet is quiet under path transport
+// too (no note, the same image), the help names every output format and
+// shows no internal default, a range is said once whichever side a value
+// falls, and a format version this build does not read says which it does.
+TEST_F(Cli, WordsAreTrue) {
+  const std::string small = " --size 24x24 --samples 1 -o ";
+  const Result quiet = glint("render " + scene("cornell.json") + " -q" + small + path("q.png"));
+  EXPECT_EQ(quiet.status, 0);
+  EXPECT_EQ(quiet.output, "");
+  const Result help = glint("--help");
+  EXPECT_NE(help.output.find("written as PNG, EXR or PFM"), std::string::npos) << help.output;
+  const Result info = glint("info --help");
+  EXPECT_NE(info.output.find("--no-raster "), std::string::npos) << info.output;
+  EXPECT_EQ(info.output.find("{false}"), std::string::npos) << info.output;
+  for (const char* fov : {"0", "180"}) {
+    const Result r = glint("render " + scene("room.json") + " --fov " + fov + small + path("f.png"));
+    EXPECT_NE(r.output.find("must be in (0, 179]"), std::string::npos) << fov << ": " << r.output;
+  }
+}
+
 // --field (or the scene's tracing.field) has the hybrid frame draw path
 // transport's light between surfaces from an irradiance field: OpenGL draws
 // most pixels, the tracer the emitter's penumbra and where the field cannot

@@ -27,7 +27,7 @@ trap cleanup EXIT
 # A glintd on a free loopback port; its address in $address. Run in this
 # shell, not in $(...), so that its PID reaches the cleanup.
 start_glintd() {
-  "$glintd" --listen 127.0.0.1:0 --threads 1 --quiet > "$work/glintd$1.log" 2>&1 &
+  "$glintd" --listen 127.0.0.1:0 --threads 1 --quiet --ready-fd 1 > "$work/glintd$1.log" 2>&1 &
   pids+=($!)
   for _ in $(seq 1 100); do
     grep -q "listening on" "$work/glintd$1.log" && break

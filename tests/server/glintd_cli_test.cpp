@@ -1,6 +1,7 @@
 // glintd's command line as a user meets it: a usage error is one line that
 // says what is wrong and exits with 2; the line scripts wait for says how
 // clients reach it.
+#include <csignal>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -51,6 +52,25 @@ TEST(GlintdCli, TheListeningLineSaysTheThreadsAndWhetherTlsIsOn) {
   EXPECT_NE(one.listeningLine().find(", 1 thread, no TLS"), std::string::npos) << one.listeningLine();
   const server::test::GlintdProcess two({"--threads", "2"});
   EXPECT_NE(two.listeningLine().find(", 2 threads, no TLS"), std::string::npos) << two.listeningLine();
+}
+
+// --quiet prints nothing while serving a client and stopping, not even the
+// listening line; --ready-fd gives that line to whoever asked for it.
+TEST(GlintdCli, QuietPrintsNothingAndTheReadyDescriptorSaysWhereItListens) {
+  server::test::GlintdProcess quiet;
+  EXPECT_EQ(quiet.listeningLine().rfind("glintd: listening on 127.0.0.1:", 0), 0u) << quiet.listeningLine();
+  const std::string out = ::testing::TempDir() + "quiet-served.png";
+  const GlintRun served = runGlint("render " + std::string(GLINT_SOURCE_DIR) + "/scenes/room.json --size 32x24 -q -o " + out +
+                                   " --server " + quiet.address());
+  EXPECT_EQ(served.status, 0) << served.output;
+  EXPECT_EQ(quiet.stop(SIGTERM), 0);
+  EXPECT_EQ(quiet.printed(), "");
+}
+
+TEST(GlintdCli, AReadyDescriptorThatIsNotOpenIsAUsageError) {
+  const GlintRun run = runGlintd("--listen 127.0.0.1:0 --ready-fd 9 9<&-");
+  EXPECT_TRUE(oneUsageLine(run)) << run.status << ": " << run.output;
+  EXPECT_NE(run.output.find("--ready-fd 9: not a descriptor open for writing"), std::string::npos) << run.output;
 }
 
 }  // namespace

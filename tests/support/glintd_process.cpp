@@ -1,5 +1,6 @@
 #include "tests/support/glintd_process.h"
 
+#include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -7,6 +8,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -18,39 +20,53 @@ extern char** environ;
 namespace glint::server::test {
 
 GlintdProcess::GlintdProcess(const std::vector<std::string>& args) {
-  std::vector<std::string> all = {GLINTD_BIN, "--listen", "127.0.0.1:0", "--quiet"};
+  std::vector<std::string> all = {GLINTD_BIN, "--listen", "127.0.0.1:0", "--quiet", "--ready-fd", "3"};
   all.insert(all.end(), args.begin(), args.end());
   std::vector<char*> argv;
   for (std::string& a : all) argv.push_back(a.data());
   argv.push_back(nullptr);
-  int out[2];
-  if (pipe(out) != 0) throw std::runtime_error("pipe failed");
+  int ready[2];
+  if (pipe2(ready, O_CLOEXEC) != 0) throw std::runtime_error("pipe failed");  // only the dup2s reach glintd
+  char logName[] = "/tmp/glintd-printed-XXXXXX";
+  printed_ = mkostemp(logName, O_CLOEXEC);
+  if (printed_ < 0) throw std::runtime_error("mkstemp failed");
+  unlink(logName);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, out[1], 1);
-  posix_spawn_file_actions_addclose(&actions, out[0]);
+  posix_spawn_file_actions_adddup2(&actions, ready[1], 3);
+  posix_spawn_file_actions_adddup2(&actions, printed_, 1);
+  posix_spawn_file_actions_adddup2(&actions, printed_, 2);
   const int spawned = posix_spawn(&pid_, GLINTD_BIN, &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
-  close(out[1]);
+  close(ready[1]);
   if (spawned != 0) {
-    close(out[0]);
+    close(ready[0]);
     throw std::runtime_error(std::string("cannot start glintd: ") + std::strerror(spawned));
   }
-  FILE* stdoutOfServer = fdopen(out[0], "r");
+  FILE* readyLine = fdopen(ready[0], "r");
   char line[256] = {};
-  const bool read = std::fgets(line, sizeof line, stdoutOfServer) != nullptr;
-  std::fclose(stdoutOfServer);  // glintd writes nothing else to stdout
+  const bool read = std::fgets(line, sizeof line, readyLine) != nullptr;
+  std::fclose(readyLine);  // glintd closes its end once it has written the line
   unsigned port = 0;
   if (!read || std::sscanf(line, "glintd: listening on 127.0.0.1:%u", &port) != 1) {
     stop(SIGKILL);
-    throw std::runtime_error(std::string("glintd did not start: ") + line);
+    throw std::runtime_error("glintd did not start: " + std::string(line) + printed());
   }
   port_ = static_cast<std::uint16_t>(port);
   listeningLine_ = line;
 }
 
+std::string GlintdProcess::printed() const {
+  std::string all;
+  char buffer[4096];
+  off_t at = 0;
+  for (ssize_t n; (n = pread(printed_, buffer, sizeof buffer, at)) > 0; at += n) all.append(buffer, static_cast<std::size_t>(n));
+  return all;
+}
+
 GlintdProcess::~GlintdProcess() {
   if (status_ < 0) stop(SIGKILL);
+  close(printed_);
 }
 
 bool GlintdProcess::running() {

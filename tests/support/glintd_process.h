@@ -13,8 +13,9 @@ namespace glint::server::test {
 // its memory). Killed, if still running, when the object goes away.
 class GlintdProcess {
  public:
-  // Starts glintd with `--listen 127.0.0.1:0 --quiet` and `args`, and waits
-  // for its "listening on" line.
+  // Starts glintd with `--listen 127.0.0.1:0 --quiet --ready-fd 3` and
+  // `args`, and waits for its "listening on" line on descriptor 3; what it
+  // prints on stdout and stderr goes to a file of its own (printed()).
   explicit GlintdProcess(const std::vector<std::string>& args = {});
   ~GlintdProcess();
   GlintdProcess(const GlintdProcess&) = delete;
@@ -25,6 +26,8 @@ class GlintdProcess {
   std::string address() const { return "127.0.0.1:" + std::to_string(port_); }
   // The line it said it was listening on ("glintd: listening on ...").
   const std::string& listeningLine() const { return listeningLine_; }
+  // All it has printed on stdout and stderr so far.
+  std::string printed() const;
   // True while the process has not exited.
   bool running();
   // Resident memory now and at its peak, in KiB (/proc/PID/status VmRSS, VmHWM).
@@ -49,6 +52,7 @@ class GlintdProcess {
   std::uint16_t port_ = 0;
   std::string listeningLine_;
   int status_ = -1;  // set once reaped
+  int printed_ = -1;  // the unlinked file of its stdout and stderr
 };
 
 }  // namespace glint::server::test

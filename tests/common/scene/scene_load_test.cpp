@@ -178,7 +178,10 @@ struct BadCase {
 // Each bad scene is rejected with a message naming the JSON path.
 TEST(SceneLoad, BadScenesNameThePlace) {
   const std::vector<BadCase> cases = {
-      {"version", [](json& j) { j["glint"] = 2; }, "glint: must be in [1, 1]"},
+      {"version", [](json& j) { j["glint"] = 2; }, "glint: this build of Glint reads scene format version 1 (\"glint\": 1)"},
+      {"version 0", [](json& j) { j["glint"] = 0; }, "glint: this build of Glint reads scene format version 1 (\"glint\": 1)"},
+      {"field of view over", [](json& j) { j["camera"]["fov_y"] = 180; }, "camera.fov_y: must be in (0, 179]"},
+      {"field of view under", [](json& j) { j["camera"]["fov_y"] = 0; }, "camera.fov_y: must be in (0, 179]"},
       {"missing image", [](json& j) { j.erase("image"); }, "image: required key is missing"},
       {"unknown key", [](json& j) { j["camera"]["fov"] = 40; }, "camera.fov: unknown key"},
       {"unknown top key", [](json& j) { j["lighting"] = 1; }, "lighting: unknown key"},
