@@ -272,6 +272,13 @@ void addFrameOptions(CLI::App* app, FrameOverrides& o) {
       ->check(CLI::Range(-FrameLimits::kMaxExposure, FrameLimits::kMaxExposure));
 }
 
+// --threads: the threads that trace and fill the irradiance field.
+void addThreadsOption(CLI::App* app, int& threads) {
+  app->add_option("--threads", threads, "Threads that trace and fill the irradiance field; 0 = one per hardware thread")
+      ->check(CLI::Range(0, 1024))
+      ->default_val(0);
+}
+
 // Declares `glint render`'s options; returns what runs once they are parsed.
 std::function<void()> declareRender(CLI::App* render) {
   auto options = std::make_shared<RenderOptions>();
@@ -285,9 +292,7 @@ std::function<void()> declareRender(CLI::App* render) {
   addFrameOptions(render, o.frame);
   addGlOption(render, o.gl);
   render->add_option("--mask-out", o.maskOut, "Also write the mask as a PNG (white: ray traced)");
-  render->add_option("--threads", o.threads, "Render threads; 0 = one per hardware thread")
-      ->check(CLI::Range(0, 1024))
-      ->default_val(0);
+  addThreadsOption(render, o.threads);
   render
       ->add_option_function<std::string>(
           "--crop", [&o](const std::string& text) { o.crop = asUsageError([&] { return parseCrop(text); }); },
@@ -323,7 +328,7 @@ std::function<void()> declareView(CLI::App* view) {
   view->add_option("scene", o.scene, "Scene file (.json)")->required();
   addServerOptions(view, o.remote);
   addFrameOptions(view, o.frame);
-  view->add_option("--threads", o.threads, "Tracing threads; 0 = one per hardware thread")->check(CLI::Range(0, 1024));
+  addThreadsOption(view, o.threads);
   addEnumOption(view, "--bvh", o.bvh, "BVH builder in process (default: sah; qsplit is the thesis's)");
   view->add_option("--frames", o.frames, "Close after N frames (for scripts)")->check(CLI::Range(1, 1000000));
   view->add_option("--screenshot", o.screenshot, "Write the last frame as PNG when the window closes");
@@ -348,7 +353,11 @@ std::function<void()> declareInfo(CLI::App* info) {
   addGlOption(info, o.gl);
   info->add_flag_callback("--no-raster", [&o] { o.raster = false; },
                           "Skip the raster pass (no OpenGL; no traced-pixel count)");
-  return [options] { runInfo(*options); };
+  addThreadsOption(info, o.threads);
+  return [options] {
+    setComputeThreads(options->threads);
+    runInfo(*options);
+  };
 }
 
 std::string accuracyHelp() {
@@ -377,9 +386,7 @@ std::function<void()> declareAccuracy(CLI::App* accuracy) {
       ->check(CLI::Range(1, 1000))
       ->default_val(3);
   addFrameOptions(accuracy, o.frame);
-  accuracy->add_option("--threads", o.threads, "Render threads; 0 = one per hardware thread")
-      ->check(CLI::Range(0, 1024))
-      ->default_val(0);
+  addThreadsOption(accuracy, o.threads);
   addServerOptions(accuracy, o.remote);
   addGlOption(accuracy, o.gl);
   addEnumOption(accuracy, "--metric", o.metric,

@@ -13,6 +13,7 @@ struct InfoOptions {
   std::string scene;
   FrameOverrides frame;             // the frame's and mask's options, as every command has them
   bool raster = true;               // --no-raster: skip the raster pass that counts the traced pixels
+  int threads = 0;                  // that fill the irradiance field; 0: one per hardware thread
   std::optional<gl::GlBackend> gl;  // --gl: the raster pass's headless OpenGL; unset: the default
 };
 

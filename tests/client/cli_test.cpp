@@ -523,8 +523,8 @@ TEST_F(Cli, PathTransportIsTracedInFullAndSaysSo) {
 }
 
 // The words a user reads are true: --quiet is quiet under path transport
-// too (no note, the same image), the help names every output format and
-// shows no internal default, a range is said once whichever side a value
+// too (no note), the help names every output format and shows no internal
+// default, info takes --threads, a range is said once whichever side a value
 // falls, and a format version this build does not read says which it does.
 TEST_F(Cli, WordsAreTrue) {
   const std::string small = " --size 24x24 --samples 1 -o ";
@@ -536,6 +536,9 @@ TEST_F(Cli, WordsAreTrue) {
   const Result info = glint("info --help");
   EXPECT_NE(info.output.find("--no-raster "), std::string::npos) << info.output;
   EXPECT_EQ(info.output.find("{false}"), std::string::npos) << info.output;
+  // info fills the irradiance field as render does, on the threads it is given.
+  const Result field = glint("info " + scene("cornell.json") + " --field 4,64 --size 24x24 --threads 1");
+  EXPECT_EQ(field.status, 0) << field.output;
   for (const char* fov : {"0", "180"}) {
     const Result r = glint("render " + scene("room.json") + " --fov " + fov + small + path("f.png"));
     EXPECT_NE(r.output.find("must be in (0, 179]"), std::string::npos) << fov << ": " << r.output;
