@@ -8,7 +8,7 @@ DEPS := cmake g++ make pkg-config libglm-dev nlohmann-json3-dev libtinyobjloader
         libstb-dev libcli11-dev libgtest-dev libgmock-dev \
         libflatbuffers-dev flatbuffers-compiler libssl-dev libasio-dev libosmesa6-dev \
         libegl-dev libglfw3-dev libgl1-mesa-dri xvfb xauth x11-utils x11-apps xdotool netpbm openssl iproute2 \
-        libopenexr-dev libassimp-dev libjpeg-dev assimp-testmodels \
+        libopenexr-dev libassimp-dev libjpeg-dev zlib1g-dev assimp-testmodels \
         gnuplot-nox
 # The benchmark also compares against POV-Ray 3.7 and Embree 3.
 BENCH_DEPS := povray libembree-dev blender

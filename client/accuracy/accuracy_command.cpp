@@ -169,10 +169,10 @@ void measureRow(const fs::path& dir, const Encoder& encoder, const LinearImage& 
   row.flip = flipStats(map);
   const std::string stem = row.name + "-" + row.value;
   writePfm(dir / (stem + ".pfm"), image);
-  writePng(dir / row.image, toBytes(image));
-  writePng(dir / (stem + "-error.png"),
-           errorImage(pixelErrors(image, reference.linear), image.width, image.height));
-  writePng(dir / (stem + "-flip.png"), magmaImage(map));
+  writePng(dir / row.image, encodeBytes(image, encoder), encoder.encoding());
+  writePng(dir / (stem + "-error.png"), errorImage(pixelErrors(image, reference.linear), image.width, image.height),
+           Encoding::kSrgb);
+  writePng(dir / (stem + "-flip.png"), magmaImage(map), Encoding::kSrgb);
 }
 
 AccuracyReference renderReference(Sweep& sweep, const FrameSettings& frame, int samples, const fs::path& dir,
@@ -194,7 +194,7 @@ AccuracyReference renderReference(Sweep& sweep, const FrameSettings& frame, int 
                       flipStats(flip(displayedLight(halfA, sweep.encoder), displayedLight(halfB, sweep.encoder))).mean,
                       msSince(start)};
   writePfm(dir / "reference.pfm", reference.linear);
-  writePng(dir / "reference.png", toBytes(reference.linear));
+  writePng(dir / "reference.png", encodeBytes(reference.linear, sweep.encoder), sweep.encoder.encoding());
   return r;
 }
 

@@ -55,7 +55,7 @@ void runCompare(const CompareOptions& options) {
   } else {
     std::printf("PSNR %.2f dB\n", error.psnrDb);
   }
-  if (!options.errorMap.empty()) writePng(options.errorMap, magmaImage(map));
+  if (!options.errorMap.empty()) writePng(options.errorMap, magmaImage(map), Encoding::kSrgb);
 }
 
 }  // namespace glint

@@ -74,10 +74,10 @@ void writeExr(const std::filesystem::path& path, const LinearImage& image) {
 }
 
 void writeOutput(const std::filesystem::path& path, OutputFormat format, const FrameImage& bytes,
-                 const LinearImage& linear) {
+                 const LinearImage& linear, Encoding encoding) {
   switch (format) {
     case OutputFormat::kPng:
-      return writePng(path, bytes);
+      return writePng(path, bytes, encoding);
     case OutputFormat::kExr:
       return writeExr(path, linear);
     case OutputFormat::kPfm:

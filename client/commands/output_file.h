@@ -6,6 +6,7 @@
 #include "common/base/enum_words.h"
 #include "common/render/frame.h"
 #include "common/image/linear_image.h"
+#include "common/image/output_settings.h"
 
 namespace glint {
 
@@ -30,9 +31,9 @@ inline bool holdsFloats(OutputFormat format) { return format != OutputFormat::kP
 // atomically like writePng.
 void writeExr(const std::filesystem::path& path, const LinearImage& image);
 
-// Writes the frame in `format`: PNG from the 8-bit frame, the float formats
-// from `linear`.
+// Writes the frame in `format`: PNG from the 8-bit frame (its values in
+// `encoding`), the float formats from `linear`.
 void writeOutput(const std::filesystem::path& path, OutputFormat format, const FrameImage& bytes,
-                 const LinearImage& linear);
+                 const LinearImage& linear, Encoding encoding);
 
 }  // namespace glint

@@ -38,7 +38,7 @@ void writeMaskPng(const std::string& path, const std::vector<std::uint8_t>& mask
   FrameImage image{width, height, std::vector<std::uint8_t>(mask.size() * 3)};
   for (std::size_t i = 0; i < mask.size(); ++i)
     image.rgb[3 * i] = image.rgb[3 * i + 1] = image.rgb[3 * i + 2] = mask[i] ? 255 : 0;
-  writePng(path, image);
+  writePng(path, image, Encoding::kSrgb);
 }
 
 // Medians over the frames, as the thesis's Table 4.1: the RT unit's time
@@ -202,10 +202,6 @@ OutputFormat checkOutputs(const RenderOptions& o) {
   checkOutput("--provenance-out", o.provenanceOut, true, true);
   checkOutput("--stats", o.statsPath, false, false);
   const OutputFormat format = outputFormat("-o", o.output);
-  if (holdsFloats(format) && o.frame.encoding == Encoding::kSrgb) {
-    throw UsageError("--encoding srgb: applies to 8-bit output; " + o.output +
-                     " holds linear values (give a .png, or drop --encoding)");
-  }
   return format;
 }
 
@@ -309,24 +305,25 @@ std::optional<LinearImage> renderFrames(const RenderRun& run, TileBackend& backe
 }
 
 // Writes -o (and --provenance-out). A float output of an 8-bit frame (a
-// hybrid frame, or tiles from servers) holds its values as byte / 255.
+// hybrid frame, or tiles from servers) holds the light its values stand for.
 void writeOutputs(const RenderRun& run, TileBackend& backend, const HybridResult& r,
                   const std::optional<LinearImage>& linear) {
   const RenderOptions& options = run.options;
   const OutputFormat format = run.format;
+  const Encoder encoder(run.frame.output);
   if (holdsFloats(format) && !linear) {
-    writeOutput(options.output, format, r.image, fromBytes(r.image));
+    writeOutput(options.output, format, r.image, scaledLight(r.image, encoder), encoder.encoding());
     if (!options.quiet) {
       std::fprintf(stderr,
-                   "note: %s holds the 8-bit frame's values (a hybrid frame or tiles from servers); "
-                   "--mask all in process writes the tracer's own floats\n",
+                   "note: %s holds the 8-bit frame's values decoded to linear light (a hybrid frame or tiles from "
+                   "servers); --mask all in process writes the tracer's own floats\n",
                    options.output.c_str());
     }
   } else {
-    writeOutput(options.output, format, r.image, linear ? *linear : LinearImage{});
+    writeOutput(options.output, format, r.image, linear ? *linear : LinearImage{}, encoder.encoding());
   }
   if (!options.provenanceOut.empty()) {
-    writePng(options.provenanceOut, provenanceImage(r.image, backend.distributed()->lastFrame()));
+    writePng(options.provenanceOut, provenanceImage(r.image, backend.distributed()->lastFrame()), encoder.encoding());
   }
 }
 

@@ -404,7 +404,7 @@ void runView(const ViewOptions& options) {
       refreshFarm(window, backend, retryAt > 0.0, title);
     }
   }
-  if (!options.screenshot.empty()) writePng(options.screenshot, last.image);
+  if (!options.screenshot.empty()) writePng(options.screenshot, last.image, backend.scene().frame.output.encoding);
   glfwDestroyWindow(window);
 }
 

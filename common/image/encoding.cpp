@@ -41,6 +41,18 @@ LinearImage decodeBytes(const FrameImage& image, const Encoder& encoder) {
   return linear;
 }
 
+FrameImage encodeBytes(const LinearImage& image, const Encoder& encoder) {
+  FrameImage bytes{image.width, image.height, std::vector<std::uint8_t>(image.rgb.size())};
+  for (std::size_t i = 0; i < image.rgb.size(); ++i) bytes.rgb[i] = encoder.byte(image.rgb[i]);
+  return bytes;
+}
+
+LinearImage scaledLight(const FrameImage& image, const Encoder& encoder) {
+  LinearImage light = decodeBytes(image, encoder);
+  for (float& v : light.rgb) v *= encoder.scale();
+  return light;
+}
+
 std::uint8_t toByte(float v) {
   const float c = std::clamp(v, 0.0f, 1.0f);  // NaN stays NaN; callers pass finite values
   return static_cast<std::uint8_t>(std::lround(c * 255.0f));

@@ -24,6 +24,7 @@ class Encoder {
   // The 8-bit value: scaled, clamped to [0, 1], encoded, rounded.
   std::uint8_t byte(float linear) const;
   float scale() const { return scale_; }
+  Encoding encoding() const { return srgb_ ? Encoding::kSrgb : Encoding::kLinear; }
   // The light a display shows for the value byte() writes: an sRGB display
   // decodes every 8-bit value it is sent (a linear output's values too), so
   // FLIP judges what a viewer of the PNG sees.
@@ -43,6 +44,12 @@ class Encoder {
 LinearImage displayedLight(const LinearImage& image, const Encoder& encoder);
 LinearImage displayedLight(const FrameImage& image);
 LinearImage decodeBytes(const FrameImage& image, const Encoder& encoder);
+// A linear image's 8-bit values (Encoder::byte), as a PNG of it holds them.
+FrameImage encodeBytes(const LinearImage& image, const Encoder& encoder);
+// An 8-bit image as a float output holds it: the transfer function undone,
+// the exposure kept (Encoder::scaled of the light each value stands for, up
+// to its rounding), whatever the encoding.
+LinearImage scaledLight(const FrameImage& image, const Encoder& encoder);
 
 // The sRGB transfer function (IEC 61966-2-1) of a value in [0, 1].
 float srgbEncode(float linear);

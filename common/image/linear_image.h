@@ -13,13 +13,6 @@ struct LinearImage {
   std::vector<float> rgb;
 };
 
-// An 8-bit frame as linear values (byte / 255): the hybrid frame's raster
-// pixels exist only as bytes.
-LinearImage fromBytes(const FrameImage& image);
-
-// The 8-bit frame a PNG holds: each value rounded as the tracer's tiles are.
-FrameImage toBytes(const LinearImage& image);
-
 // The per-channel mean of two images of one size (two half-sample
 // references make one full one).
 LinearImage average(const LinearImage& a, const LinearImage& b);

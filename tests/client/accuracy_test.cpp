@@ -172,6 +172,37 @@ TEST(Accuracy, ErrorFallsWithSamplesOnASmallScene) {
   fs::remove_all(dir);
 }
 
+// The FLIP column is what a viewer sees flipping between the PNGs the sweep
+// wrote, as glint compare reads them, under either encoding of the scene's
+// 8-bit values (the room names linear; srgb is the format's default).
+TEST(Accuracy, TheFlipColumnIsThePngsFlipUnderEitherEncoding) {
+  for (const Encoding encoding : {Encoding::kSrgb, Encoding::kLinear}) {
+    const fs::path dir = fs::temp_directory_path() / ("glint-accuracy-png-" + std::to_string(::getpid()));
+    AccuracyOptions o;
+    o.scene = test::sourcePath("scenes/room.json");
+    o.outDir = dir.string();
+    o.vary = {"samples=1,4"};
+    o.referenceSamples = 16;
+    o.frames = 1;
+    o.frame.width = 40;
+    o.frame.height = 30;
+    o.frame.encoding = encoding;
+    runAccuracy(o);
+    const std::vector<CsvRow> rows = readCsv(dir / "accuracy.csv");
+    ASSERT_GE(rows.size(), 2u);
+    for (const char* value : {"1", "4"}) {
+      const double fromPngs = flipStats(flip(displayedLight(readImageFile(dir / "reference.png")),
+                                             displayedLight(readImageFile(dir / ("samples-" + std::string(value) +
+                                                                                 ".png")))))
+                                  .mean;
+      const auto row = std::find_if(rows.begin(), rows.end(), [&](const CsvRow& r) { return r.value == value; });
+      ASSERT_NE(row, rows.end()) << value;
+      EXPECT_NEAR(row->flip, fromPngs, 1e-6) << value << (encoding == Encoding::kSrgb ? " srgb" : " linear");
+    }
+    fs::remove_all(dir);
+  }
+}
+
 // On the Cornell box the reference is the converged path trace: Whitted
 // transport at the path rows' samples errs far more (the light between the
 // walls it never computes: the model's error), and cutting the bounces to

@@ -231,7 +231,7 @@ void objAndImageSeeds() {
   FrameImage image{4, 3, Bytes(36)};
   for (std::size_t i = 0; i < image.rgb.size(); ++i) image.rgb[i] = static_cast<std::uint8_t>(i * 7);
   const fs::path png = fs::temp_directory_path() / "glint-seed.png";
-  writePng(png, image);
+  writePng(png, image, Encoding::kSrgb);
   write("image", "small.png", readFile(png));
   fs::remove(png);
   // The other texture formats, as stb_image_write writes them.

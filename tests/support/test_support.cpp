@@ -135,7 +135,7 @@ std::string flatPng(int width, int height) {
 
 std::string pngBytes(const FrameImage& image) {
   const std::filesystem::path path = scratchPath("image.png");
-  writePng(path, image);
+  writePng(path, image, Encoding::kSrgb);
   std::ifstream in(path, std::ios::binary);
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::filesystem::remove(path);

@@ -47,7 +47,7 @@ TEST(ImageDecode, PngRoundTripKeepsEveryByte) {
   FrameImage image{5, 3, std::vector<std::uint8_t>(45)};
   for (std::size_t i = 0; i < image.rgb.size(); ++i) image.rgb[i] = static_cast<std::uint8_t>(i * 37);
   const auto path = std::filesystem::temp_directory_path() / "glint-image-io-test.png";
-  writePng(path, image);
+  writePng(path, image, Encoding::kSrgb);
   std::ifstream in(path, std::ios::binary);
   std::stringstream bytes;
   bytes << in.rdbuf();
