@@ -379,7 +379,7 @@ std::function<void()> declareAccuracy(CLI::App* accuracy) {
       ->type_name("KEY=V1,V2,...")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  accuracy->add_option("--reference-samples", o.referenceSamples, "Jittered samples per pixel of the reference (even)")
+  accuracy->add_option("--reference-samples", o.referenceSamples, "Samples per pixel of the reference (even), in the scene's pattern where it is jittered or sobol, else jittered")
       ->check(CLI::Range(2, FrameLimits::kMaxSamples))
       ->default_val(256);
   accuracy->add_option("--frames", o.frames, "Frames per setting; the median time is reported")

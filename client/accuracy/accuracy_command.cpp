@@ -94,8 +94,14 @@ void checkSetting(const std::string& place, FrameSettings frame) {
               .perceptualThreshold = place.c_str(), .lightSamples = place.c_str(), .exposure = "--exposure"});
 }
 
+// The scene's pattern where it takes any count and no rule of its own
+// (jittered, sobol); jittered otherwise.
+SamplePattern referencePattern(SamplePattern scene) {
+  return scene == SamplePattern::kSobol ? SamplePattern::kSobol : SamplePattern::kJittered;
+}
+
 FrameSettings referenceFrame(FrameSettings frame, int samples, std::uint32_t seed) {
-  frame.sampling.pattern = SamplePattern::kJittered;
+  frame.sampling.pattern = referencePattern(frame.sampling.pattern);
   frame.sampling.samples = samples;
   frame.sampling.seed = seed;
   frame.tracing.maxDepth = kReferenceDepth;
@@ -182,7 +188,8 @@ AccuracyReference renderReference(Sweep& sweep, const FrameSettings& frame, int 
   const std::string light = frame.tracing.transport == Transport::kPath
                                 ? "path transport, " + std::to_string(kReferenceBounces) + " bounces"
                                 : "max depth " + std::to_string(kReferenceDepth) + ", no weight cut-off";
-  std::fprintf(stderr, "reference: 2 x %d jittered samples, %s ...\n", samples / 2, light.c_str());
+  const std::string pattern(enumWord(referencePattern(frame.sampling.pattern)));
+  std::fprintf(stderr, "reference: 2 x %d %s samples, %s ...\n", samples / 2, pattern.c_str(), light.c_str());
   const Renderer a(sweep.prepared, referenceFrame(frame, samples / 2, frame.sampling.seed));
   const Renderer b(sweep.prepared, referenceFrame(frame, samples / 2, frame.sampling.seed + 1));
   const LinearImage halfA = renderLinear(a, sweep.pool, ignored, LinearRange::kClamped);
@@ -190,9 +197,11 @@ AccuracyReference renderReference(Sweep& sweep, const FrameSettings& frame, int 
   reference.linear = average(halfA, halfB);
   reference.displayed = displayedLight(reference.linear, sweep.encoder);
   // Each half errs by about sqrt(2) times the whole; their difference by 2 times.
-  AccuracyReference r{samples, light, compareImages(halfA, halfB).rmse / 2.0,
+  AccuracyReference r{samples, pattern, light, compareImages(halfA, halfB).rmse / 2.0,
                       flipStats(flip(displayedLight(halfA, sweep.encoder), displayedLight(halfB, sweep.encoder))).mean,
                       msSince(start)};
+  std::fprintf(stderr, "reference: its own error about FLIP %.4f, RMSE %.5f (its two halves against each other)\n",
+               ownError(r, AccuracyMetric::kFlip), r.ownRmse);
   writePfm(dir / "reference.pfm", reference.linear);
   writePng(dir / "reference.png", encodeBytes(reference.linear, sweep.encoder), sweep.encoder.encoding());
   return r;
@@ -262,6 +271,7 @@ void runAccuracy(const AccuracyOptions& o) {
               nullptr, fieldDrawable(scene), {}};
   Reference reference;
   const AccuracyReference ref = renderReference(sweep, scene.frame, o.referenceSamples, dir, reference);
+  const AccuracyMetric metric = o.metric.value_or(AccuracyMetric::kFlip);
 
   std::size_t total = 0, done = 0;
   for (const Series& s : series) total += s.values.size();
@@ -274,13 +284,15 @@ void runAccuracy(const AccuracyOptions& o) {
       const LinearImage image =
           drawnWithGl(sweep, s.key, frame) ? hybridRow(sweep, frame, mask, row) : traceRow(sweep, frame, row);
       measureRow(dir, sweep.encoder, image, reference, row);
-      std::fprintf(stderr, "[%zu/%zu] %s = %s: %.1f ms, FLIP %.4f, RMSE %.5f\n", ++done, total, row.name.c_str(),
-                   row.value.c_str(), row.timeMs, row.flip.mean, row.error.rmse);
+      std::fprintf(stderr, "[%zu/%zu] %s = %s: %.1f ms, FLIP %.4f, RMSE %.5f%s\n", ++done, total, row.name.c_str(),
+                   row.value.c_str(), row.timeMs, row.flip.mean, row.error.rmse,
+                   nearTheReferencesNoise(row, ref, metric)
+                       ? " (warning: within 2x of the reference's own error; raise --reference-samples)"
+                       : "");
       rows.push_back(std::move(row));
     }
   }
   writeCsv(dir, rows);
-  const AccuracyMetric metric = o.metric.value_or(AccuracyMetric::kFlip);
   const bool plotted = writePlot(dir, rows, ref, metric);
   writeReport(dir, o.scene, ref, rows, metric, plotted);
   std::fprintf(stderr, "wrote %s/report.md, accuracy.csv%s and the images\n", o.outDir.c_str(),

@@ -208,18 +208,45 @@ void writeFieldFills(std::ostream& out, const std::vector<AccuracyRow>& rows) {
 
 }  // namespace
 
+double ownError(const AccuracyReference& reference, AccuracyMetric metric) {
+  return metric == AccuracyMetric::kFlip ? reference.halvesFlip / 2.0 : reference.ownRmse;
+}
+
+bool nearTheReferencesNoise(const AccuracyRow& row, const AccuracyReference& reference, AccuracyMetric metric) {
+  return errorOf(row, metric) < 2.0 * ownError(reference, metric);
+}
+
+namespace {
+
+// The rows whose error is within 2x of the reference's own.
+void writeNoisyRows(std::ostream& out, const std::vector<AccuracyRow>& rows, const AccuracyReference& reference,
+                    AccuracyMetric metric) {
+  std::string noisy;
+  for (const AccuracyRow& row : rows) {
+    if (nearTheReferencesNoise(row, reference, metric)) noisy += (noisy.empty() ? "" : ", ") + row.name + " = " + row.value;
+  }
+  if (noisy.empty()) return;
+  out << "\nWithin 2x of the reference's own error, so that much of what they measure may be the reference's "
+         "noise (more --reference-samples would tell them apart): "
+      << noisy << ".\n";
+}
+
+}  // namespace
+
 void writeReport(const std::filesystem::path& dir, const std::string& scene, const AccuracyReference& reference,
                  const std::vector<AccuracyRow>& rows, AccuracyMetric metric, bool plotted) {
   std::ofstream out = create(dir / "report.md");
   const std::vector<bool> front = paretoFront(rows, metric);
   out << "# What accuracy costs in time: " << scene << "\n\n";
-  out << "Reference: " << reference.samples << " jittered samples per pixel, " << reference.light << " ("
-      << fixed(reference.timeMs / 1000.0, 1) << " s). Its own error, estimated from two "
-      << "half-sample references against each other, is RMSE " << reference.ownRmse
+  out << "Reference: " << reference.samples << " " << reference.pattern << " samples per pixel, " << reference.light
+      << " (" << fixed(reference.timeMs / 1000.0, 1) << " s). Its own error, estimated from two "
+      << "half-sample references against each other, is RMSE " << reference.ownRmse << " and FLIP about "
+      << fixed(ownError(reference, AccuracyMetric::kFlip), 4)
       << ": differences below it mean nothing. The two halves differ by a mean FLIP of "
       << fixed(reference.halvesFlip, 4) << ".\n\n";
   if (plotted) out << "![error against time](accuracy.png)\n\n";
   writeTable(out, rows, front);
+  writeNoisyRows(out, rows, reference, metric);
   if (!rows.empty()) writeSummary(out, rows, front, metric);
   writeFieldFills(out, rows);
 }

@@ -38,6 +38,7 @@ struct AccuracyRow {
 // The reference the rows are measured against, and its own error.
 struct AccuracyReference {
   int samples = 0;
+  std::string pattern;  // its samples' pattern: the scene's jittered or sobol, else jittered
   std::string light;  // how it carries light: "max depth 16, no weight cut-off"
   double ownRmse = 0.0;  // estimated from two half-sample references
   double halvesFlip = 0.0;  // the mean FLIP of the two halves against each other
@@ -51,6 +52,12 @@ FrameImage errorImage(const std::vector<float>& perPixel, int width, int height)
 
 // A row's error by `metric`.
 double errorOf(const AccuracyRow& row, AccuracyMetric metric);
+// The reference's own error by `metric`, estimated from its two halves
+// (each errs by about sqrt(2) times the whole, their difference by 2 times).
+double ownError(const AccuracyReference& reference, AccuracyMetric metric);
+// Whether a row's error is within 2x of the reference's own: much of what
+// it measures may be the reference's noise.
+bool nearTheReferencesNoise(const AccuracyRow& row, const AccuracyReference& reference, AccuracyMetric metric);
 
 // accuracy.csv, the plot of `metric` against time (gnuplot's data and
 // script, and accuracy.png when gnuplot is installed; false when it is not)

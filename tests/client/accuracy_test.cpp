@@ -203,10 +203,38 @@ TEST(Accuracy, TheFlipColumnIsThePngsFlipUnderEitherEncoding) {
   }
 }
 
+// The reference takes the scene's pattern (the Cornell box's sobol) and says
+// its own error; a row whose error is within 2x of it is named (here 16
+// samples against a 32-sample reference), a row far above it is not.
+TEST(Accuracy, TheReferenceTakesTheScenesPatternAndNamesRowsNearItsNoise) {
+  const fs::path dir = fs::temp_directory_path() / ("glint-accuracy-noise-" + std::to_string(::getpid()));
+  AccuracyOptions o;
+  o.scene = test::sourcePath("scenes/cornell.json");
+  o.outDir = dir.string();
+  o.vary = {"samples=1,16"};
+  o.referenceSamples = 32;
+  o.frames = 1;
+  o.frame.width = 48;
+  o.frame.height = 48;
+  runAccuracy(o);
+  std::ifstream in(dir / "report.md");
+  const std::string report((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(report.find("Reference: 32 sobol samples per pixel"), std::string::npos) << report;
+  EXPECT_NE(report.find("and FLIP about 0.0"), std::string::npos) << report;
+  const std::size_t near = report.find("Within 2x of the reference's own error");
+  ASSERT_NE(near, std::string::npos) << report;
+  const std::string named = report.substr(near, report.find('\n', near + 1) - near);
+  EXPECT_NE(named.find("samples = 16"), std::string::npos) << named;
+  EXPECT_EQ(named.find("samples = 1,"), std::string::npos) << named;
+  EXPECT_EQ(named.find("samples = 1."), std::string::npos) << named;
+  fs::remove_all(dir);
+}
+
 // On the Cornell box the reference is the converged path trace: Whitted
 // transport at the path rows' samples errs far more (the light between the
 // walls it never computes: the model's error), and cutting the bounces to
-// none errs more than 8 (the light cut short).
+// none errs more than 8 (the light cut short). The reference takes the
+// scene's sobol pattern.
 TEST(Accuracy, UnderPathTransportTheModelsErrorShows) {
   const fs::path dir = fs::temp_directory_path() / ("glint-accuracy-path-" + std::to_string(::getpid()));
   AccuracyOptions o;
@@ -227,7 +255,7 @@ TEST(Accuracy, UnderPathTransportTheModelsErrorShows) {
   EXPECT_GT(rows[2].rmse, rows[3].rmse) << "0 bounces " << rows[2].rmse << ", 8 bounces " << rows[3].rmse;
   std::ifstream report(dir / "report.md");
   const std::string text((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
-  EXPECT_NE(text.find("256 jittered samples per pixel, path transport, 64 bounces"), std::string::npos) << text;
+  EXPECT_NE(text.find("256 sobol samples per pixel, path transport, 64 bounces"), std::string::npos) << text;
   fs::remove_all(dir);
 }
 
