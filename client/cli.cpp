@@ -283,7 +283,7 @@ void addThreadsOption(CLI::App* app, int& threads) {
 std::function<void()> declareRender(CLI::App* render) {
   auto options = std::make_shared<RenderOptions>();
   RenderOptions& o = *options;
-  render->add_option("scene", o.scene, "Scene file (.json)")->required();
+  render->add_option("scene", o.scene, "Scene file (.json), or a model file (.gltf, .glb, .obj, .ply) in a default scene")->required();
   render
       ->add_option("-o,--output", o.output,
                    "Image to write, its format by extension: .png (8-bit), .exr (half float, linear), .pfm (float, "
@@ -325,7 +325,7 @@ std::function<void()> declareRender(CLI::App* render) {
 std::function<void()> declareView(CLI::App* view) {
   auto options = std::make_shared<ViewOptions>();
   ViewOptions& o = *options;
-  view->add_option("scene", o.scene, "Scene file (.json)")->required();
+  view->add_option("scene", o.scene, "Scene file (.json), or a model file (.gltf, .glb, .obj, .ply) in a default scene")->required();
   addServerOptions(view, o.remote);
   addFrameOptions(view, o.frame);
   addThreadsOption(view, o.threads);
@@ -348,7 +348,7 @@ constexpr const char* kInfoHelp =
 std::function<void()> declareInfo(CLI::App* info) {
   auto options = std::make_shared<InfoOptions>();
   InfoOptions& o = *options;
-  info->add_option("scene", o.scene, "Scene file (.json)")->required();
+  info->add_option("scene", o.scene, "Scene file (.json), or a model file (.gltf, .glb, .obj, .ply) in a default scene")->required();
   addFrameOptions(info, o.frame);
   addGlOption(info, o.gl);
   info->add_flag_callback("--no-raster", [&o] { o.raster = false; },
@@ -373,7 +373,7 @@ std::string accuracyHelp() {
 std::function<void()> declareAccuracy(CLI::App* accuracy) {
   auto options = std::make_shared<AccuracyOptions>();
   AccuracyOptions& o = *options;
-  accuracy->add_option("scene", o.scene, "Scene file (.json)")->required();
+  accuracy->add_option("scene", o.scene, "Scene file (.json), or a model file (.gltf, .glb, .obj, .ply) in a default scene")->required();
   accuracy->add_option("-o,--output", o.outDir, "Folder for the report, the CSV and the images")->required();
   accuracy->add_option("--vary", o.vary, "KEY=V1,V2,...: one series (repeatable)")
       ->type_name("KEY=V1,V2,...")

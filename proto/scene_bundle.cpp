@@ -6,6 +6,7 @@
 
 #include "common/base/error.h"
 #include "common/base/file_source.h"
+#include "common/scene/model_scene.h"
 #include "common/scene/scene_load.h"
 
 namespace glint::proto {
@@ -80,7 +81,7 @@ LoadedBundle loadSceneBundle(const std::filesystem::path& path, const LoadLimits
   try {
     RecordingSource files(path.parent_path(), limits.maxFileBytes);
     DirectorySource sceneFile(path.parent_path(), limits.maxFileBytes);
-    std::string text = sceneFile.read(path.filename().string(), "scene file");
+    std::string text = sceneTextFor(path, sceneFile);
     Scene scene = loadScene(text, files, limits);
     return {std::move(scene), SceneBundle{std::move(text), files.take()}};
   } catch (const InputError& e) {

@@ -16,6 +16,7 @@
 #include "common/scene/frame_limits.h"
 #include "common/image/image_decode.h"
 #include "common/scene/mesh_import.h"
+#include "common/scene/model_scene.h"
 #include "common/scene/smooth_normals.h"
 #include "common/scene/transform.h"
 
@@ -740,7 +741,7 @@ Scene loadScene(std::string_view text, FileSource& files, SceneBudget& budget) {
 Scene loadSceneFile(const std::filesystem::path& path, const LoadLimits& limits) {
   try {
     DirectorySource files(path.parent_path(), limits.maxFileBytes);
-    const std::string& text = files.read(path.filename().string(), "scene file");
+    const std::string text = sceneTextFor(path, files);
     return loadScene(text, files, limits);
   } catch (const InputError& e) {
     throw InputError(path.string() + ": " + e.what());

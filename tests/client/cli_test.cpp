@@ -1,5 +1,6 @@
 // Runs the real `glint` program as a user would and checks what it prints,
 // its exit status and the files it leaves behind.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -910,6 +911,55 @@ TEST_F(Cli, CropIsTheWindowOfTheWholeFrame) {
     const std::string line((std::istreambuf_iterator<char>(stats)), std::istreambuf_iterator<char>());
     EXPECT_NE(line.find("\"crop\":[10,5,70,41]"), std::string::npos) << line;
   }
+}
+
+// A model file opens as it is, in the default scene around it, under either
+// transport: the model fills part of the frame, not all of it, and is lit;
+// an OBJ or PLY gets the light rig, a glTF file with a camera its camera.
+// Through glintd the frame is the in-process bytes. A file that is neither
+// a scene nor a model says what Glint reads.
+TEST_F(Cli, AModelFileOpensAsItIs) {
+  const std::string models = "/usr/share/assimp/models/";
+  ASSERT_TRUE(fs::exists(models + "OBJ/WusonOBJ.obj")) << "install assimp-testmodels (make deps)";
+  for (const char* model : {"glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb",
+                            "glTF2/BoxTextured-glTF/BoxTextured.gltf", "OBJ/WusonOBJ.obj", "PLY/Wuson.ply"}) {
+    for (const char* transport : {"whitted", "path"}) {
+      const std::string png = path("model.png");
+      const Result r = glint("render " + models + model + " -q --size 64x48 --samples 2 --transport " + transport +
+                             " -o " + png);
+      ASSERT_EQ(r.status, 0) << model << ": " << r.output;
+      const Image image = decodePng(png);
+      const std::uint8_t* corner = image.rgb.data();  // the background
+      std::size_t shown = 0, lit = 0;
+      for (std::size_t i = 0; i < image.rgb.size(); i += 3) {
+        const bool background = std::equal(corner, corner + 3, image.rgb.data() + i);
+        shown += !background;
+        lit += !background && image.rgb[i] + image.rgb[i + 1] + image.rgb[i + 2] > 3 * 120;
+      }
+      const std::size_t pixels = image.rgb.size() / 3;
+      EXPECT_GT(shown, pixels / 20) << model << " " << transport;
+      EXPECT_LT(shown, pixels) << model << " " << transport;
+      EXPECT_GT(lit, shown / 4) << model << " " << transport;
+    }
+  }
+  const Result obj = glint("info " + models + "OBJ/WusonOBJ.obj --no-raster");
+  EXPECT_NE(obj.output.find("3 lights"), std::string::npos) << obj.output;
+  const Result glb = glint("info " + models + "glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb --no-raster");
+  EXPECT_NE(glb.output.find("image      480x480"), std::string::npos) << glb.output;  // its camera's aspect, 1
+
+  glint::server::test::GlintdProcess glintd;
+  const std::string box = models + "glTF2/BoxTextured-glTF/BoxTextured.gltf --size 48x36 -q -o ";
+  ASSERT_EQ(glint("render " + box + path("here.png")).status, 0);
+  ASSERT_EQ(glint("render " + box + path("there.png") + " --server " + glintd.address()).status, 0);
+  EXPECT_EQ(decodePng(path("here.png")).rgb, decodePng(path("there.png")).rgb);
+
+  std::ofstream(path("notes.txt")) << "not a scene\n";
+  const Result neither = glint("render " + path("notes.txt") + " -o " + path("n.png"));
+  EXPECT_EQ(neither.status, 1);
+  EXPECT_EQ(neither.output, "glint: error: " + path("notes.txt") +
+                                ": neither a Glint scene (JSON, docs/scene-format.md) nor a model file Glint opens "
+                                "(.gltf, .glb, .obj, .ply)\n");
+  EXPECT_FALSE(fs::exists(path("n.png")));
 }
 
 // .pfm and .exr of the in-process full trace hold the tracer's floats (the
