@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Renders the thesis's room through two glintd started on loopback for the
-# occasion (the frame's tiles shared between them), then stops them: what
-# `make demo` runs.
+# occasion (the frame's tiles shared between them), then the Cornell box
+# under path transport, traced in full and as a hybrid frame that reads an
+# irradiance field the two servers fill, compared by FLIP; then stops them:
+# what `make demo` runs.
 # Usage: deploy/local-demo.sh BUILD_DIR OUT_DIR
 set -euo pipefail
 build=${1:-build}
@@ -55,5 +57,21 @@ for scene in room room-gl-floor; do
   echo "  thesis (2008): RT unit ${thesis_rt[$i]} ms, frame ${thesis_frame[$i]} ms"
   i=$((i + 1))
 done
+
+# Light between surfaces: the Cornell box path-traced, every pixel by the
+# two servers; then the hybrid frame, OpenGL drawing the light of an
+# irradiance field whose probes the servers fill, the tracer the rest.
+cornell=(scenes/cornell.json --size 320x320 --server "$first,$second")
 echo
-echo "wrote $out/room.png, $out/room-mask.png, $out/room-provenance.png and the same for room-gl-floor"
+echo "== scene 3: scenes/cornell.json, path transport, every pixel traced (tiles shared by both glintd)"
+"$build/bin/glint" render "${cornell[@]}" --mask all -o "$out/cornell-path.png" \
+  --provenance-out "$out/cornell-path-provenance.png"
+echo
+echo "== scene 3 again: the hybrid frame with an irradiance field (--field 8,256; probes and tiles shared by both glintd)"
+"$build/bin/glint" render "${cornell[@]}" --field 8,256 -o "$out/cornell-field.png" \
+  --mask-out "$out/cornell-field-mask.png" --provenance-out "$out/cornell-field-provenance.png"
+echo "  the two frames compared (FLIP: what a viewer sees flipping between them):"
+"$build/bin/glint" compare "$out/cornell-path.png" "$out/cornell-field.png" | sed 's/^/  /'
+echo
+echo "wrote $out/room.png, $out/room-mask.png, $out/room-provenance.png and the same for room-gl-floor;"
+echo "$out/cornell-path.png, $out/cornell-field.png, their provenance pictures and the field frame's mask"

@@ -367,10 +367,10 @@ TEST_F(Cli, UsageErrorsExitWithTwo) {
             std::string::npos)
       << command.output;
   EXPECT_TRUE(oneLine(command)) << command.output;
-  // info takes the frame options, not render's --threads: said so, not "arguments not expected: 2 --threads".
-  const Result info = glint("info " + scene("room.json") + " --threads 2");
+  // info takes the frame options, not render's --frames: said so, not "arguments not expected: 2 --frames".
+  const Result info = glint("info " + scene("room.json") + " --frames 2");
   EXPECT_EQ(info.status, 2);
-  EXPECT_EQ(info.output, "glint: error: glint info has no option --threads (the options: glint info --help)\n");
+  EXPECT_EQ(info.output, "glint: error: glint info has no option --frames (the options: glint info --help)\n");
   EXPECT_EQ(glint("render " + scene("room.json") + " -o " + path("x.png") + " --eye 1,2").status, 2);
   // A scene or image that is not there is a file error.
   const Result missing = glint("render " + path("missing.json") + " -o " + path("x.png"));
@@ -382,7 +382,7 @@ TEST_F(Cli, UsageErrorsExitWithTwo) {
   // one style, with where the options are listed.
   for (const char* options : {"-o x.jpg", "-o x.png --size 640", "-o x.png --size -5x10",
                               "-o x.png --samples 5 --pattern regular", "-o x.png --adaptive-threshold 0",
-                              "-o x.png --mask bogus", "-o x.png --crop 0,0,700,10", "-o x.exr --encoding srgb",
+                              "-o x.png --mask bogus", "-o x.png --crop 0,0,700,10",
                               "-o x.png --provenance-out p.png", "-o x.png --tls-ca ca.pem", "-o x.png --server 127.0.0.1",
                               "-o x.png --server 127.0.0.1:7878,host:port"}) {
     const Result run = glint("render " + scene("room.json") + " " + options);
