@@ -15,6 +15,7 @@
 #include "common/render/prepared_scene.h"
 #include "common/image/image_decode.h"
 #include "common/scene/scene_load.h"
+#include "tests/support/glint_run.h"
 #include "tests/support/test_support.h"
 
 namespace glint {
@@ -45,6 +46,28 @@ TEST(Docs, ReadmePictureIsTodaysRender) {
   ASSERT_EQ(picture.height, today.height);
   EXPECT_TRUE(picture.rgb == today.rgb) << "docs/images/room.png is not today's render: run build/bin/glint render "
                                            "scenes/room.json --mask all -o docs/images/room.png";
+}
+
+// README.md shows the Cornell box path-traced and as the hybrid frame with an
+// irradiance field: each must be what its command writes today.
+TEST(Docs, ReadmeCornellPicturesAreTodaysRenders) {
+  const std::string readme = readText(test::sourcePath("README.md"));
+  const fs::path dir = fs::temp_directory_path() / "glint_docs_cornell";
+  fs::create_directories(dir);
+  for (const auto& [name, options] : {std::pair<std::string, std::string>{"cornell-path", "--mask all"},
+                                      std::pair<std::string, std::string>{"cornell-field", "--field 8,256"}}) {
+    EXPECT_NE(readme.find("(docs/images/" + name + ".png)"), std::string::npos) << name;
+    const std::string command = "render " + test::sourcePath("scenes/cornell.json") + " --size 256x256 " + options;
+    const test::GlintRun run = test::runGlint(command + " -q -o " + (dir / (name + ".png")).string());
+    ASSERT_EQ(run.status, 0) << run.output;
+    SceneBudget budget;
+    const Image picture =
+        decodeImage(readText(test::sourcePath("docs/images/" + name + ".png")), name + ".png", budget);
+    const Image today = decodeImage(readText((dir / (name + ".png")).string()), name + ".png", budget);
+    EXPECT_TRUE(picture.rgb == today.rgb) << "docs/images/" << name << ".png is not today's render: run "
+                                          << "build/bin/glint " << command << " -o docs/images/" << name << ".png";
+  }
+  fs::remove_all(dir);
 }
 
 // The example at the top of docs/scene-format.md, with the two files it

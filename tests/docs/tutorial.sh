@@ -22,8 +22,8 @@ if ! PATH="$bin:$PATH" bash -euo pipefail tutorial-commands.sh > out.log 2>&1; t
 fi
 cat out.log
 fail() { echo "tutorial.sh: $1" >&2; exit 1; }
-for f in first.png first-mask.png bunny.png bunny-stats.json bunny-near.png bunny-fit.png bunny-farm.png who.png \
-         accuracy/report.md accuracy/accuracy.csv; do
+for f in first.png first-mask.png bunny.png bunny-stats.json bunny-near.png bunny-fit.png engine.png bunny-farm.png \
+         who.png accuracy/report.md accuracy/accuracy.csv cornell-path.png cornell-field.png cornell-field-mask.png; do
   [ -s "tutorial/$f" ] || fail "the tutorial says it writes tutorial/$f; it is missing"
 done
 [ ! -e tutorial/broken.png ] || fail "a broken scene wrote tutorial/broken.png"
@@ -32,4 +32,5 @@ grep -qF 'glint: error: tutorial/broken.json: objects[2].radius: must be > 0' ou
 grep -qF 'glint exited with 1' out.log || fail "the broken scene did not exit with 1, as the tutorial says"
 grep -qF '  bounds     min (' out.log || fail "glint info printed no bounds"
 grep -qF 'the same bytes as in process' out.log || fail "the farm's frame differs from the in-process one"
+grep -qE '^FLIP 0\.0[0-9]+ ' out.log || fail "the Cornell box's two frames are not within the FLIP the tutorial quotes"
 echo "tutorial.sh: every command ran and did what the text says"
