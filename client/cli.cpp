@@ -313,7 +313,7 @@ std::function<void()> declareRender(CLI::App* render) {
       ->default_val(1);
   render->add_flag("-q,--quiet", o.quiet, "No progress, notes or summary on stderr (warnings and errors still show)");
   render->add_flag("--progress", o.progress,
-                   "Show each frame's progress (tiles, each server's share, time left) even when stderr is not a "
+                   "Show each frame's progress (pixels traced, each server's share, time left) even when stderr is not a "
                    "terminal (a line a second) or the frame is short");
   return [options] {
     setComputeThreads(options->threads);

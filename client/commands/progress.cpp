@@ -2,13 +2,16 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+
 namespace glint {
 namespace {
 
 constexpr double kQuietSeconds = 1.0;          // kAuto: a frame shorter than this shows nothing
 constexpr std::chrono::seconds kLineEvery{1};  // kForced, not a terminal: at most a line a second
-// The time left is told once this many units (tiles, probes) have finished
-// after the first one seen: the pace is the rate of those, not the time from the start, which
+// The time left is told once this many units (pixels, probes), and a
+// hundredth of the total, have finished after the first ones seen: the pace
+// is the rate of those, not the time from the start, which
 // holds the set-up (the raster pass, the BVH, an upload) and the first
 // tiles' latency, and once made a 0.7 s frame say "about 38 s left".
 constexpr int kPaceUnits = 2;
@@ -26,11 +29,11 @@ void ProgressLine::clear() {
 
 std::string ProgressLine::text(int done, int total, const Shares& shares, Clock::time_point now) const {
   char numbers[128];
-  std::snprintf(numbers, sizeof numbers, ": %d/%d %s (%d %%), %.1f s", done, total, unit_.c_str(), done * 100 / total,
-                std::chrono::duration<double>(now - start_).count());
+  std::snprintf(numbers, sizeof numbers, ": %d/%d %s (%lld %%), %.1f s", done, total, unit_.c_str(),
+                static_cast<long long>(done) * 100 / total, std::chrono::duration<double>(now - start_).count());
   std::string line = label_ + numbers;
   const int paced = done - paceDone_;
-  if (paceDone_ > 0 && paced >= kPaceUnits && done < total) {
+  if (paceDone_ > 0 && paced >= std::max(kPaceUnits, total / 100) && done < total) {
     const double perTile = std::chrono::duration<double>(now - paceStart_).count() / paced;
     std::snprintf(numbers, sizeof numbers, ", about %.0f s left", perTile * (total - done));
     line += numbers;

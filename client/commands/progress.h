@@ -13,7 +13,7 @@ namespace glint {
 // a pipe) a line at most once a second; kQuiet (--quiet), never.
 enum class ProgressMode { kAuto, kForced, kQuiet };
 
-// One long step's progress line: units done of the total (a frame's tiles
+// One long step's progress line: units done of the total (a frame's pixels
 // traced, an irradiance field's probes filled), the share each server
 // traced, and, once the pace of the units is known, an estimate of the time
 // left.
@@ -23,10 +23,10 @@ class ProgressLine {
   using Clock = std::chrono::steady_clock;
 
   // `label` names the step ("rendering", "frame 3 of 30"), `unit` what it
-  // counts ("tiles"); `terminal`: `out` is one, where a line is redrawn in
+  // counts ("pixels"); `terminal`: `out` is one, where a line is redrawn in
   // place.
   ProgressLine(ProgressMode mode, std::FILE* out, bool terminal, std::string label, Clock::time_point start,
-               std::string unit = "tiles");
+               std::string unit = "pixels");
   // Clears a line drawn in place.
   ~ProgressLine() { clear(); }
   ProgressLine(const ProgressLine&) = delete;
@@ -50,11 +50,11 @@ class ProgressLine {
   std::string unit_;
   Clock::time_point lastLine_{};  // when the last line was printed (not on a terminal)
   bool drawn_ = false;            // a line is drawn in place
-  int paceDone_ = 0;              // the tiles done when the first was seen, and when
+  int paceDone_ = 0;              // the units done when the first were seen, and when
   Clock::time_point paceStart_{};
 };
 
 // stderr, and whether it is a terminal.
-ProgressLine stderrProgress(ProgressMode mode, std::string label, std::string unit = "tiles");
+ProgressLine stderrProgress(ProgressMode mode, std::string label, std::string unit = "pixels");
 
 }  // namespace glint

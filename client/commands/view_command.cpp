@@ -196,7 +196,7 @@ struct TitleProgress {
     const int now = done;
     if (now == shown) return;
     shown = now;
-    Title{"tracing " + std::to_string(now) + " of " + std::to_string(total) + " tiles", where}.show(window);
+    Title{"tracing " + std::to_string(now) + " of " + std::to_string(total) + " pixels", where}.show(window);
   }
 };
 

@@ -135,7 +135,7 @@ void DistributedTileService::linkFailed(ServerLink& link, const LinkFailure& fai
     dispatcher.lose(link.index());
   } else {
     for (const std::size_t tile : dispatcher.distrust(link.index())) frame_->drop(tile);
-    traced(frame_->held());
+    traced(frame_->heldWork());
   }
   dispatchSoon();
 }
@@ -155,7 +155,7 @@ void DistributedTileService::linkResult(ServerLink& link, std::uint32_t frameId,
   if (!d.first) return;
   for (const std::size_t other : d.cancelOn) servers_[other].link->cancel(frameId, std::span(&tileId, 1));
   frame_->hold(tileId, index, std::move(out));
-  traced(frame_->held());
+  traced(frame_->heldWork());
   dispatchSoon();
 }
 

@@ -57,7 +57,7 @@ class DistributedTileService : public TileService, private LinkListener {
               const std::function<void(std::size_t, TileOutput&&)>& done) override;
   // Fills an irradiance field over `bounds` for `frame` in batches of
   // probes the servers trace as tiles (the same dispatch, failover and
-  // report; onTraced counts batches): the same bytes as buildField in
+  // report; onTraced counts their probes): the same bytes as buildField in
   // process. Its report is fieldReport(). Throws InputError as render().
   IrradianceField fillField(const FrameSettings& frame, const Bounds3& bounds, const FieldSettings& settings);
   // Probes a batch of fillField holds.

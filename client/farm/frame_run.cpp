@@ -1,5 +1,7 @@
 #include "client/farm/frame_run.h"
 
+#include "common/render/irradiance_field.h"
+
 namespace glint {
 
 FrameRun::FrameRun(std::uint32_t id, const FrameSettings& settings, const proto::FrameWork& work,
@@ -18,7 +20,15 @@ FrameRun::FrameRun(std::uint32_t id, const FrameSettings& settings, const proto:
       heldFrom_(servers),
       reportBase_(reportBase) {}
 
+namespace {
+
+// The pixels a tile's result holds, or the probes a field's batch's does.
+std::size_t workIn(const TileOutput& out) { return out.rgb.size() / 3 + out.probes.size() / IrradianceField::kProbeFloats; }
+
+}  // namespace
+
 void FrameRun::hold(std::size_t tile, std::size_t server, TileOutput&& out) {
+  heldWork_ += workIn(out);
   outputs_[tile] = std::move(out);
   from_[tile] = server;
   ++held_;
@@ -27,6 +37,7 @@ void FrameRun::hold(std::size_t tile, std::size_t server, TileOutput&& out) {
 
 void FrameRun::drop(std::size_t tile) {
   if (!outputs_[tile]) return;
+  heldWork_ -= workIn(*outputs_[tile]);
   outputs_[tile].reset();
   --held_;
   --heldFrom_[from_[tile]];

@@ -46,6 +46,8 @@ class FrameRun {
   // Drops the result held for `tile`, if one is.
   void drop(std::size_t tile);
   std::size_t held() const { return held_; }
+  // The pixels (or a field's probes) those results hold.
+  std::size_t heldWork() const { return heldWork_; }
   // Of those, how many came from `server`.
   std::size_t heldFrom(std::size_t server) const { return heldFrom_[server]; }
 
@@ -65,6 +67,7 @@ class FrameRun {
   std::vector<std::optional<TileOutput>> outputs_;  // by tile
   std::vector<std::size_t> from_;                   // by tile: the server of the held result
   std::size_t held_ = 0;
+  std::size_t heldWork_ = 0;
   std::vector<std::size_t> heldFrom_;  // by server
   std::size_t reportBase_;
 };

@@ -54,10 +54,7 @@ void TileBackend::fillOnServers(const std::function<void(int, int)>& progress) {
   const Clock::time_point start = Clock::now();
   const FieldGrid grid(loaded_.scene.geometry.bounds(), *frame.tracing.field);
   if (progress) {
-    distributed_->onTraced([&](std::size_t batches) {
-      progress(std::min(grid.probeCount(), static_cast<int>(batches) * DistributedTileService::kBatchProbes),
-               grid.probeCount());
-    });
+    distributed_->onTraced([&](std::size_t probes) { progress(static_cast<int>(probes), grid.probeCount()); });
   }
   field_.emplace(distributed_->fillField(frame, loaded_.scene.geometry.bounds(), *frame.tracing.field));
   distributed_->onTraced({});
@@ -71,7 +68,7 @@ TileBackend::~TileBackend() = default;
 const Scene& TileBackend::scene() const { return prepared_ ? prepared_->scene() : loaded_.scene; }
 
 std::string TileBackend::where() const {
-  if (pool_) return std::to_string(pool_->size()) + " threads";
+  if (pool_) return std::to_string(pool_->size()) + (pool_->size() == 1 ? " thread" : " threads");
   const DistributionReport& report = distributed_->lastFrame();
   if (distributed_->serverCount() == 1 && !report.servers.empty()) return "server " + report.servers[0].address;
   return std::to_string(distributed_->serverCount()) + " servers";

@@ -116,7 +116,7 @@ void composeTile(const TileJob& job, std::size_t index, const TileOutput& out, c
 
 // Sends a set's jobs to the service (in batches when the frame may be
 // cancelled) and collects their outputs; false when cancelled. `before`
-// tiles of `total` were traced in the sets before it.
+// pixels of `total` were traced in the sets before it.
 bool traceTiles(TileService& service, TracedSet& set, const HybridControl& control, int before, int total,
                 HybridResult& result) {
   const CancelCheck& cancelled = control.cancelled;
@@ -136,9 +136,9 @@ bool traceTiles(TileService& service, TracedSet& set, const HybridControl& contr
     if (cancelled && cancelled()) return false;
     const std::span<const TileJob> part(jobs.data() + first, std::min(batch, jobs.size() - first));
     if (control.progress) {
-      const int base = before + static_cast<int>(first);
-      service.onTraced([&, base](std::size_t n) { control.progress(base + static_cast<int>(n), total); });
+      service.onTraced([&, before](std::size_t n) { control.progress(before + static_cast<int>(n), total); });
     }
+    for (const TileJob& job : part) before += static_cast<int>(tracedPixels(job));
     service.render(set.frame, part, [&](std::size_t i, TileOutput&& out) {
       result.rays += out.rays;
       computeMs += out.computeMs;
@@ -299,10 +299,11 @@ bool renderHybrid(const gl::Api& gl, gl::RasterScene& raster, TileService& servi
   std::array<TracedSet, 2> sets = tracedSets(frame, mask);
   markFrame(gl, raster, frame, mask, window, tileSize, sets, result);
   service.beginFrame();
+  const int pixels = static_cast<int>(sets[0].pixels + sets[1].pixels);
   int before = 0;
   for (TracedSet& set : sets) {
-    if (!traceTiles(service, set, control, before, result.tiles, result)) return false;
-    before += static_cast<int>(set.jobs.size());
+    if (!traceTiles(service, set, control, before, pixels, result)) return false;
+    before += static_cast<int>(set.pixels);
   }
 
   const Clock::time_point composeStart = Clock::now();

@@ -47,8 +47,8 @@ struct HybridResult {
 using CancelCheck = std::function<bool()>;
 
 // What the caller of a hybrid frame may ask of it: `cancelled` (see
-// renderHybrid), and `progress`, told (tiles traced, tiles in all) as the
-// frame's traced tiles come in, never concurrently.
+// renderHybrid), and `progress`, told (pixels traced, pixels to trace) as
+// the frame's traced pixels come in, never concurrently.
 struct HybridControl {
   CancelCheck cancelled;
   std::function<void(int, int)> progress;

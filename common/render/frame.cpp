@@ -27,7 +27,8 @@ FrameResult renderFrame(TileService& service, const FrameSettings& frame, const 
     ~Progress() { service.onTraced({}); }
   } progress{service};
   if (options.progress) {
-    service.onTraced([&](std::size_t n) { options.progress(static_cast<int>(n), static_cast<int>(jobs.size())); });
+    const auto pixels = static_cast<int>(window.pixelCount());
+    service.onTraced([&, pixels](std::size_t n) { options.progress(static_cast<int>(n), pixels); });
   }
   service.render(frame, jobs, [&](std::size_t i, TileOutput&& out) {
     const TileRect& rect = jobs[i].rect;

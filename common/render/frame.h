@@ -18,7 +18,7 @@ struct FrameOptions {
   // The pixels rendered (--crop); none: the whole frame. The image is the
   // window's size.
   std::optional<TileRect> window;
-  // Called as tiles are traced with (tiles traced, tiles in all), never
+  // Called as pixels are traced with (pixels traced, pixels in all), never
   // concurrently (TileService::onTraced: the count falls when a lying
   // server's tiles are to be traced again).
   std::function<void(int, int)> progress;

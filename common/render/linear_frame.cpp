@@ -14,12 +14,16 @@ LinearImage renderLinear(const Renderer& renderer, ThreadPool& pool, RayStats& s
   const float hi = range == LinearRange::kClamped ? 1.0f : std::numeric_limits<float>::max();
   const float lo = range == LinearRange::kClamped ? 0.0f : -hi;
   std::mutex statsMutex;
-  int done = 0;
+  std::size_t done = 0;  // pixels
+  const Renderer::RowTraced rowTraced = [&](std::size_t n) {
+    std::lock_guard lock(statsMutex);
+    options.progress(static_cast<int>(done += n), static_cast<int>(window.pixelCount()));
+  };
   pool.parallelFor(tiles.size(), [&](std::size_t t) {
     const TileRect& r = tiles[t];
     RayStats tileStats;
     std::vector<glm::vec3> linear;
-    renderer.renderTileLinear(r, {}, linear, tileStats);
+    renderer.renderTileLinear(r, {}, linear, tileStats, options.progress ? rowTraced : Renderer::RowTraced{});
     std::size_t i = 0;
     for (int y = r.y; y < r.y + r.height; ++y) {
       for (int x = r.x; x < r.x + r.width; ++x, ++i) {
@@ -30,7 +34,6 @@ LinearImage renderLinear(const Renderer& renderer, ThreadPool& pool, RayStats& s
     }
     std::lock_guard lock(statsMutex);
     stats += tileStats;
-    if (options.progress) options.progress(++done, static_cast<int>(tiles.size()));
   });
   return image;
 }

@@ -183,25 +183,29 @@ void Renderer::renderAdaptive(const TileRect& rect, std::span<const std::uint8_t
 }
 
 void Renderer::renderTileLinear(const TileRect& rect, std::span<const std::uint8_t> mask, std::vector<glm::vec3>& out,
-                                RayStats& stats) const {
+                                RayStats& stats, const RowTraced& rowTraced) const {
+  const std::size_t before = out.size();
   if (frame_.sampling.pattern == SamplePattern::kAdaptive || frame_.sampling.pattern == SamplePattern::kPerceptual) {
-    renderAdaptive(rect, mask, out, stats);
+    renderAdaptive(rect, mask, out, stats);  // its pixels wait for their neighbours: told at once
+    if (rowTraced) rowTraced(out.size() - before);
     return;
   }
   std::size_t i = 0;
   for (int y = rect.y; y < rect.y + rect.height; ++y) {
+    const std::size_t rowStart = out.size();
     for (int x = rect.x; x < rect.x + rect.width; ++x, ++i) {
       if (!mask.empty() && !maskBit(mask, i)) continue;
       out.push_back(pixel(x, y, stats));
     }
+    if (rowTraced && out.size() > rowStart) rowTraced(out.size() - rowStart);
   }
 }
 
-void Renderer::renderTile(const TileRect& rect, std::span<const std::uint8_t> mask,
-                          std::vector<std::uint8_t>& rgb, RayStats& stats) const {
+void Renderer::renderTile(const TileRect& rect, std::span<const std::uint8_t> mask, std::vector<std::uint8_t>& rgb,
+                          RayStats& stats, const RowTraced& rowTraced) const {
   std::vector<glm::vec3> linear;
   linear.reserve(rect.pixelCount());
-  renderTileLinear(rect, mask, linear, stats);
+  renderTileLinear(rect, mask, linear, stats, rowTraced);
   const Encoder encoder(frame_.output);
   for (const glm::vec3& c : linear) {
     rgb.push_back(encoder.byte(c.r));

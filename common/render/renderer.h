@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <vector>
@@ -37,15 +38,19 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
+  // Told, on the tracing thread, as each row of a tile is traced: how many
+  // of its pixels were (a frame's progress finer than its tiles).
+  using RowTraced = std::function<void(std::size_t pixels)>;
+
   // The tile interface, called the same way in-process, by the server and by
   // the GL client: traces the pixels of `rect` whose mask bit is set (every
   // pixel for an empty mask) and appends their RGB8 values to `rgb` in scan
   // order, 3 bytes per pixel.
-  void renderTile(const TileRect& rect, std::span<const std::uint8_t> mask,
-                  std::vector<std::uint8_t>& rgb, RayStats& stats) const;
+  void renderTile(const TileRect& rect, std::span<const std::uint8_t> mask, std::vector<std::uint8_t>& rgb,
+                  RayStats& stats, const RowTraced& rowTraced = {}) const;
   // The same pixels as linear colour (before clamping and rounding).
   void renderTileLinear(const TileRect& rect, std::span<const std::uint8_t> mask, std::vector<glm::vec3>& out,
-                        RayStats& stats) const;
+                        RayStats& stats, const RowTraced& rowTraced = {}) const;
 
   // Linear colour of pixel (x, y): the filtered average of its samples
   // (regular, jittered and sobol patterns; the adaptive ones need their

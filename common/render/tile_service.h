@@ -49,10 +49,11 @@ class TileService {
   virtual void render(const FrameSettings& frame, std::span<const TileJob> jobs,
                       const std::function<void(std::size_t, TileOutput&&)>& done) = 0;
   // Progress: `traced(n)` is told, never concurrently, that n of the current
-  // render()'s jobs are traced, as they are. done() may come later: a
-  // distributed service holds outputs until its frame is whole, so that the
-  // tiles of a server caught lying meanwhile are traced again (n then falls).
-  // {} clears it.
+  // render()'s pixels are traced (tracedPixels of its jobs; probes of a
+  // field's batches), as they are: in process row by row, from servers tile
+  // by tile. done() may come later: a distributed service holds outputs
+  // until its frame is whole, so that the tiles of a server caught lying
+  // meanwhile are traced again (n then falls). {} clears it.
   void onTraced(std::function<void(std::size_t)> traced) { traced_ = std::move(traced); }
   // Tiles traced at once (threads of the pool or of the server).
   virtual int parallelism() const = 0;

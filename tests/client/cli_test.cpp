@@ -122,7 +122,7 @@ TEST_F(Cli, ProgressLinesWhenAskedAndNothingWhenQuiet) {
   const Result shown = glint(args + " --progress -o " + path("shown.png"));
   ASSERT_EQ(shown.status, 0) << shown.output;
   EXPECT_NE(shown.output.find("frame 1 of 2: "), std::string::npos) << shown.output;
-  const std::size_t last = shown.output.find("frame 2 of 2: 20/20 tiles (100 %)");
+  const std::size_t last = shown.output.find("frame 2 of 2: 76800/76800 pixels (100 %)");
   ASSERT_NE(last, std::string::npos) << shown.output;
   const std::string lastLine = shown.output.substr(last, shown.output.find('\n', last) - last);
   // Each server that traced some of it, with its share: the shares add up to
@@ -138,7 +138,7 @@ TEST_F(Cli, ProgressLinesWhenAskedAndNothingWhenQuiet) {
 
   const Result unasked = glint(args + " -o " + path("unasked.png"));
   ASSERT_EQ(unasked.status, 0) << unasked.output;
-  EXPECT_EQ(unasked.output.find("tiles ("), std::string::npos) << unasked.output;  // not a terminal
+  EXPECT_EQ(unasked.output.find("pixels ("), std::string::npos) << unasked.output;  // not a terminal
   const Result quiet = glint(args + " --progress --quiet -o " + path("quiet.png"));
   ASSERT_EQ(quiet.status, 0) << quiet.output;
   EXPECT_EQ(quiet.output, "");
@@ -146,8 +146,25 @@ TEST_F(Cli, ProgressLinesWhenAskedAndNothingWhenQuiet) {
 
   const Result hybrid = glint("render " + scene("room.json") + " --size 160x120 --progress -o " + path("h.png"));
   ASSERT_EQ(hybrid.status, 0) << hybrid.output;
-  EXPECT_NE(hybrid.output.find("rendering: "), std::string::npos) << hybrid.output;  // the traced tiles'
-  EXPECT_NE(hybrid.output.find("tiles (100 %)"), std::string::npos) << hybrid.output;
+  EXPECT_NE(hybrid.output.find("rendering: "), std::string::npos) << hybrid.output;  // the traced pixels'
+  EXPECT_NE(hybrid.output.find("pixels (100 %)"), std::string::npos) << hybrid.output;
+}
+
+// Progress is counted in pixels as they are traced, not in tiles: a path
+// trace of one tile on one thread that takes seconds prints a line about
+// every second while its one tile is traced, each further on than the last.
+TEST_F(Cli, ProgressComesEverySecondWithinATile) {
+  const Result run = glint("render " + scene("cornell.json") + " --size 64x64 --samples 512 --threads 1 --progress -o " +
+                           path("p.png"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  std::vector<int> done;
+  for (std::size_t at = run.output.find("rendering: "); at != std::string::npos;
+       at = run.output.find("rendering: ", at + 1)) {
+    done.push_back(std::stoi(run.output.substr(at + 11)));
+  }
+  ASSERT_GE(done.size(), 3u) << run.output;  // two while the tile is traced, and the last
+  EXPECT_EQ(done.back(), 64 * 64) << run.output;
+  for (std::size_t i = 1; i < done.size(); ++i) EXPECT_GT(done[i], done[i - 1]) << run.output;
 }
 
 TEST_F(Cli, HybridRenderWritesImageMaskAndStepTimes) {

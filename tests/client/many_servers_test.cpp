@@ -159,8 +159,8 @@ TEST(ManyServers, AServerKilledMidFillLeavesItsBatchesToTheOthers) {
   DistributedTileService service(resolveServers(farm.addresses()), cornell.bundle);
   service.awaitServers(std::chrono::seconds(10));
   ::kill(farm.a.pid(), SIGSTOP);
-  service.onTraced([&farm](std::size_t batches) {
-    if (batches == 2) ::kill(farm.a.pid(), SIGKILL);
+  service.onTraced([&farm](std::size_t probes) {
+    if (probes == 2 * DistributedTileService::kBatchProbes) ::kill(farm.a.pid(), SIGKILL);
   });
   const IrradianceField there = service.fillField(frame, cornell.scene.geometry.bounds(), settings);
   EXPECT_EQ(probeFloats(there), probeFloats(here));

@@ -39,7 +39,7 @@ TEST(ProgressLine, OnATerminalALongFrameIsRedrawnInPlaceAndClearedAtTheEnd) {
     line.update(
         4, 10, [] { return std::string("a 25 %, b 75 %"); }, t0 + milliseconds(2000));
   }
-  EXPECT_EQ(out.text(), "\r\033[Krendering: 4/10 tiles (40 %), 2.0 s, about 3 s left; a 25 %, b 75 %\r\033[K");
+  EXPECT_EQ(out.text(), "\r\033[Krendering: 4/10 pixels (40 %), 2.0 s, about 3 s left; a 25 %, b 75 %\r\033[K");
 }
 
 TEST(ProgressLine, OffATerminalOnlyProgressPrintsLinesAtMostOneASecondAndTheLast) {
@@ -59,15 +59,15 @@ TEST(ProgressLine, OffATerminalOnlyProgressPrintsLinesAtMostOneASecondAndTheLast
     line.update(4, 4, {}, t0 + milliseconds(1300));  // the last: always
   }
   EXPECT_EQ(forced.text(),
-            "frame 2 of 3: 1/4 tiles (25 %), 0.1 s\n"
-            "frame 2 of 3: 3/4 tiles (75 %), 1.2 s, about 1 s left\n"
-            "frame 2 of 3: 4/4 tiles (100 %), 1.3 s\n");
+            "frame 2 of 3: 1/4 pixels (25 %), 0.1 s\n"
+            "frame 2 of 3: 3/4 pixels (75 %), 1.2 s, about 1 s left\n"
+            "frame 2 of 3: 4/4 pixels (100 %), 1.3 s\n");
 }
 
-// The time left comes from the pace of the tiles after the first: a first
-// tile that arrives late (the set-up, a server's latency) says nothing of the
-// rest, and one tile is no pace.
-TEST(ProgressLine, TheTimeLeftWaitsForThePaceOfTheTiles) {
+// The time left comes from the pace of the units after the first: a first
+// unit that arrives late (the set-up, a server's latency) says nothing of the
+// rest, and one unit is no pace.
+TEST(ProgressLine, TheTimeLeftWaitsForThePaceOfTheUnits) {
   Written out;
   {
     ProgressLine line(ProgressMode::kForced, out.file(), false, "rendering", t0);
@@ -77,10 +77,10 @@ TEST(ProgressLine, TheTimeLeftWaitsForThePaceOfTheTiles) {
     line.update(100, 100, {}, t0 + milliseconds(5700));
   }
   EXPECT_EQ(out.text(),
-            "rendering: 1/100 tiles (1 %), 0.7 s\n"
-            "rendering: 2/100 tiles (2 %), 1.7 s\n"
-            "rendering: 41/100 tiles (41 %), 2.7 s, about 3 s left\n"
-            "rendering: 100/100 tiles (100 %), 5.7 s\n");
+            "rendering: 1/100 pixels (1 %), 0.7 s\n"
+            "rendering: 2/100 pixels (2 %), 1.7 s\n"
+            "rendering: 41/100 pixels (41 %), 2.7 s, about 3 s left\n"
+            "rendering: 100/100 pixels (100 %), 5.7 s\n");
 }
 
 // An irradiance field's probes, counted in their own word; the line is
