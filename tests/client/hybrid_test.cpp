@@ -842,9 +842,10 @@ TEST(Hybrid, CancelledFrameStopsTracing) {
   EXPECT_EQ(checked.image.rgb, plain.image.rgb);
 }
 
-// Progress counts the frame's traced tiles across its traced sets, never
-// backwards, up to the tiles it sent, and changes nothing in the image.
-TEST(Hybrid, ProgressCountsEveryTracedTileOnce) {
+// Progress counts the frame's traced pixels across its traced sets, row by
+// row, never backwards, up to the pixels it traced, and changes nothing in
+// the image.
+TEST(Hybrid, ProgressCountsEveryTracedPixelOnce) {
   SceneSetup s = load("scenes/room.json", 320, 240);
   const PreparedScene prepared(s.loaded.scene, BvhSettings{});
   ThreadPool pool(2);
@@ -859,11 +860,12 @@ TEST(Hybrid, ProgressCountsEveryTracedTileOnce) {
   ASSERT_TRUE(
       renderHybrid(context.api(), raster, local, s.frame, prepared.scene().mask, 32, shown, std::nullopt, control));
   EXPECT_EQ(shown.image.rgb, plain.image.rgb);
-  ASSERT_EQ(told.size(), static_cast<std::size_t>(shown.tiles));  // once per tile
+  ASSERT_GT(told.size(), static_cast<std::size_t>(shown.tiles));  // row by row, finer than the tiles
   for (std::size_t i = 0; i < told.size(); ++i) {
-    EXPECT_EQ(told[i].first, static_cast<int>(i) + 1);
-    EXPECT_EQ(told[i].second, shown.tiles);
+    EXPECT_GT(told[i].first, i == 0 ? 0 : told[i - 1].first) << i;
+    EXPECT_EQ(told[i].second, static_cast<int>(shown.maskedPixels)) << i;
   }
+  EXPECT_EQ(told.back().first, static_cast<int>(shown.maskedPixels));
 }
 
 // A result passed back frame after frame (to keep its buffers) holds each
