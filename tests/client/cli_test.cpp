@@ -158,13 +158,21 @@ TEST_F(Cli, ProgressComesEverySecondWithinATile) {
                            path("p.png"));
   ASSERT_EQ(run.status, 0) << run.output;
   std::vector<int> done;
+  std::size_t last = std::string::npos;
   for (std::size_t at = run.output.find("rendering: "); at != std::string::npos;
        at = run.output.find("rendering: ", at + 1)) {
     done.push_back(std::stoi(run.output.substr(at + 11)));
+    last = at;
   }
-  ASSERT_GE(done.size(), 3u) << run.output;  // two while the tile is traced, and the last
+  ASSERT_FALSE(done.empty()) << run.output;
   EXPECT_EQ(done.back(), 64 * 64) << run.output;
   for (std::size_t i = 1; i < done.size(); ++i) EXPECT_GT(done[i], done[i - 1]) << run.output;
+  // The last line's time: a line at 0 s, one a second after, and the last.
+  const std::size_t time = run.output.find("(100 %), ", last);
+  ASSERT_NE(time, std::string::npos) << run.output;
+  const double seconds = std::stod(run.output.substr(time + 9));
+  ASSERT_GE(seconds, 1.5) << "too fast a machine to see it: raise --samples";
+  EXPECT_GE(done.size(), static_cast<std::size_t>(seconds) + 1) << run.output;
 }
 
 TEST_F(Cli, HybridRenderWritesImageMaskAndStepTimes) {
