@@ -134,12 +134,12 @@ void addCameraOptions(CLI::App* app, FrameOverrides& o) {
   vec("--eye", o.eye, "The camera's position (default: the scene's)");
   vec("--look-at", o.lookAt, "The point the camera looks at");
   vec("--up", o.up, "The camera's up direction");
-  app->add_option("--fov", o.fovY, "Vertical field of view in degrees, " + fovRange().substr(8))
+  app->add_option("--fov", o.fovY, "Vertical field of view in degrees, in " + fovRange())
       ->check(CLI::Validator(
           [](const std::string& v) {
             char* end = nullptr;
             const float fov = std::strtof(v.c_str(), &end);  // not a number: CLI11's conversion says so
-            return *end != '\0' || (fov > 0.0f && fov <= kMaxFovY) ? std::string() : fovRange();
+            return *end != '\0' || (fov > 0.0f && fov <= kMaxFovY) ? std::string() : "must be in " + fovRange();
           },
           "", "fov"));
   app->add_flag("--fit", o.fit,

@@ -11,13 +11,13 @@
 
 namespace glint {
 
-std::string fovRange() { return "must be in (0, " + std::to_string(static_cast<int>(kMaxFovY)) + "]"; }
+std::string fovRange() { return "(0, " + std::to_string(static_cast<int>(kMaxFovY)) + "]"; }
 
 std::string cameraProblem(const CameraSpec& c) {
   if (!allFinite(c.eye)) return "eye: must be finite";
   if (!allFinite(c.lookAt)) return "look_at: must be finite";
   if (!allFinite(c.up)) return "up: must be finite";
-  if (!(c.fovY > 0.0f && c.fovY <= kMaxFovY)) return "fov_y: " + fovRange();
+  if (!(c.fovY > 0.0f && c.fovY <= kMaxFovY)) return "fov_y: must be in " + fovRange();
   if (!(c.aperture >= 0.0f && std::isfinite(c.aperture))) return "aperture: must be a finite number >= 0";
   if (!(c.focusDistance > 0.0f && std::isfinite(c.focusDistance))) return "focus_distance: must be a finite number > 0";
   const glm::vec3 forward = c.lookAt - c.eye;

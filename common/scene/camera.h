@@ -29,7 +29,7 @@ struct CameraSpec {
 // What makes a camera unusable, as "field: what is wrong" ("up: must not be
 // the zero vector"), or "" for a good camera. Fields are the scene format's.
 std::string cameraProblem(const CameraSpec& spec);
-// The words of fov_y's range: "must be in (0, 179]".
+// fov_y's range in words: "(0, 179]".
 std::string fovRange();
 
 // The camera moved along its viewing direction so that the sphere around

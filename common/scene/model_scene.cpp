@@ -95,9 +95,9 @@ std::string sceneTextFor(const std::filesystem::path& path, FileSource& folder) 
   const std::string name = path.filename().string();
   const std::string ext = lowerExtension(path);
   if (isModel(ext)) {
-    const std::string& bytes = folder.read(name, "model file");  // a missing file is named as one
-    const bool gltf = ext == ".gltf" || ext == ".glb";
-    return modelScene(name, gltf ? authoredIn(bytes, name) : Authored{});
+    if (ext == ".gltf" || ext == ".glb") return modelScene(name, authoredIn(folder.read(name, "model file"), name));
+    if (!folder.has(name)) folder.read(name, "model file");  // throws: a missing file is named as one
+    return modelScene(name, Authored{});
   }
   const std::string& text = folder.read(name, "scene file");
   const std::size_t first = text.find_first_not_of(" \t\r\n");

@@ -120,19 +120,27 @@ double referenceError(const fs::path& report) {
   return at == std::string::npos ? -1.0 : std::stod(text.substr(at + 8));
 }
 
+// A sweep of `scene` (in the tree) into `dir`: one frame a row, the
+// reference of `referenceSamples`, the frame `width` x `height`.
+AccuracyOptions smallSweep(const std::string& scene, const fs::path& dir, std::vector<std::string> vary,
+                           int referenceSamples, int width, int height) {
+  AccuracyOptions o;
+  o.scene = test::sourcePath(scene);
+  o.outDir = dir.string();
+  o.vary = std::move(vary);
+  o.referenceSamples = referenceSamples;
+  o.frames = 1;
+  o.frame.width = width;
+  o.frame.height = height;
+  return o;
+}
+
 // From 16 to 64 jittered samples the error against the reference falls by
 // more than 1.4x and less than 4x (plain Monte Carlo: 2x), the time rises,
 // and the reference's own error is below the 64-sample row's.
 TEST(Accuracy, ErrorFallsWithSamplesOnASmallScene) {
   const fs::path dir = fs::temp_directory_path() / ("glint-accuracy-" + std::to_string(::getpid()));
-  AccuracyOptions o;
-  o.scene = test::sourcePath("scenes/glass.json");
-  o.outDir = dir.string();
-  o.vary = {"samples=16,64", "pattern=jittered"};
-  o.referenceSamples = 512;
-  o.frames = 1;
-  o.frame.width = 64;
-  o.frame.height = 48;
+  AccuracyOptions o = smallSweep("scenes/glass.json", dir, {"samples=16,64", "pattern=jittered"}, 512, 64, 48);
   runAccuracy(o);
   const std::vector<CsvRow> rows = readCsv(dir / "accuracy.csv");
   ASSERT_EQ(rows.size(), 3u);
@@ -178,14 +186,7 @@ TEST(Accuracy, ErrorFallsWithSamplesOnASmallScene) {
 TEST(Accuracy, TheFlipColumnIsThePngsFlipUnderEitherEncoding) {
   for (const Encoding encoding : {Encoding::kSrgb, Encoding::kLinear}) {
     const fs::path dir = fs::temp_directory_path() / ("glint-accuracy-png-" + std::to_string(::getpid()));
-    AccuracyOptions o;
-    o.scene = test::sourcePath("scenes/room.json");
-    o.outDir = dir.string();
-    o.vary = {"samples=1,4"};
-    o.referenceSamples = 16;
-    o.frames = 1;
-    o.frame.width = 40;
-    o.frame.height = 30;
+    AccuracyOptions o = smallSweep("scenes/room.json", dir, {"samples=1,4"}, 16, 40, 30);
     o.frame.encoding = encoding;
     runAccuracy(o);
     const std::vector<CsvRow> rows = readCsv(dir / "accuracy.csv");
@@ -208,14 +209,7 @@ TEST(Accuracy, TheFlipColumnIsThePngsFlipUnderEitherEncoding) {
 // samples against a 32-sample reference), a row far above it is not.
 TEST(Accuracy, TheReferenceTakesTheScenesPatternAndNamesRowsNearItsNoise) {
   const fs::path dir = fs::temp_directory_path() / ("glint-accuracy-noise-" + std::to_string(::getpid()));
-  AccuracyOptions o;
-  o.scene = test::sourcePath("scenes/cornell.json");
-  o.outDir = dir.string();
-  o.vary = {"samples=1,16"};
-  o.referenceSamples = 32;
-  o.frames = 1;
-  o.frame.width = 48;
-  o.frame.height = 48;
+  AccuracyOptions o = smallSweep("scenes/cornell.json", dir, {"samples=1,16"}, 32, 48, 48);
   runAccuracy(o);
   std::ifstream in(dir / "report.md");
   const std::string report((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -237,14 +231,8 @@ TEST(Accuracy, TheReferenceTakesTheScenesPatternAndNamesRowsNearItsNoise) {
 // scene's sobol pattern.
 TEST(Accuracy, UnderPathTransportTheModelsErrorShows) {
   const fs::path dir = fs::temp_directory_path() / ("glint-accuracy-path-" + std::to_string(::getpid()));
-  AccuracyOptions o;
-  o.scene = test::sourcePath("scenes/cornell.json");
-  o.outDir = dir.string();
-  o.vary = {"transport=whitted,path", "max_bounces=0,8"};
-  o.referenceSamples = 256;
-  o.frames = 1;
-  o.frame.width = 40;
-  o.frame.height = 40;
+  AccuracyOptions o =
+      smallSweep("scenes/cornell.json", dir, {"transport=whitted,path", "max_bounces=0,8"}, 256, 40, 40);
   o.frame.samples = 16;
   runAccuracy(o);
   const std::vector<CsvRow> rows = readCsv(dir / "accuracy.csv");
@@ -276,14 +264,7 @@ std::string accuracyError(const AccuracyOptions& o) {
 // counts its field's fill. The field's keys refuse a Whitted scene.
 TEST(Accuracy, TheFieldsRowsAreHybridFramesDrawnFromIt) {
   const fs::path dir = fs::temp_directory_path() / ("glint-accuracy-field-" + std::to_string(::getpid()));
-  AccuracyOptions o;
-  o.scene = test::sourcePath("scenes/cornell.json");
-  o.outDir = dir.string();
-  o.vary = {"field_rays=64,1024", "mask_rule=all"};
-  o.referenceSamples = 256;
-  o.frames = 1;
-  o.frame.width = 48;
-  o.frame.height = 48;
+  AccuracyOptions o = smallSweep("scenes/cornell.json", dir, {"field_rays=64,1024", "mask_rule=all"}, 256, 48, 48);
   o.frame.samples = 16;
   o.frame.field = FieldSettings{8, 256};
   runAccuracy(o);
