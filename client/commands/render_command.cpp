@@ -135,7 +135,7 @@ void printSummary(const RenderOptions& options, const FrameSettings& frame, cons
                options.output.c_str());
   if (rays.paths > 0) {
     std::fprintf(stderr, "paths: %.2f bounces a path, %llu the longest, %.2f M light samples\n",
-                 static_cast<double>(rays.reflection + rays.refraction) / static_cast<double>(rays.paths),
+                 static_cast<double>(rays.pathBounces) / static_cast<double>(rays.paths),
                  static_cast<unsigned long long>(rays.longestPath), static_cast<double>(rays.lightSamples) / 1e6);
   }
   if (options.frames > 1) printTimingTable(frameTimes, hybrid);

@@ -613,6 +613,22 @@ TEST_F(Cli, TheFieldDrawsIndirectLightInTheHybridFrame) {
   EXPECT_FALSE(fs::exists(path("bad.png")));
 }
 
+// The line after a render and --stats say the same of the frame's paths, a
+// mean no longer than the longest, though the room's mirror adds Whitted
+// reflection rays beside them.
+TEST_F(Cli, ThePathLineAgreesWithTheStats) {
+  const Result run = glint("render " + scene("room-path.json") + " --size 64x48 --samples 4 --field 8,64 --stats " +
+                           path("stats.json") + " -o " + path("room.png"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  std::ifstream statsFile(path("stats.json"));
+  const auto paths = nlohmann::json::parse(statsFile)["paths"];
+  const std::size_t line = run.output.find("paths: ");
+  ASSERT_NE(line, std::string::npos) << run.output;
+  const double mean = std::stod(run.output.substr(line + 7));
+  EXPECT_NEAR(mean, paths["bounces_mean"].get<double>(), 0.005) << run.output;
+  EXPECT_LE(mean, paths["bounces_max"].get<double>()) << run.output;
+}
+
 // --fit frames every object as the scene's "fit": true does: the same image.
 TEST_F(Cli, FitFromTheCommandLineOrTheScene) {
   std::string text = kTwoObjects;
