@@ -167,8 +167,9 @@ void cropRows(std::vector<std::uint8_t>& rgb, int frameWidth, const TileRect& wi
 // OpenGL shades whose point is not proved to see every area light whole:
 // the penumbra and umbra (client/raster/penumbra_proof.h). A block of pixels
 // is proved at once where it can be (one region query for all its points);
-// one that cannot be is cut in four, down to kSmallestBlock pixels a side,
-// then proved pixel by pixel. The blocks' rows are shared out on the
+// in one that cannot be, each pixel whose ray to a light's middle is blocked
+// is marked at once (most of the umbra), and the block is cut in four, down
+// to kSmallestBlock pixels a side, then proved pixel by pixel. The blocks' rows are shared out on the
 // compute pool.
 constexpr int kProofBlock = 8;
 constexpr int kSmallestBlock = 4;
@@ -188,6 +189,11 @@ void markPenumbraBlock(const gl::RasterScene& raster, const gl::RasterScene::Pix
   }
   if (at.empty()) return;
   if (at.size() > 1 && raster.penumbra().allSeeWhole(at, frame.camera.eye)) return;
+  if (size == kProofBlock) {
+    for (std::size_t k = 0; k < at.size(); ++k) {
+      if (raster.penumbra().plainlyBlocked(at[k], frame.camera.eye)) result.mask[pixels[k]] = kShadowEdgePixel;
+    }
+  }
   if (size > kSmallestBlock) {
     const int half = size / 2;
     for (int q = 0; q < 4; ++q) {
@@ -196,7 +202,9 @@ void markPenumbraBlock(const gl::RasterScene& raster, const gl::RasterScene::Pix
     return;
   }
   for (std::size_t k = 0; k < at.size(); ++k) {
-    if (!raster.penumbra().seesWhole(at[k], frame.camera.eye)) result.mask[pixels[k]] = kShadowEdgePixel;
+    if (result.mask[pixels[k]] == kRasterPixel && !raster.penumbra().seesWhole(at[k], frame.camera.eye)) {
+      result.mask[pixels[k]] = kShadowEdgePixel;
+    }
   }
 }
 

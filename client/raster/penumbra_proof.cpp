@@ -207,6 +207,23 @@ bool PenumbraProof::seesWhole(const glm::vec3& p, const glm::vec3& eye) const {
   return true;
 }
 
+bool PenumbraProof::plainlyBlocked(const glm::vec3& p, const glm::vec3& eye) const {
+  for (const SoftLight& light : lights_) {
+    const View view = viewOf(light, p, eye);
+    if (view.kind != View::Kind::kPyramid) continue;
+    const auto blocked = [&](const glm::vec3& q) {
+      const glm::vec3 toQ = q - view.apex;
+      const float length = glm::length(toQ);
+      return length > 0.0f && bvh_.occluded(Ray(view.apex, toQ / length), length);
+    };
+    if (blocked(view.centre)) return true;
+    for (const glm::vec3& corner : view.base.corners) {
+      if (blocked(corner)) return true;
+    }
+  }
+  return false;
+}
+
 namespace {
 
 // The plane of outward unit normal n that has every point on its inner
@@ -219,19 +236,37 @@ glm::vec4 planeAround(const glm::vec3& n, const std::vector<glm::vec3>& points) 
 
 }  // namespace
 
-// A region around every pyramid of a block of points: the planes of the
-// middle one's faces and of the box, each moved out to take in every
-// pyramid's corners (a pyramid is their hull), the corners all of those.
-ConvexRegion PenumbraProof::regionAround(const std::vector<View>& views) {
-  ConvexRegion region;
-  region.corners.insert(region.corners.end(), views.front().base.corners.begin(), views.front().base.corners.end());
-  for (const View& v : views) {
-    region.corners.push_back(v.apex);
-    // An area light's base is the same from every apex: its corners once.
-    if (v.base.corners != views.front().base.corners) {
-      region.corners.insert(region.corners.end(), v.base.corners.begin(), v.base.corners.end());
+// Points whose hull holds every pyramid of a block. A sphere light's base
+// turns with the apex: every pyramid's corners. An area light's base is the
+// same from every apex, and an emitter's is drawn towards its apex by
+// `keep`, which is affine in the apex: with the apexes in their box, the
+// bases' corners lie in the boxes those corners have from the box's eight
+// corners, whatever the block's size.
+std::vector<glm::vec3> PenumbraProof::cornersAround(const SoftLight& light, const std::vector<View>& views) {
+  std::vector<glm::vec3> corners;
+  if (light.radius > 0.0f) {
+    for (const View& v : views) {
+      corners.push_back(v.apex);
+      corners.insert(corners.end(), v.base.corners.begin(), v.base.corners.end());
     }
+    return corners;
   }
+  Bounds3 apexes;
+  for (const View& v : views) apexes.expand(v.apex);
+  const float keep = light.emitter ? 1.0f - Emitters::kShortOfEmitter : 1.0f;
+  for (const glm::vec3& b : apexes.corners()) {
+    corners.push_back(b);
+    for (const glm::vec3& c : light.corners) corners.push_back(light.emitter ? b + keep * (c - b) : c);
+  }
+  return corners;
+}
+
+// A region around every pyramid of a block of points: the planes of the
+// middle one's faces and of the box, each moved out to take in the points
+// that hold every pyramid (a pyramid is their hull), the corners those.
+ConvexRegion PenumbraProof::regionAround(const SoftLight& light, const std::vector<View>& views) {
+  ConvexRegion region;
+  region.corners = cornersAround(light, views);
   const View& middle = views[views.size() / 2];
   const glm::vec3 inside = 0.5f * (middle.apex + middle.centre);
   region.planes.push_back(planeAround(-middle.base.normal, region.corners));
@@ -261,7 +296,7 @@ bool PenumbraProof::allSeeWhole(std::span<const glm::vec3> points, const glm::ve
       if (view.kind == View::Kind::kPyramid) views.push_back(view);
     }
     if (views.empty()) continue;
-    if (!primitivesInRegion(bvh_, geometry_, regionAround(views), UINT32_MAX).empty()) return false;
+    if (!primitivesInRegion(bvh_, geometry_, regionAround(light, views), UINT32_MAX).empty()) return false;
   }
   return true;
 }

@@ -44,6 +44,12 @@ class PenumbraProof {
 
   // Whether every soft light reaches the whole of p's view of it.
   bool seesWhole(const glm::vec3& p, const glm::vec3& eye) const;
+  // True where one ray shows that p cannot be proved to see some soft light
+  // whole: a primitive meets the segment from p's lifted apex to the middle
+  // of that light's base, inside the pyramid seesWhole would ask about.
+  // False proves nothing. One any-hit ray a light, where a failed proof
+  // walks the region query and tests each primitive it finds.
+  bool plainlyBlocked(const glm::vec3& p, const glm::vec3& eye) const;
   // The same for a block of points at once: true proves it for each (nothing
   // enters the box around all their pyramids to a light); false proves
   // nothing, and each point is asked alone.
@@ -78,7 +84,8 @@ class PenumbraProof {
     glm::vec3 centre{0.0f};
   };
   static View viewOf(SoftLight light, const glm::vec3& p, const glm::vec3& eye);
-  static ConvexRegion regionAround(const std::vector<View>& views);
+  static std::vector<glm::vec3> cornersAround(const SoftLight& light, const std::vector<View>& views);
+  static ConvexRegion regionAround(const SoftLight& light, const std::vector<View>& views);
   // Whether nothing enters the pyramid from the apex to the base through
   // `centre`.
   bool clear(const glm::vec3& apex, const Base& base, const glm::vec3& centre) const;

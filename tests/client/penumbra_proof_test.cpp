@@ -1,5 +1,6 @@
 // The penumbra proof of a block of points at once never clears a point that
-// its own proof does not, and clears whole blocks away from the shadows.
+// its own proof does not, and clears whole blocks away from the shadows; a
+// point whose one ray is blocked is never one its proof clears.
 #include "client/raster/penumbra_proof.h"
 
 #include <random>
@@ -17,6 +18,7 @@ struct Tally {
   int cleared = 0;   // blocks proved at once
   int refused = 0;   // blocks left to their points
   int shadowed = 0;  // points of refused blocks their own proof does not clear
+  int plain = 0;     // points plainly blocked (one ray)
 };
 
 // Blocks of 4 x 4 points a spacing apart on the plane through `centre`
@@ -32,6 +34,11 @@ Tally checkBlocks(const PenumbraProof& proof, const glm::vec3& eye, const glm::v
     std::vector<glm::vec3> points;
     for (int k = 0; k < 16; ++k) {
       points.push_back(corner + spacing * (static_cast<float>(k % 4) * u + static_cast<float>(k / 4) * v));
+    }
+    for (const glm::vec3& p : points) {
+      if (!proof.plainlyBlocked(p, eye)) continue;
+      ++t.plain;
+      EXPECT_FALSE(proof.seesWhole(p, eye)) << p.x << " " << p.y << " " << p.z;
     }
     if (proof.allSeeWhole(points, eye)) {
       ++t.cleared;
@@ -52,6 +59,7 @@ TEST(PenumbraProof, ABlockClearedAtOnceIsClearedPointByPoint) {
                               glm::vec3(0, 0, 1), 4.0f, 0.05f);
   EXPECT_GT(t.cleared, 30);
   EXPECT_GT(t.shadowed, 30);  // blocks in the sphere's and the mesh's shadows
+  EXPECT_GT(t.plain, 30);
 }
 
 // The Cornell box's emitting square as lights (path transport's light drawn
@@ -72,6 +80,7 @@ TEST(PenumbraProof, ABlockClearedAtOnceIsClearedPointByPointUnderAnEmitter) {
       checkBlocks(proof, scene.frame.camera.eye, back, glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), extent, 0.02f * extent);
   EXPECT_GT(t.cleared, 30);
   EXPECT_GT(t.shadowed, 30);
+  EXPECT_GT(t.plain, 30);
 }
 
 }  // namespace
