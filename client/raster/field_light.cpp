@@ -9,11 +9,15 @@
 namespace glint::gl {
 namespace {
 
-constexpr const char* kRemedy = "a coarser field, fewer light samples, or --mask all traces every pixel";
+constexpr const char* kRemedy = "a coarser field, or --mask all traces every pixel";
 
 }  // namespace
 
-FieldLight::FieldLight(const Api& gl, const IrradianceField& field) : gl_(gl), field_(field) {
+FieldLight::FieldLight(const Api& gl, const IrradianceField& field, const EmitterPatches& emitters)
+    : gl_(gl), field_(field) {
+  for (const EmitterPatches::Patch& p : emitters.patches()) {
+    emitters_.insert(emitters_.end(), {p.corner, p.corner + p.edge1, p.corner + p.edge2, p.radiance});
+  }
   std::vector<glm::vec3> texels;
   texels.reserve(static_cast<std::size_t>(field.probeCount() * kFieldProbeTexels));
   for (int i = 0; i < field.probeCount(); ++i) {
@@ -28,33 +32,22 @@ FieldLight::FieldLight(const Api& gl, const IrradianceField& field) : gl_(gl), f
 
 FieldLight::~FieldLight() {
   if (probes_) gl_.DeleteTextures(1, &probes_);
-  if (emitters_) gl_.DeleteTextures(1, &emitters_);
 }
 
-void FieldLight::prepare(const EmitterPatches& patches) {
-  std::vector<glm::vec3> texels;
-  for (const EmitterPatches::Patch& p : patches.patches()) {
-    for (const glm::vec3& c : p.centres) texels.insert(texels.end(), {c, p.power(), p.normal});
-  }
-  emitterCount_ = static_cast<int>(texels.size() / kEmitterPointFields);
-  if (emitterCount_ == 0) return;
-  uploadFloatTexels(gl_, emitters_, std::move(texels), emitterCount_, kEmitterPointFields, kEmitterPointsPerRow,
-                    "points of the emitters", kRemedy);
-}
-
-void FieldLight::setUniforms(unsigned program, int fieldUnit, int emitterUnit) const {
+void FieldLight::setUniforms(unsigned program, int fieldUnit) const {
   const auto at = [&](const char* name) { return gl_.GetUniformLocation(program, name); };
   gl_.Uniform3fv(at("uFieldOrigin"), 1, glm::value_ptr(field_.origin()));
   gl_.Uniform3fv(at("uFieldStep"), 1, glm::value_ptr(field_.step()));
   const glm::ivec3& counts = field_.counts();
   gl_.Uniform3i(at("uFieldCounts"), counts.x, counts.y, counts.z);
-  gl_.Uniform1i(at("uEmitterCount"), emitterCount_);
+  const auto triangles = static_cast<int>(emitters_.size() / 4);
+  gl_.Uniform1i(at("uEmitterCount"), triangles);
+  if (triangles > 0) {
+    gl_.Uniform3fv(at("uEmitters"), static_cast<GLsizei>(emitters_.size()), glm::value_ptr(emitters_.front()));
+  }
   gl_.Uniform1i(at("uField"), fieldUnit);
-  gl_.Uniform1i(at("uEmitterPoints"), emitterUnit);
   gl_.ActiveTexture(GL_TEXTURE0 + fieldUnit);
   gl_.BindTexture(GL_TEXTURE_2D, probes_);
-  gl_.ActiveTexture(GL_TEXTURE0 + emitterUnit);
-  gl_.BindTexture(GL_TEXTURE_2D, emitters_);
   gl_.ActiveTexture(GL_TEXTURE0);
 }
 

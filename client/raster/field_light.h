@@ -1,5 +1,9 @@
 #pragma once
 
+#include <vector>
+
+#include <glm/vec3.hpp>
+
 #include "client/raster/gl_api.h"
 #include "common/render/emitter_patches.h"
 #include "common/render/irradiance_field.h"
@@ -10,32 +14,26 @@ namespace glint::gl {
 // irradiance coefficients, then its visibility map's moments (in r and g).
 constexpr int kFieldProbeTexels = 9 + IrradianceField::kMapTexels;
 constexpr int kFieldProbesPerRow = 64;  // FIELD_PROBES_PER_ROW
-// An emitter point's texels (position, power, normal), and points a row.
-constexpr int kEmitterPointFields = 3;
-constexpr int kEmitterPointsPerRow = 256;
 
 // The light of an irradiance field as the raster reads it, the tracer's
-// Tracer::fieldLight: the field's probes (uploaded once) and the emitters'
-// fixed points (common/render/emitter_patches.h; uploaded each frame, whose
-// light samples say how many) in two float textures read exactly.
+// Tracer::fieldLight: the field's probes, uploaded once in a float texture
+// read exactly, and the emitting triangles (common/render/emitter_patches.h)
+// in uniforms.
 class FieldLight {
  public:
-  FieldLight(const Api& gl, const IrradianceField& field);
+  FieldLight(const Api& gl, const IrradianceField& field, const EmitterPatches& emitters);
   ~FieldLight();
   FieldLight(const FieldLight&) = delete;
   FieldLight& operator=(const FieldLight&) = delete;
 
-  // The emitters' points of the frame.
-  void prepare(const EmitterPatches& patches);
-  // The field's uniforms of a program in use; its textures on these units.
-  void setUniforms(unsigned program, int fieldUnit, int emitterUnit) const;
+  // The field's uniforms of a program in use; its texture on this unit.
+  void setUniforms(unsigned program, int fieldUnit) const;
 
  private:
   const Api& gl_;
   const IrradianceField& field_;
   unsigned probes_ = 0;
-  unsigned emitters_ = 0;
-  int emitterCount_ = 0;
+  std::vector<glm::vec3> emitters_;  // per triangle: its three corners, its emission
 };
 
 }  // namespace glint::gl

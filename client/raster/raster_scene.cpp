@@ -27,8 +27,7 @@ enum TextureUnit : int {
   kShadowMapUnit = 1,
   kEmissionUnit = 2,
   kAreaPointsUnit = 3,
-  kFieldUnit = 4,
-  kEmitterPointsUnit = 5
+  kFieldUnit = 4
 };
 
 unsigned compile(const Api& gl, GLenum type, std::initializer_list<const char*> parts) {
@@ -346,7 +345,7 @@ void RasterScene::setFrameUniforms(unsigned program, const FrameSettings& frame,
   gl_.Uniform1i(at("uImage"), kImageUnit);
   gl_.Uniform1i(at("uEmissionImage"), kEmissionUnit);
   shadowMaps_.setUniforms(program, kShadowMapUnit, punctualLights_.size(), shadows_);
-  if (field_) field_->setUniforms(program, kFieldUnit, kEmitterPointsUnit);
+  if (field_) field_->setUniforms(program, kFieldUnit);
 }
 
 void RasterScene::setLightUniforms(unsigned program) {
@@ -409,7 +408,7 @@ void RasterScene::useField(const IrradianceField& field) {
                      " emitting triangles, an emitting sphere or an emission texture): --mask all traces every pixel");
   }
   if (!field_) penumbra_.addEmitters(*patches);
-  field_ = std::make_unique<FieldLight>(gl_, field);
+  field_ = std::make_unique<FieldLight>(gl_, field, *patches);
 }
 
 bool RasterScene::objectLit(std::uint32_t object) const {
@@ -588,7 +587,6 @@ double RasterScene::draw(const FrameSettings& frame, const MaskSettings& mask) {
   shadows_ = prepareShadows(mask);
   const double shadowMs = msSince(start);
   uploadAreaPoints(frame);
-  if (field_) field_->prepare(*EmitterPatches::of(scene_, plan_, frame.sampling.lightSamples));
   target_.bind(frame.width, frame.height);
   gl_.Viewport(0, 0, frame.width, frame.height);
   const Encoder encoder(frame.output);

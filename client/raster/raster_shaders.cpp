@@ -71,7 +71,7 @@ std::string fragmentPrelude(const ShaderVariant& variant) {
          define("FIELD_MAP_SIDE", std::to_string(IrradianceField::kMapSide)) +
          define("FIELD_DECIDED_SHARE", floatLiteral(IrradianceField::kDecidedShare)) +
          define("FIELD_DOUBT_SHARE", floatLiteral(IrradianceField::kDoubtShare)) +
-         define("EMITTER_POINTS_PER_ROW", std::to_string(kEmitterPointsPerRow)) + variant.defines() + define("SHARED", "") +
+         define("MAX_EMITTERS", std::to_string(EmitterPatches::kMaxPatches)) + variant.defines() + define("SHARED", "") +
          kSharedShading;
 }
 
@@ -123,7 +123,7 @@ uniform sampler2D uField;                    // the field's probes (client/raste
 uniform vec3 uFieldOrigin;                   // probe (0, 0, 0)
 uniform vec3 uFieldStep;                     // between neighbouring probes
 uniform ivec3 uFieldCounts;                  // probes along each axis
-uniform sampler2D uEmitterPoints;            // per point: position, power, normal
+uniform vec3 uEmitters[4 * MAX_EMITTERS];    // per emitting triangle: its corners, its emission
 uniform int uEmitterCount;
 uniform bool uMarkUndecided;                 // a pixel the maps cannot decide is traced (rule auto)
 uniform bool uSelfShadowing;                 // the tracer casts shadow rays (EffectPlan::shadows)
@@ -388,16 +388,13 @@ vec3 fieldIrradiance(vec3 p, vec3 n) {
   return weight > 0.0 ? sum / weight : vec3(0.0);
 }
 
-// The emitters' light at p toward unit n, unshadowed: the sum over their
-// fixed points (where something may block it, the pixel is traced:
+// The emitters' light at p toward unit n, unshadowed: each triangle's in
+// closed form (where something may block it, the pixel is traced:
 // client/raster/penumbra_proof.h).
 vec3 emitterIrradiance(vec3 p, vec3 n) {
   vec3 sum = vec3(0.0);
   for (int i = 0; i < uEmitterCount; ++i) {
-    ivec2 at = ivec2(3 * (i % EMITTER_POINTS_PER_ROW), i / EMITTER_POINTS_PER_ROW);
-    sum += emitterPointIrradiance(texelFetch(uEmitterPoints, at + ivec2(1, 0), 0).rgb,
-                                  texelFetch(uEmitterPoints, at, 0).rgb,
-                                  texelFetch(uEmitterPoints, at + ivec2(2, 0), 0).rgb, p, n);
+    sum += triangleIrradiance(uEmitters[4 * i + 3], uEmitters[4 * i], uEmitters[4 * i + 1], uEmitters[4 * i + 2], p, n);
   }
   return sum;
 }

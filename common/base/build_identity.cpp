@@ -28,8 +28,11 @@ namespace {
 // a lobe only where there is a choice (Whitted pixels unchanged); 15: a
 // frame that reads an irradiance field lights by path transport's lobes
 // (lobesReflect), the tracer confirms the field's probes with rays, and a
-// probe about hidden carries no weight (frames without a field unchanged).
-constexpr int kTracerVersion = 15;
+// probe about hidden carries no weight (frames without a field unchanged);
+// 16: a frame that reads an irradiance field takes an emitting triangle's
+// unshadowed light in closed form (triangleIrradiance) where it summed the
+// triangle's fixed points (frames without a field unchanged).
+constexpr int kTracerVersion = 16;
 
 // FNV-1a: the flags only need a short, stable fingerprint.
 std::uint64_t fingerprint(const char* text) {

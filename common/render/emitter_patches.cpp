@@ -15,11 +15,9 @@ glm::vec3 EmitterPatches::Patch::at(const glm::vec2& st) const {
   return corner + (r * (1.0f - st.y)) * edge1 + (r * st.y) * edge2;
 }
 
-glm::vec3 EmitterPatches::Patch::irradianceFrom(const glm::vec3& q, const glm::vec3& p, const glm::vec3& n) const {
-  return glsl::emitterPointIrradiance(power(), q, normal, p, n);
+glm::vec3 EmitterPatches::Patch::irradianceAt(const glm::vec3& p, const glm::vec3& n) const {
+  return glsl::triangleIrradiance(radiance, corner, corner + edge1, corner + edge2, p, n);
 }
-
-glm::vec3 EmitterPatches::Patch::power() const { return radiance * (area / static_cast<float>(strata.size())); }
 
 int EmitterPatches::points() const {
   int n = 0;
@@ -53,11 +51,7 @@ std::optional<EmitterPatches> EmitterPatches::of(const Scene& scene, const Effec
   const float all = static_cast<float>(points > 0 ? points : kDefaultPoints);
   for (Patch& patch : result.patches_) {
     const int count = std::max(1, static_cast<int>(std::lround(all * patch.area / total)));
-    for (int k = 0; k < count; ++k) {
-      const Stratum s = jitteredStratum(count, k);
-      patch.strata.push_back(s);
-      patch.centres.push_back(patch.at({0.5f * (s.x0 + s.x1), 0.5f * (s.y0 + s.y1)}));
-    }
+    for (int k = 0; k < count; ++k) patch.strata.push_back(jitteredStratum(count, k));
   }
   return result;
 }

@@ -12,20 +12,19 @@
 
 namespace glint {
 
-// The emitting triangles of a scene lit by an irradiance field, as fixed
-// points the tracer and the raster share (the field holds no emission: the
-// light emitters send a point directly is the shading point's own). Each
-// triangle is cut into equal-area strata (jitteredStratum over the unit
-// square, carried onto the triangle by the map that draws points uniformly
-// on it), and
-//  - the unshadowed irradiance at a point is the sum over the strata's
-//    centres, each a patch of area / count radiating the emission from both
-//    sides: L cos_e cos / d^2 x area / count (the raster shades this);
+// The emitting triangles of a scene lit by an irradiance field, which the
+// tracer and the raster share (the field holds no emission: the light
+// emitters send a point directly is the shading point's own):
+//  - the unshadowed irradiance at a point is each triangle's in closed form
+//    (shading.glsl's triangleIrradiance: exact, from both sides), which the
+//    raster shades;
 //  - the share of it that arrives is measured with one shadow ray to a
-//    point jittered in each stratum, the ratio estimator of area lights
-//    (common/render/area_light.h): a point every ray reaches gets exactly
-//    the unshadowed value, so only the penumbra is noisy.
-// Only a few flat emitters of plain emission are points: a scene with more
+//    point jittered in each of the triangle's equal-area strata
+//    (jitteredStratum over the unit square, carried onto the triangle by
+//    the map that draws points uniformly on it), the ratio estimator of
+//    area lights (common/render/area_light.h): a point every ray reaches
+//    gets exactly the unshadowed value, so only the penumbra is noisy.
+// Only a few flat emitters of plain emission are patches: a scene with more
 // than kMaxPatches emitting triangles, an emitting sphere or an emission
 // texture has none (the tracer then draws points on the emitters at random,
 // and the raster cannot draw their light).
@@ -40,15 +39,10 @@ class EmitterPatches {
     glm::vec3 radiance;              // the emission
     float area = 0.0f;
     std::vector<Stratum> strata;
-    std::vector<glm::vec3> centres;  // each stratum's centre on the triangle
     // The point at (s, t) of the unit square, uniform by area.
     glm::vec3 at(const glm::vec2& st) const;
-    // What one stratum's point q sends a point p with unit normal n
-    // (unshadowed): radiance x cos_e cos / d^2 x area / count; zero where n
-    // faces away.
-    // (shading.glsl's emitterPointIrradiance).
-    glm::vec3 irradianceFrom(const glm::vec3& q, const glm::vec3& p, const glm::vec3& n) const;
-    glm::vec3 power() const;  // the emission times the area a point stands for
+    // What the triangle sends a point p with unit normal n, unshadowed.
+    glm::vec3 irradianceAt(const glm::vec3& p, const glm::vec3& n) const;
   };
 
   // The scene's patches (none where the plan has no emission; no answer

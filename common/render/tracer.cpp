@@ -108,8 +108,7 @@ glm::vec3 Tracer::emitterIrradiance(const ShadingPoint& at, Path& path) const {
 
 glm::vec3 Tracer::patchIrradiance(const ShadingPoint& at, int patch, Path& path) const {
   const EmitterPatches::Patch& e = patches_->patches()[static_cast<std::size_t>(patch)];
-  glm::vec3 open(0.0f);
-  for (const glm::vec3& c : e.centres) open += e.irradianceFrom(c, at.s.p, at.s.ns);
+  const glm::vec3 open = e.irradianceAt(at.s.p, at.s.ns);
   if (open == glm::vec3(0.0f)) return open;
   const auto target = [&](int k, const glm::vec2& u) -> std::optional<Direction> {
     const glm::vec3 q = e.at(stratumPoint(e.strata[static_cast<std::size_t>(k)], u));

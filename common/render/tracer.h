@@ -29,7 +29,8 @@ namespace glint {
 // With an irradiance field (the hybrid frame under path transport), the
 // light other surfaces reflect onto a diffuse surface comes from the field,
 // read as the raster reads it, in place of the constant ambient term; the
-// light the emitting surfaces send it straight, from their fixed points
+// light the emitting surfaces send it straight, each triangle's in closed
+// form times the share its strata's shadow rays find open
 // (common/render/emitter_patches.h) where they are few flat ones, else from
 // one point drawn on them a sample (shadowed as a shadow ray finds).
 //

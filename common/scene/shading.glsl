@@ -230,17 +230,75 @@ SHARED vec3 lobesReflect(vec3 arriving, vec3 albedo, float specular, float h, ve
   return arriving * f * nl;
 }
 
+// atan2(y, x) for y >= 0, in [0, pi], by atanUnit: the same bits in C++ on
+// every machine.
+SHARED float angleOf(float y, float x) {
+  float ax = abs(x);
+  float a = y <= ax ? (ax > 0.0f ? atanUnit(y / ax) : 0.0f) : 1.57079633f - atanUnit(ax / y);
+  return x < 0.0f ? 3.14159265f - a : a;
+}
+
+// v over its length; zero for zero.
+SHARED vec3 unitOf(vec3 v) {
+  float l = length(v);
+  return l > 0.0f ? v / l : vec3(0.0f);
+}
+
+// One edge's term of Lambert's closed form for a polygon's irradiance: the
+// angle between the unit directions u and w to its ends times the cosine
+// between n and the normal of their plane.
+SHARED float edgeTerm(vec3 u, vec3 w, vec3 n) {
+  vec3 normal = cross(u, w);
+  float s = length(normal);
+  return s > 0.0f ? angleOf(s, dot(u, w)) * dot(n, normal) / s : 0.0f;
+}
+
+// Where the segment from u to w crosses the plane of n through the origin,
+// u at height hu above it and w at hw, of the other sign.
+SHARED vec3 horizonPoint(vec3 u, vec3 w, float hu, float hw) { return u + (hu / (hu - hw)) * (w - u); }
+
+// Twice the irradiance of unit radiance from the triangle a, b, c (from
+// the receiver at the origin, the one of them whose side of n's plane
+// differs from the others' first): the part in front of n's plane, a
+// triangle (a in front) or a quadrilateral (a behind).
+SHARED float clippedTerms(vec3 a, vec3 b, vec3 c, vec3 n) {
+  float ha = dot(a, n);
+  vec3 ab = unitOf(horizonPoint(a, b, ha, dot(b, n)));
+  vec3 ca = unitOf(horizonPoint(c, a, dot(c, n), ha));
+  if (ha > 0.0f) {
+    vec3 ua = unitOf(a);
+    return edgeTerm(ua, ab, n) + edgeTerm(ab, ca, n) + edgeTerm(ca, ua, n);
+  }
+  vec3 ub = unitOf(b);
+  vec3 uc = unitOf(c);
+  return edgeTerm(ab, ub, n) + edgeTerm(ub, uc, n) + edgeTerm(uc, ca, n) + edgeTerm(ca, ab, n);
+}
+
 // The irradiance a surface at p of unit normal n receives, unshadowed, from
-// one of the emitters' fixed points (common/render/emitter_patches.h): q on
-// a triangle of unit normal e, radiating `power` (the emission times the
-// area the point stands for) from both sides: power |cos_e| cos / d^2; zero
-// where n faces away.
-SHARED vec3 emitterPointIrradiance(vec3 power, vec3 q, vec3 e, vec3 p, vec3 n) {
-  vec3 to = q - p;
-  float d2 = dot(to, to);
-  if (!(d2 > 0.0f)) return vec3(0.0f);
-  vec3 l = to * (1.0f / sqrt(d2));
-  float cosine = dot(l, n);
-  if (!(cosine > 0.0f)) return vec3(0.0f);
-  return power * (abs(dot(e, l)) * cosine / d2);
+// the triangle a, b, c radiating radiance L from both sides (an emitter of
+// common/render/emitter_patches.h): Lambert's closed form for a polygon,
+// half the sum over its edges of the angle each spans from p times the
+// cosine between n and the normal of the plane through p and that edge,
+// the triangle first clipped to the side n faces.
+SHARED vec3 triangleIrradiance(vec3 L, vec3 a, vec3 b, vec3 c, vec3 p, vec3 n) {
+  a = a - p;
+  b = b - p;
+  c = c - p;
+  bool fa = dot(a, n) > 0.0f;
+  bool fb = dot(b, n) > 0.0f;
+  bool fc = dot(c, n) > 0.0f;
+  float sum = 0.0f;
+  if (fa && fb && fc) {
+    vec3 ua = unitOf(a);
+    vec3 ub = unitOf(b);
+    vec3 uc = unitOf(c);
+    sum = edgeTerm(ua, ub, n) + edgeTerm(ub, uc, n) + edgeTerm(uc, ua, n);
+  } else if (fb == fc && fa != fb) {
+    sum = clippedTerms(a, b, c, n);
+  } else if (fa == fc && fb != fa) {
+    sum = clippedTerms(b, c, a, n);
+  } else if (fa == fb && fc != fa) {
+    sum = clippedTerms(c, a, b, n);
+  }
+  return L * (0.5f * abs(sum));
 }

@@ -21,7 +21,7 @@ constexpr float kHardSpotEdge = 1e-4f;
 // wrappedIndex, imagePoint, bilinearCorner and bilinearBlend; the
 // irradiance field's octahedralPoint, shBasis, cosineLobe, probeShare,
 // probeVisibility and shIrradiance; path transport's lobeSum, diffuseAlbedo,
-// specularWeight and lobesReflect; emitterPointIrradiance), from shading.glsl, which the raster's
+// specularWeight and lobesReflect; the emitters' angleOf and triangleIrradiance), from shading.glsl, which the raster's
 // shaders compile too: read them there. Here GLSL's names are C++'s, in
 // float.
 namespace glsl {

@@ -188,8 +188,8 @@ double meanOf(const LinearImage& image) {
 }
 
 // Inside the emitting box of albedo 0.5, the camera sees a wall's emission
-// and what it reflects: 1 + 0.5 E / pi, E the walls' emission (pi, from the
-// fixed points on its 12 triangles, 64 each) and the field's reflected light
+// and what it reflects: 1 + 0.5 E / pi, E the walls' emission (pi, its 12
+// triangles' in closed form, 64 shadow rays each) and the field's reflected light
 // (0.9375 pi), the 1.96875 of the path trace's four bounces.
 TEST(IrradianceField, TheTracerAddsTheFieldsLightWherePathsWouldBring) {
   json box = emittingBox(1.0, 0.5);
