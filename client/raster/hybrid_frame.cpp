@@ -169,10 +169,25 @@ void cropRows(std::vector<std::uint8_t>& rgb, int frameWidth, const TileRect& wi
 // is proved at once where it can be (one region query for all its points);
 // in one that cannot be, each pixel whose ray to a light's middle is blocked
 // is marked at once (most of the umbra), and the block is cut in four, down
-// to kSmallestBlock pixels a side, then proved pixel by pixel. The blocks' rows are shared out on the
-// compute pool.
+// to kSmallestBlock pixels a side, whose pixels are proved one by one
+// against the primitives that may block that block (one region query). The
+// blocks' rows are shared out on the compute pool.
 constexpr int kProofBlock = 8;
 constexpr int kSmallestBlock = 4;
+
+// The smallest block's pixels, each proved alone against the primitives that
+// may block the block.
+void markPenumbraPixels(const gl::PenumbraProof& proof, const glm::vec3& eye, std::span<const std::size_t> pixels,
+                        std::span<const glm::vec3> at, std::vector<std::uint8_t>& mask) {
+  const std::optional<std::vector<std::uint32_t>> suspects = proof.suspects(at, eye);
+  if (suspects && suspects->empty()) return;
+  for (std::size_t k = 0; k < at.size(); ++k) {
+    if (mask[pixels[k]] != kRasterPixel) continue;
+    if (suspects ? !proof.seesWhole(at[k], eye, *suspects) : !proof.seesWhole(at[k], eye)) {
+      mask[pixels[k]] = kShadowEdgePixel;
+    }
+  }
+}
 
 void markPenumbraBlock(const gl::RasterScene& raster, const gl::RasterScene::PixelPoints& points,
                        const FrameSettings& frame, int x0, int y0, int size, HybridResult& result) {
@@ -188,23 +203,16 @@ void markPenumbraBlock(const gl::RasterScene& raster, const gl::RasterScene::Pix
     }
   }
   if (at.empty()) return;
+  if (size == kSmallestBlock) return markPenumbraPixels(raster.penumbra(), frame.camera.eye, pixels, at, result.mask);
   if (at.size() > 1 && raster.penumbra().allSeeWhole(at, frame.camera.eye)) return;
   if (size == kProofBlock) {
     for (std::size_t k = 0; k < at.size(); ++k) {
       if (raster.penumbra().plainlyBlocked(at[k], frame.camera.eye)) result.mask[pixels[k]] = kShadowEdgePixel;
     }
   }
-  if (size > kSmallestBlock) {
-    const int half = size / 2;
-    for (int q = 0; q < 4; ++q) {
-      markPenumbraBlock(raster, points, frame, x0 + (q & 1) * half, y0 + (q >> 1) * half, half, result);
-    }
-    return;
-  }
-  for (std::size_t k = 0; k < at.size(); ++k) {
-    if (result.mask[pixels[k]] == kRasterPixel && !raster.penumbra().seesWhole(at[k], frame.camera.eye)) {
-      result.mask[pixels[k]] = kShadowEdgePixel;
-    }
+  const int half = size / 2;
+  for (int q = 0; q < 4; ++q) {
+    markPenumbraBlock(raster, points, frame, x0 + (q & 1) * half, y0 + (q >> 1) * half, half, result);
   }
 }
 

@@ -153,19 +153,31 @@ std::optional<PenumbraProof::Base> PenumbraProof::baseFrom(const SoftLight& ligh
   return Base{{c - t - b, c + t - b, c + t + b, c - t + b}, axis};
 }
 
-bool PenumbraProof::clear(const glm::vec3& apex, const Base& base, const glm::vec3& centre) const {
+ConvexRegion PenumbraProof::pyramidOf(const View& view) {
   ConvexRegion pyramid;
-  const glm::vec3 inside = 0.5f * (apex + centre);
-  pyramid.planes.push_back(planeThrough(centre, base.normal, inside));
+  const glm::vec3& apex = view.apex;
+  const glm::vec3 inside = 0.5f * (apex + view.centre);
+  pyramid.planes.push_back(planeThrough(view.centre, view.base.normal, inside));
   for (int k = 0; k < 4; ++k) {
-    const glm::vec3& a = base.corners[k];
-    const glm::vec3& b = base.corners[(k + 1) % 4];
+    const glm::vec3& a = view.base.corners[k];
+    const glm::vec3& b = view.base.corners[(k + 1) % 4];
     pyramid.planes.push_back(planeThrough(apex, glm::cross(a - apex, b - apex), inside));
   }
-  pyramid.corners = {apex, base.corners[0], base.corners[1], base.corners[2], base.corners[3]};
+  pyramid.corners = {apex, view.base.corners[0], view.base.corners[1], view.base.corners[2], view.base.corners[3]};
   finishRegion(pyramid);
-  for (std::uint32_t prim : primitivesInRegion(bvh_, geometry_, pyramid, UINT32_MAX)) {
-    if (blocks(prim, pyramid)) return false;
+  return pyramid;
+}
+
+bool PenumbraProof::clear(const View& view, std::optional<std::span<const std::uint32_t>> suspects) const {
+  const ConvexRegion pyramid = pyramidOf(view);
+  if (!suspects) {
+    for (std::uint32_t prim : primitivesInRegion(bvh_, geometry_, pyramid, UINT32_MAX)) {
+      if (blocks(prim, pyramid)) return false;
+    }
+    return true;
+  }
+  for (std::uint32_t prim : *suspects) {
+    if (primitiveInRegion(geometry_, prim, pyramid) && blocks(prim, pyramid)) return false;
   }
   return true;
 }
@@ -202,7 +214,17 @@ bool PenumbraProof::seesWhole(const glm::vec3& p, const glm::vec3& eye) const {
   for (const SoftLight& light : lights_) {
     const View view = viewOf(light, p, eye);
     if (view.kind == View::Kind::kUnprovable) return false;
-    if (view.kind == View::Kind::kPyramid && !clear(view.apex, view.base, view.centre)) return false;
+    if (view.kind == View::Kind::kPyramid && !clear(view, std::nullopt)) return false;
+  }
+  return true;
+}
+
+bool PenumbraProof::seesWhole(const glm::vec3& p, const glm::vec3& eye,
+                              std::span<const std::uint32_t> suspects) const {
+  for (const SoftLight& light : lights_) {
+    const View view = viewOf(light, p, eye);
+    if (view.kind == View::Kind::kUnprovable) return false;
+    if (view.kind == View::Kind::kPyramid && !clear(view, suspects)) return false;
   }
   return true;
 }
@@ -211,15 +233,9 @@ bool PenumbraProof::plainlyBlocked(const glm::vec3& p, const glm::vec3& eye) con
   for (const SoftLight& light : lights_) {
     const View view = viewOf(light, p, eye);
     if (view.kind != View::Kind::kPyramid) continue;
-    const auto blocked = [&](const glm::vec3& q) {
-      const glm::vec3 toQ = q - view.apex;
-      const float length = glm::length(toQ);
-      return length > 0.0f && bvh_.occluded(Ray(view.apex, toQ / length), length);
-    };
-    if (blocked(view.centre)) return true;
-    for (const glm::vec3& corner : view.base.corners) {
-      if (blocked(corner)) return true;
-    }
+    const glm::vec3 toCentre = view.centre - view.apex;
+    const float length = glm::length(toCentre);
+    if (length > 0.0f && bvh_.occluded(Ray(view.apex, toCentre / length), length)) return true;
   }
   return false;
 }
@@ -286,19 +302,40 @@ ConvexRegion PenumbraProof::regionAround(const SoftLight& light, const std::vect
   return region;
 }
 
-bool PenumbraProof::allSeeWhole(std::span<const glm::vec3> points, const glm::vec3& eye) const {
+std::optional<std::vector<PenumbraProof::View>> PenumbraProof::viewsOf(const SoftLight& light,
+                                                                       std::span<const glm::vec3> points,
+                                                                       const glm::vec3& eye) const {
   std::vector<View> views;
+  for (const glm::vec3& p : points) {
+    const View view = viewOf(light, p, eye);
+    if (view.kind == View::Kind::kUnprovable) return std::nullopt;
+    if (view.kind == View::Kind::kPyramid) views.push_back(view);
+  }
+  return views;
+}
+
+bool PenumbraProof::allSeeWhole(std::span<const glm::vec3> points, const glm::vec3& eye) const {
   for (const SoftLight& light : lights_) {
-    views.clear();
-    for (const glm::vec3& p : points) {
-      const View view = viewOf(light, p, eye);
-      if (view.kind == View::Kind::kUnprovable) return false;
-      if (view.kind == View::Kind::kPyramid) views.push_back(view);
-    }
-    if (views.empty()) continue;
-    if (!primitivesInRegion(bvh_, geometry_, regionAround(light, views), UINT32_MAX).empty()) return false;
+    const std::optional<std::vector<View>> views = viewsOf(light, points, eye);
+    if (!views) return false;
+    if (views->empty()) continue;
+    if (!primitivesInRegion(bvh_, geometry_, regionAround(light, *views), UINT32_MAX).empty()) return false;
   }
   return true;
+}
+
+std::optional<std::vector<std::uint32_t>> PenumbraProof::suspects(std::span<const glm::vec3> points,
+                                                                  const glm::vec3& eye) const {
+  std::vector<std::uint32_t> all;
+  for (const SoftLight& light : lights_) {
+    const std::optional<std::vector<View>> views = viewsOf(light, points, eye);
+    if (!views) return std::nullopt;
+    if (views->empty()) continue;
+    for (std::uint32_t prim : primitivesInRegion(bvh_, geometry_, regionAround(light, *views), UINT32_MAX)) {
+      if (std::find(all.begin(), all.end(), prim) == all.end()) all.push_back(prim);
+    }
+  }
+  return all;
 }
 
 }  // namespace glint::gl

@@ -54,6 +54,13 @@ class PenumbraProof {
   // enters the box around all their pyramids to a light); false proves
   // nothing, and each point is asked alone.
   bool allSeeWhole(std::span<const glm::vec3> points, const glm::vec3& eye) const;
+  // The primitives that may enter the region around a block's pyramids to
+  // any soft light, every light's joined (empty: allSeeWhole; none: a point
+  // cannot be proved). Every primitive that may block one of the points is
+  // among them, so that the point's own proof need ask only these:
+  // seesWhole(p, eye, suspects) is seesWhole(p, eye) for each of them.
+  std::optional<std::vector<std::uint32_t>> suspects(std::span<const glm::vec3> points, const glm::vec3& eye) const;
+  bool seesWhole(const glm::vec3& p, const glm::vec3& eye, std::span<const std::uint32_t> suspects) const;
 
  private:
   // Whether a primitive the region query found may enter the pyramid (an
@@ -86,9 +93,15 @@ class PenumbraProof {
   static View viewOf(SoftLight light, const glm::vec3& p, const glm::vec3& eye);
   static std::vector<glm::vec3> cornersAround(const SoftLight& light, const std::vector<View>& views);
   static ConvexRegion regionAround(const SoftLight& light, const std::vector<View>& views);
-  // Whether nothing enters the pyramid from the apex to the base through
-  // `centre`.
-  bool clear(const glm::vec3& apex, const Base& base, const glm::vec3& centre) const;
+  // The pyramid from the apex to the base through `centre`, as a region.
+  static ConvexRegion pyramidOf(const View& view);
+  // Whether nothing enters the pyramid (of the primitives `suspects`, all
+  // when none).
+  bool clear(const View& view, std::optional<std::span<const std::uint32_t>> suspects) const;
+  // The views of every point that a light's proof asks about (none: one
+  // cannot be proved).
+  std::optional<std::vector<View>> viewsOf(const SoftLight& light, std::span<const glm::vec3> points,
+                                           const glm::vec3& eye) const;
   const Geometry& geometry_;
   std::vector<SoftLight> lights_;
   Bvh bvh_;

@@ -84,6 +84,10 @@ bool primitiveSeparated(const Geometry& geometry, std::uint32_t prim, const Conv
 
 }  // namespace
 
+bool primitiveInRegion(const Geometry& geometry, std::uint32_t prim, const ConvexRegion& region) {
+  return !primitiveSeparated(geometry, prim, region);
+}
+
 glm::vec4 planeThrough(const glm::vec3& point, glm::vec3 n, const glm::vec3& inside) {
   n = glm::normalize(n);
   if (glm::dot(n, inside - point) > 0.0f) n = -n;

@@ -39,6 +39,10 @@ glm::vec4 planeThrough(const glm::vec3& point, glm::vec3 n, const glm::vec3& ins
 // (their rounding, with a wide margin).
 void finishRegion(ConvexRegion& region);
 
+// Whether primitive `prim` may reach into `region` (the separating planes
+// primitivesInRegion asks of each primitive it finds).
+bool primitiveInRegion(const Geometry& geometry, std::uint32_t prim, const ConvexRegion& region);
+
 // The primitives other than `skip` that may reach into `region`: a
 // conservative answer, from separating planes only (the region's own planes,
 // a triangle's plane, a sphere's distance, a BVH box's faces). Empty proves

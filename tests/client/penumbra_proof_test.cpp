@@ -1,6 +1,7 @@
 // The penumbra proof of a block of points at once never clears a point that
 // its own proof does not, and clears whole blocks away from the shadows; a
-// point whose one ray is blocked is never one its proof clears.
+// point whose one ray is blocked is never one its proof clears; a point
+// proved against its block's suspects is proved as against every primitive.
 #include "client/raster/penumbra_proof.h"
 
 #include <random>
@@ -19,6 +20,7 @@ struct Tally {
   int refused = 0;   // blocks left to their points
   int shadowed = 0;  // points of refused blocks their own proof does not clear
   int plain = 0;     // points plainly blocked (one ray)
+  int suspected = 0;  // points of refused blocks proved against the block's suspects
 };
 
 // Blocks of 4 x 4 points a spacing apart on the plane through `centre`
@@ -46,7 +48,15 @@ Tally checkBlocks(const PenumbraProof& proof, const glm::vec3& eye, const glm::v
       continue;
     }
     ++t.refused;
-    for (const glm::vec3& p : points) t.shadowed += proof.seesWhole(p, eye) ? 0 : 1;
+    const std::optional<std::vector<std::uint32_t>> suspects = proof.suspects(points, eye);
+    for (const glm::vec3& p : points) {
+      const bool whole = proof.seesWhole(p, eye);
+      t.shadowed += whole ? 0 : 1;
+      if (suspects) {
+        EXPECT_EQ(proof.seesWhole(p, eye, *suspects), whole) << p.x << " " << p.y << " " << p.z;
+      }
+      t.suspected += suspects && !suspects->empty() ? 1 : 0;
+    }
   }
   return t;
 }
@@ -60,6 +70,7 @@ TEST(PenumbraProof, ABlockClearedAtOnceIsClearedPointByPoint) {
   EXPECT_GT(t.cleared, 30);
   EXPECT_GT(t.shadowed, 30);  // blocks in the sphere's and the mesh's shadows
   EXPECT_GT(t.plain, 30);
+  EXPECT_GT(t.suspected, 30);
 }
 
 // The Cornell box's emitting square as lights (path transport's light drawn
@@ -81,6 +92,7 @@ TEST(PenumbraProof, ABlockClearedAtOnceIsClearedPointByPointUnderAnEmitter) {
   EXPECT_GT(t.cleared, 30);
   EXPECT_GT(t.shadowed, 30);
   EXPECT_GT(t.plain, 30);
+  EXPECT_GT(t.suspected, 30);
 }
 
 }  // namespace
