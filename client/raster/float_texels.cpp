@@ -12,7 +12,7 @@ void uploadFloatTexels(const Api& gl, unsigned& name, std::vector<glm::vec3> tex
   gl.BindTexture(GL_TEXTURE_2D, name);
   gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, perRow * fields, rows, 0, GL_RGB, GL_FLOAT, texels.data());
+  gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, perRow * fields, rows, 0, GL_RGB, GL_FLOAT, texels.data());
   if (gl.GetError() != GL_NO_ERROR) {
     throw InputError("OpenGL: cannot hold the " + std::to_string(records) + " " + what + " (" + remedy + ")");
   }

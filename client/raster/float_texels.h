@@ -11,7 +11,8 @@ namespace glint::gl {
 
 // Records of `fields` RGB float texels each, `perRow` records a row (the
 // last row padded), into texture `name` (made on first use, bound to the
-// active unit) for the shaders to read exactly with texelFetch. Throws
+// active unit) for the shaders to read exactly with texelFetch; held as
+// RGBA (alpha 1), which llvmpipe fetches faster than three floats. Throws
 // InputError naming `records` `what` and `remedy` when OpenGL cannot hold
 // them.
 void uploadFloatTexels(const Api& gl, unsigned& name, std::vector<glm::vec3> texels, int records, int fields,
