@@ -1,5 +1,7 @@
 #include "client/raster/field_light.h"
 
+#include <algorithm>
+#include <array>
 #include <vector>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -18,12 +20,14 @@ FieldLight::FieldLight(const Api& gl, const IrradianceField& field, const Emitte
   for (const EmitterPatches::Patch& p : emitters.patches()) {
     emitters_.insert(emitters_.end(), {p.corner, p.corner + p.edge1, p.corner + p.edge2, p.radiance});
   }
-  std::vector<glm::vec3> texels;
+  std::vector<glm::vec4> texels;
   texels.reserve(static_cast<std::size_t>(field.probeCount() * kFieldProbeTexels));
   for (int i = 0; i < field.probeCount(); ++i) {
     const IrradianceField::Probe& p = field.probe(i);
-    texels.insert(texels.end(), p.irradiance.begin(), p.irradiance.end());
-    for (const glm::vec2& m : p.moments) texels.emplace_back(m, 0.0f);
+    std::array<float, 4 * kFieldShTexels> packed{};
+    for (std::size_t k = 0; k < p.irradiance.size(); ++k) std::copy_n(&p.irradiance[k].x, 3, &packed[3 * k]);
+    for (int t = 0; t < kFieldShTexels; ++t) texels.push_back(glm::make_vec4(&packed[static_cast<std::size_t>(4 * t)]));
+    for (const glm::vec2& m : p.moments) texels.emplace_back(m, 0.0f, 0.0f);
   }
   if (texels.empty()) return;
   uploadFloatTexels(gl_, probes_, std::move(texels), field.probeCount(), kFieldProbeTexels, kFieldProbesPerRow,

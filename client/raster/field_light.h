@@ -11,8 +11,10 @@
 namespace glint::gl {
 
 // Texels a probe takes in the field's texture (FIELD_PROBE_TEXELS): its 9
-// irradiance coefficients, then its visibility map's moments (in r and g).
-constexpr int kFieldProbeTexels = 9 + IrradianceField::kMapTexels;
+// irradiance coefficients' 27 floats packed four a texel (FIELD_SH_TEXELS),
+// then its visibility map's moments (in r and g).
+constexpr int kFieldShTexels = (9 * 3 + 3) / 4;
+constexpr int kFieldProbeTexels = kFieldShTexels + IrradianceField::kMapTexels;
 constexpr int kFieldProbesPerRow = 64;  // FIELD_PROBES_PER_ROW
 
 // The light of an irradiance field as the raster reads it, the tracer's

@@ -67,6 +67,7 @@ std::string fragmentPrelude(const ShaderVariant& variant) {
          define("WRAP_CLAMP_TO_EDGE", std::to_string(static_cast<int>(TextureWrap::kClampToEdge))) +
          define("HARD_SPOT_EDGE", floatLiteral(kHardSpotEdge)) +
          define("FIELD_PROBE_TEXELS", std::to_string(kFieldProbeTexels)) +
+         define("FIELD_SH_TEXELS", std::to_string(kFieldShTexels)) +
          define("FIELD_PROBES_PER_ROW", std::to_string(kFieldProbesPerRow)) +
          define("FIELD_MAP_SIDE", std::to_string(IrradianceField::kMapSide)) +
          define("FIELD_DECIDED_SHARE", floatLiteral(IrradianceField::kDecidedShare)) +
@@ -346,9 +347,26 @@ bool behindTriangle(vec3 l, vec3 ng) {
 #endif
 
 #ifdef FIELD
-// Probe i's texel k (its coefficients, then its map's moments).
-vec3 fieldTexel(int i, int k) {
-  return texelFetch(uField, ivec2((i % FIELD_PROBES_PER_ROW) * FIELD_PROBE_TEXELS + k, i / FIELD_PROBES_PER_ROW), 0).rgb;
+// Probe i's texel k (its coefficients' floats, then its map's moments).
+vec4 fieldTexel(int i, int k) {
+  return texelFetch(uField, ivec2((i % FIELD_PROBES_PER_ROW) * FIELD_PROBE_TEXELS + k, i / FIELD_PROBES_PER_ROW), 0);
+}
+
+// Probe i's irradiance toward n, from its coefficients four floats a texel.
+vec3 probeIrradiance(int i, vec3 n) {
+  vec4 t[FIELD_SH_TEXELS];
+  for (int k = 0; k < FIELD_SH_TEXELS; ++k) t[k] = fieldTexel(i, k);
+  vec3 c[9];
+  c[0] = t[0].xyz;
+  c[1] = vec3(t[0].w, t[1].xy);
+  c[2] = vec3(t[1].zw, t[2].x);
+  c[3] = t[2].yzw;
+  c[4] = t[3].xyz;
+  c[5] = vec3(t[3].w, t[4].xy);
+  c[6] = vec3(t[4].zw, t[5].x);
+  c[7] = t[5].yzw;
+  c[8] = t[6].xyz;
+  return shIrradiance(c, n);
 }
 
 // The field's irradiance at p toward unit n, its cell's eight probes blended
@@ -373,11 +391,9 @@ vec3 fieldIrradiance(vec3 p, vec3 n) {
     vec3 t = mix(1.0 - alpha, alpha, vec3(offset));
     float s = probeShare(t.x * t.y * t.z, dir, n);
     ivec2 xy = clamp(ivec2(octahedralPoint(-dir) * float(FIELD_MAP_SIDE)), ivec2(0), ivec2(FIELD_MAP_SIDE - 1));
-    float v = probeVisibility(fieldTexel(i, 9 + xy.y * FIELD_MAP_SIDE + xy.x).rg, d, minVariance);
+    float v = probeVisibility(fieldTexel(i, FIELD_SH_TEXELS + xy.y * FIELD_MAP_SIDE + xy.x).rg, d, minVariance);
     float w = s * v;
-    vec3 c[9];
-    for (int k = 0; k < 9; ++k) c[k] = fieldTexel(i, k);
-    sum += w * shIrradiance(c, n);
+    sum += w * probeIrradiance(i, n);
     weight += w;
     share += s;
     if (visibilityInDoubt(v)) doubt += s;
