@@ -211,16 +211,16 @@ PenumbraProof::View PenumbraProof::viewOf(SoftLight light, const glm::vec3& p, c
 }
 
 bool PenumbraProof::seesWhole(const glm::vec3& p, const glm::vec3& eye) const {
-  for (const SoftLight& light : lights_) {
-    const View view = viewOf(light, p, eye);
-    if (view.kind == View::Kind::kUnprovable) return false;
-    if (view.kind == View::Kind::kPyramid && !clear(view, std::nullopt)) return false;
-  }
-  return true;
+  return seesWholeAsking(p, eye, std::nullopt);
 }
 
 bool PenumbraProof::seesWhole(const glm::vec3& p, const glm::vec3& eye,
                               std::span<const std::uint32_t> suspects) const {
+  return seesWholeAsking(p, eye, suspects);
+}
+
+bool PenumbraProof::seesWholeAsking(const glm::vec3& p, const glm::vec3& eye,
+                                    std::optional<std::span<const std::uint32_t>> suspects) const {
   for (const SoftLight& light : lights_) {
     const View view = viewOf(light, p, eye);
     if (view.kind == View::Kind::kUnprovable) return false;

@@ -98,6 +98,9 @@ class PenumbraProof {
   // Whether nothing enters the pyramid (of the primitives `suspects`, all
   // when none).
   bool clear(const View& view, std::optional<std::span<const std::uint32_t>> suspects) const;
+  // seesWhole, asking `suspects` only (all primitives when none).
+  bool seesWholeAsking(const glm::vec3& p, const glm::vec3& eye,
+                       std::optional<std::span<const std::uint32_t>> suspects) const;
   // The views of every point that a light's proof asks about (none: one
   // cannot be proved).
   std::optional<std::vector<View>> viewsOf(const SoftLight& light, std::span<const glm::vec3> points,
